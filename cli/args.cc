@@ -1,0 +1,94 @@
+#include "cli/args.h"
+
+#include <charconv>
+#include <cmath>
+
+namespace snooker::cli {
+
+Args::Args(const std::vector<std::string>& argv, const std::set<std::string>& valued,
+           const std::set<std::string>& switches) {
+  for (size_t i = 0; i < argv.size() && error_.empty(); ++i) {
+    const std::string& a = argv[i];
+    if (a.rfind("--", 0) != 0 || a.size() == 2) {
+      Fail("unexpected argument '" + a + "'");
+      break;
+    }
+    std::string name = a.substr(2);
+    std::optional<std::string> inline_value;
+    if (const size_t eq = name.find('='); eq != std::string::npos) {
+      inline_value = name.substr(eq + 1);
+      name = name.substr(0, eq);
+    }
+    if (switches.count(name) > 0) {
+      if (inline_value) {
+        Fail("--" + name + " takes no value (got '" + *inline_value + "')");
+      } else {
+        switches_on_.insert(name);
+      }
+    } else if (valued.count(name) > 0) {
+      if (inline_value) {
+        values_[name] = *inline_value;
+      } else if (i + 1 < argv.size()) {
+        values_[name] = argv[++i];
+      } else {
+        Fail("--" + name + " needs a value");
+      }
+    } else {
+      Fail("unknown option --" + name);
+    }
+  }
+}
+
+std::optional<double> Args::Number(const std::string& name, std::optional<double> fallback) {
+  const auto it = values_.find(name);
+  if (it == values_.end()) {
+    if (!fallback) Fail("--" + name + " is required");
+    return fallback;
+  }
+  const std::string& t = it->second;
+  double x = 0;
+  const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
+  if (ec != std::errc() || end != t.data() + t.size() || t.empty()) {
+    Fail("--" + name + " '" + t + "' is not a number");
+    return std::nullopt;
+  }
+  if (!std::isfinite(x)) {
+    Fail("--" + name + " '" + t + "' is not a finite number");
+    return std::nullopt;
+  }
+  return x;
+}
+
+std::optional<long> Args::Integer(const std::string& name, std::optional<long> fallback, long lo,
+                                  long hi) {
+  const auto it = values_.find(name);
+  if (it == values_.end()) {
+    if (!fallback) Fail("--" + name + " is required");
+    return fallback;
+  }
+  const std::string& t = it->second;
+  long x = 0;
+  const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
+  if (ec != std::errc() || end != t.data() + t.size() || t.empty()) {
+    Fail("--" + name + " '" + t + "' is not a whole number");
+    return std::nullopt;
+  }
+  if (x < lo || x > hi) {
+    Fail("--" + name + " " + t + " is out of range [" + std::to_string(lo) + ", " +
+         std::to_string(hi) + "]");
+    return std::nullopt;
+  }
+  return x;
+}
+
+std::optional<std::string> Args::Text(const std::string& name,
+                                      std::optional<std::string> fallback) {
+  const auto it = values_.find(name);
+  if (it == values_.end()) {
+    if (!fallback) Fail("--" + name + " is required");
+    return fallback;
+  }
+  return it->second;
+}
+
+}  // namespace snooker::cli

@@ -1,0 +1,202 @@
+// snooker collide: one ball-ball collision (Mathavan et al. 2014) from the command
+// line. Builds the same CollideRequest the gRPC service takes and calls the same
+// operation (server/api.h), so both paths are one.
+#include <google/protobuf/util/json_util.h>
+
+#include <iomanip>
+#include <map>
+
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "server/api.h"
+#include "server/convert.h"
+
+namespace snooker::cli {
+namespace {
+
+constexpr const char* kHelp = R"(usage: snooker collide --speed V0 [--topspin wT] [--sidespin wS] [--cut-deg THETA]
+                       [--steps N | --tolerance X] [--mu-bb X] [--restitution E]
+                       [--mu-s X] [--friction-law constant|marlow] [--json]
+
+Resolves one ball-ball collision with the model of Mathavan, Jackson & Parkin (2014),
+then each ball's slip on the cloth until it rolls (paper section 2.5).
+
+Frame (the paper's): the line of centres is +Y, the cue ball sits at -Y and the object
+ball at +Y, Z points up. The cue ball arrives with velocity (V0 sin th, V0 cos th, 0)
+and spin (-wT cos th, wT sin th, wS); the object ball is at rest.
+
+  --speed V0         incident speed of the cue ball, m/s (> 0; required)
+  --topspin wT       topspin, rad/s; positive = follow, negative = draw;
+                     a rolling cue ball has wT = V0 / R = V0 / 0.02625 (default 0)
+  --sidespin wS      sidespin, rad/s: the Z component of the cue ball's spin,
+                     right-hand rule with Z up (positive = counter-clockwise seen
+                     from above) (default 0)
+  --cut-deg THETA    cut angle between V0 and the line of centres, degrees,
+                     -90 < THETA < 90 (default 0: full ball)
+  --steps N          use the paper's fixed-step scheme (eq. 14) with N steps
+  --tolerance X      adaptive integrator: local error per step relative to the
+                     incident speed, 1e-15 to 0.1 (default 1e-10; the default
+                     integrator)
+  --mu-bb X          ball-ball friction coefficient, 0 to 1 (default 0.05)
+  --restitution E    energetic coefficient of restitution, 0 to 1 (default 0.89)
+  --mu-s X           ball-cloth sliding friction coefficient, 0 to 1 (default 0.21)
+  --friction-law L   constant (mu_bb) or marlow (slip-speed dependent, Marlow 1994)
+  --json             print one JSON object instead of a table:
+                     {"cue": {"velocity": {x,y,z} m/s, "angularVelocity": {x,y,z} rad/s,
+                     "slipEnd": {"velocity": {x,y} m/s, "speed" m/s, "exitAngleDeg" deg,
+                     "time" s, "sidespin" rad/s}}, "object": {...}, "impulseSteps",
+                     "rhsEvaluations", "rejectedSteps", "events", "impulseCompression" N s,
+                     "impulseFinal" N s}
+                     velocities are right after the impact, in the collision frame
+  --help             this text
+)";
+
+// API field name -> the flag that sets it, for error messages.
+const std::map<std::string, std::string>& FlagOfField() {
+  static const std::map<std::string, std::string> m = {
+      {"speed", "--speed"},
+      {"topspin", "--topspin"},
+      {"sidespin", "--sidespin"},
+      {"cut_angle_deg", "--cut-deg"},
+      {"parameters.mu_bb", "--mu-bb"},
+      {"parameters.restitution", "--restitution"},
+      {"parameters.mu_s", "--mu-s"},
+      {"solver.steps", "--steps"},
+      {"solver.tolerance", "--tolerance"},
+  };
+  return m;
+}
+
+std::string FlagErrors(const std::vector<server::FieldError>& errors) {
+  std::string out;
+  for (const server::FieldError& e : errors) {
+    const auto it = FlagOfField().find(e.field);
+    if (!out.empty()) out += "; ";
+    out += (it != FlagOfField().end() ? it->second : e.field) + " " + e.value + ": " + e.rule;
+  }
+  return out;
+}
+
+void PrintTable(const v1::CollideRequest& req, const v1::CollideResponse& r, std::ostream& out) {
+  auto vec3 = [](const v1::Vec3& v) {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(5) << "(" << v.x() << ", " << v.y() << ", " << v.z()
+      << ")";
+    return s.str();
+  };
+  const bool fixed = req.solver().integrator() == v1::IMPULSE_INTEGRATOR_FIXED_STEP;
+  out << "Ball-ball collision, Mathavan et al. (2014), collision frame (+Y line of centres)\n"
+      << "  incident: V0 " << req.speed() << " m/s, topspin " << req.topspin()
+      << " rad/s, sidespin " << req.sidespin() << " rad/s, cut " << req.cut_angle_deg()
+      << " deg\n"
+      << "  integrator: " << (fixed ? "fixed-step (paper eq. 14)" : "adaptive") << ", "
+      << r.impulse_steps() << " steps, " << r.rhs_evaluations() << " RHS evaluations, "
+      << r.events() << " events\n\n";
+  out << std::left << std::setw(30) << "" << std::setw(32) << "cue ball" << "object ball\n";
+  auto row = [&](const char* name, const std::string& c, const std::string& o) {
+    out << std::left << std::setw(30) << name << std::setw(32) << c << o << "\n";
+  };
+  auto num = [](double x, int digits) {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(digits) << x;
+    return s.str();
+  };
+  row("velocity after impact (m/s)", vec3(r.cue().velocity()), vec3(r.object().velocity()));
+  row("spin after impact (rad/s)", vec3(r.cue().angular_velocity()),
+      vec3(r.object().angular_velocity()));
+  row("speed at end of slip (m/s)", num(r.cue().slip_end().speed(), 4),
+      num(r.object().slip_end().speed(), 4));
+  row("exit angle (deg)", num(r.cue().slip_end().exit_angle_deg(), 3),
+      num(r.object().slip_end().exit_angle_deg(), 3));
+  row("slip time (s)", num(r.cue().slip_end().time(), 4), num(r.object().slip_end().time(), 4));
+  row("sidespin at end of slip (rad/s)", num(r.cue().slip_end().sidespin(), 3),
+      num(r.object().slip_end().sidespin(), 3));
+}
+
+}  // namespace
+
+int RunCollide(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
+  Args args(argv,
+            {"speed", "topspin", "sidespin", "cut-deg", "steps", "tolerance", "mu-bb",
+             "restitution", "mu-s", "friction-law"},
+            {"json", "help"});
+  if (args.error().empty() && args.Switch("help")) {
+    out << kHelp;
+    return kExitOk;
+  }
+  v1::CollideRequest req;
+  const auto speed = args.Number("speed", std::nullopt);
+  const auto topspin = args.Number("topspin", 0.0);
+  const auto sidespin = args.Number("sidespin", 0.0);
+  const auto cut = args.Number("cut-deg", 0.0);
+  if (args.error().empty() && args.Has("steps") && args.Has("tolerance")) {
+    err << "snooker collide: --steps selects the fixed-step scheme and --tolerance the "
+           "adaptive one; give one of them\n";
+    return kExitUsage;
+  }
+  if (args.Has("steps")) {
+    const auto steps = args.Integer("steps", std::nullopt, 1, 100'000'000);
+    if (steps) {
+      req.mutable_solver()->set_integrator(v1::IMPULSE_INTEGRATOR_FIXED_STEP);
+      req.mutable_solver()->set_steps(static_cast<int>(*steps));
+    }
+  }
+  if (args.Has("tolerance")) {
+    if (const auto t = args.Number("tolerance", std::nullopt)) {
+      req.mutable_solver()->set_tolerance(*t);
+    }
+  }
+  v1::CollisionParameters* p = req.mutable_parameters();
+  if (args.Has("mu-bb")) {
+    if (const auto x = args.Number("mu-bb", std::nullopt)) p->set_mu_bb(*x);
+  }
+  if (args.Has("restitution")) {
+    if (const auto x = args.Number("restitution", std::nullopt)) p->set_restitution(*x);
+  }
+  if (args.Has("mu-s")) {
+    if (const auto x = args.Number("mu-s", std::nullopt)) p->set_mu_s(*x);
+  }
+  if (const auto law = args.Text("friction-law", "constant")) {
+    if (*law == "marlow") {
+      p->set_friction_law(v1::BALL_BALL_FRICTION_LAW_MARLOW);
+    } else if (*law != "constant") {
+      err << "snooker collide: --friction-law '" << *law << "' is not constant or marlow\n";
+      return kExitUsage;
+    }
+  }
+  if (!args.error().empty()) {
+    err << "snooker collide: " << args.error() << "\n(see snooker collide --help)\n";
+    return kExitUsage;
+  }
+  req.set_speed(*speed);
+  req.set_topspin(*topspin);
+  req.set_sidespin(*sidespin);
+  req.set_cut_angle_deg(*cut);
+
+  const auto errors = server::ValidateCollideRequest(req);
+  if (!errors.empty()) {
+    err << "snooker collide: " << FlagErrors(errors) << "\n";
+    return kExitUsage;
+  }
+  v1::CollideResponse resp;
+  const server::ApiStatus status = server::Collide(req, &resp);
+  if (!status.ok()) {
+    err << "snooker collide: " << status.message << "\n";
+    return status.code == server::ApiStatus::Code::kInvalidArgument ? kExitUsage : kExitFailure;
+  }
+  if (args.Switch("json")) {
+    google::protobuf::util::JsonPrintOptions opt;
+    opt.always_print_primitive_fields = true;
+    std::string json;
+    if (!google::protobuf::util::MessageToJsonString(resp, &json, opt).ok()) {
+      err << "snooker collide: cannot print the result as JSON\n";
+      return kExitFailure;
+    }
+    out << json << "\n";
+  } else {
+    PrintTable(req, resp, out);
+  }
+  return kExitOk;
+}
+
+}  // namespace snooker::cli

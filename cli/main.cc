@@ -1,0 +1,38 @@
+// The `snooker` command.
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "cli/commands.h"
+
+namespace {
+
+constexpr const char* kUsage = R"(usage: snooker <command> [options]
+
+commands:
+  collide    resolve one ball-ball collision (Mathavan et al. 2014)
+  demo       run the built-in demonstration
+  help       this text
+
+'snooker <command> --help' explains a command's options.
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace snooker::cli;
+  if (argc < 2) {
+    std::cerr << kUsage;
+    return kExitUsage;
+  }
+  const std::string command = argv[1];
+  const std::vector<std::string> args(argv + 2, argv + argc);
+  if (command == "collide") return RunCollide(args, std::cout, std::cerr);
+  if (command == "demo") return RunDemo(args, std::cout, std::cerr);
+  if (command == "help" || command == "--help" || command == "-h") {
+    std::cout << kUsage;
+    return kExitOk;
+  }
+  std::cerr << "snooker: unknown command '" << command << "'\n\n" << kUsage;
+  return kExitUsage;
+}

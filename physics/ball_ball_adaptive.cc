@@ -1,0 +1,632 @@
+// Adaptive integrator for the impulse ODE of Mathavan et al. (2014).
+//
+// Why it looks like this. The right-hand side is smooth only between mode switches:
+// Coulomb friction makes it discontinuous where a slip reaches zero, where the
+// vertical slip at A changes sign (the other ball is pushed onto the cloth), where
+// an airborne ball lands, and where a stuck contact leaves its friction cone. A
+// high-order method stepping across a switch loses its order and its error control
+// grinds the step size down. So:
+//  * The mode (stick/slide at A, D, B; which ball is on the cloth) is held during a
+//    step and the right-hand side is evaluated for that mode.
+//  * Smooth guards (end of compression, end of restitution, the vertical slip at A,
+//    an airborne ball's vertical velocity, a stuck contact's cone margin) are
+//    checked at the end of every step. A sign change is located on the step's cubic
+//    Hermite interpolant, then refined with real steps from the step start
+//    (Illinois), so the switch happens on the event to the guard's tolerance.
+//  * A sliding slip heading for zero limits the step to its predicted zero (slip
+//    speed over its rate of decrease). Where that landing fails - near a sticking
+//    zero the slip direction behaves like |u|^(1/6) at A (unequal inverse inertia
+//    along X and Z), so its derivatives blow up - the independent variable switches
+//    to tau = -ln|u| (a Sundman transformation, dP_I/dtau = |u| / (-d|u|/dP_I)), in
+//    which the solution is smooth and decays like exp(-tau); a guard stops it at
+//    |u| = slip_zero_. Steps whose stages see a slip reversed are rejected.
+//  * At zero slip the residual (below slip_zero_, far under the tolerance) is removed
+//    by adjusting spins, and the stick law decides: stick while the friction that
+//    holds the slip at zero lies in the friction cone, otherwise slide on in the
+//    direction the dynamics drive it (physics-notes section 3).
+// Method: Dormand-Prince 5(4) (Hairer, Norsett & Wanner, Solving ODEs I, II.5),
+// FSAL, local extrapolation, max-norm error control in velocity units.
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "physics/ball_ball_detail.h"
+#include "physics/ball_ball_impulse.h"
+
+namespace snooker::physics::detail {
+
+using impulse::Forces;
+using impulse::Law;
+using impulse::Model;
+using impulse::State;
+
+namespace {
+
+// Dormand-Prince 5(4) tableau.
+constexpr double kA21 = 1.0 / 5;
+constexpr double kA31 = 3.0 / 40, kA32 = 9.0 / 40;
+constexpr double kA41 = 44.0 / 45, kA42 = -56.0 / 15, kA43 = 32.0 / 9;
+constexpr double kA51 = 19372.0 / 6561, kA52 = -25360.0 / 2187, kA53 = 64448.0 / 6561,
+                 kA54 = -212.0 / 729;
+constexpr double kA61 = 9017.0 / 3168, kA62 = -355.0 / 33, kA63 = 46732.0 / 5247,
+                 kA64 = 49.0 / 176, kA65 = -5103.0 / 18656;
+constexpr double kB1 = 35.0 / 384, kB3 = 500.0 / 1113, kB4 = 125.0 / 192,
+                 kB5 = -2187.0 / 6784, kB6 = 11.0 / 84;
+// Error coefficients: 5th-order minus embedded 4th-order weights.
+constexpr double kE1 = 71.0 / 57600, kE3 = -71.0 / 16695, kE4 = 71.0 / 1920,
+                 kE5 = -17253.0 / 339200, kE6 = 22.0 / 525, kE7 = -1.0 / 40;
+
+// Step size controller: Hairer's PI variant for DOPRI5 (Solving ODEs I, IV.2),
+// h_new = h * safety * err^-(1/5 - 0.75 beta) * err_prev^beta.
+constexpr double kSafety = 0.9;
+constexpr double kBeta = 0.04;
+constexpr double kMinShrink = 0.2;
+constexpr double kMaxGrow = 5.0;
+// A shrinking slip whose predicted zero is closer than this many steps is followed
+// in tau = -ln|u|: that close, its direction varies too fast for steps in P_I.
+constexpr double kLogClockReach = 8.0;
+// Largest step in tau = -ln|u| (the slip shrinks by at most e^20 per step).
+constexpr double kMaxLogStep = 20.0;
+// Real steps allowed to refine one event.
+constexpr int kMaxEventIterations = 40;
+constexpr double kEps = 2.220446049250313e-16;  // machine epsilon
+
+// Integrated vector: the impulse state and P_I itself (so that either P_I or tau
+// can be the independent variable).
+using Y = Eigen::Matrix<double, 14, 1>;
+constexpr int kP = 13;
+
+enum Contact { kA = 0, kD = 1, kB = 2, kContacts = 3, kNoContact = -1 };
+
+enum Guard {
+  kCompressionEnd = 0,  // ydot_A reaches 0 (eq. 10d)
+  kRestitutionEnd,      // W reaches (1 - e^2) W_c (eqs. 10c, 15)
+  kVerticalSlipA,       // zdot_A changes sign: the other ball is pushed down
+  kLandC,               // airborne C comes back to the cloth
+  kLandO,
+  kConeD,               // stuck D leaves its friction cone
+  kConeB,
+  kSlipZero,            // the slip followed in tau reaches slip_zero_
+  kGuards
+};
+
+struct StepOut {
+  Y y1;
+  Y k7;            // derivative at y1 (FSAL)
+  Y err;
+  Forces forces1;  // forces at y1
+  std::array<double, kContacts> min_dot;  // min over stages of u . (start direction)
+  bool valid = true;  // false if the tau clock broke down inside the step
+};
+
+inline State Head(const Y& y) { return y.head<13>(); }
+
+class AdaptiveSolver {
+ public:
+  AdaptiveSolver(const ImpactState& in, const Model& model, const ImpulseSolverOptions& opt)
+      : model_(model), opt_(opt) {
+    y_.head<13>() = impulse::Pack(in);
+    y_[kP] = 0;
+    const double R = model.radius;
+    v_scale_ = std::max({in.c.v.norm(), in.o.v.norm(), R * in.c.w.norm(), R * in.o.w.norm()});
+    atol_ = opt.tolerance * v_scale_;
+    // A slip below this counts as zero. A slip is a difference of velocities that
+    // each carry up to atol_ of error, so it cannot be resolved below that; setting
+    // it to zero changes spins by at most atol_ / R, within the tolerance. The floor
+    // keeps it above the rounding of velocities of size v_scale_.
+    slip_zero_ = std::max(atol_, 64 * kEps * v_scale_);
+    weight_.setConstant(1.0 / v_scale_);
+    for (int i : {impulse::kWC, impulse::kWO}) weight_.segment<3>(i).setConstant(R / v_scale_);
+    weight_[impulse::kWork] = model.inv_mass / (v_scale_ * v_scale_);
+    weight_[kP] = model.inv_mass / v_scale_;
+    p_scale_ = (1.0 + model.contact.e) * impulse::NormalSpeed(Head(y_)) / model.inv_mass;
+    guard_eps_[kCompressionEnd] = 1e-3 * atol_;
+    guard_eps_[kRestitutionEnd] = 1e-3 * atol_ * v_scale_ / model.inv_mass;
+    guard_eps_[kVerticalSlipA] = 1e-3 * atol_;
+    guard_eps_[kLandC] = guard_eps_[kLandO] = 1e-3 * atol_;
+    guard_eps_[kConeD] = guard_eps_[kConeB] = 1e-3 * opt.tolerance;
+    guard_eps_[kSlipZero] = 0.5 * slip_zero_;
+  }
+
+  ImpactResult Run();
+
+ private:
+  // ---- right-hand side in the current clock, and one step ----
+  bool F(const Y& y, Y* dy, Forces* f = nullptr);
+  void TakeStep(const Y& y0, const Y& k1, double h, StepOut* out);
+  double ErrorNorm(const Y& err) const {
+    return err.cwiseProduct(weight_).cwiseAbs().maxCoeff() / opt_.tolerance;
+  }
+  Vec2 Slip(int c, const State& x) const {
+    const double R = model_.radius;
+    return c == kA ? impulse::SlipA(x, R) : c == kD ? impulse::SlipD(x, R) : impulse::SlipB(x, R);
+  }
+  Vec2 Dir0(int c) const { return c == kA ? mode_.a_dir0 : c == kD ? mode_.d_dir0 : mode_.b_dir0; }
+  // Rate of change of |u_c| per unit P_I, from a derivative per unit P_I.
+  double SlipRate(int c, const State& x, const State& dxdp) const {
+    return impulse::Direction(Slip(c, x), Dir0(c)).dot(Slip(c, dxdp));
+  }
+  // Is contact c sliding with friction acting, so that its slip direction matters?
+  bool SlidingActive(int c, const Forces& f) const {
+    if (c == kA) {
+      return mode_.a == Law::kSlide &&
+             (model_.contact.friction_law == BallBallFrictionLaw::kMarlow ||
+              model_.contact.mu_bb > 0);
+    }
+    if (c == kD) return mode_.d == Law::kSlide && f.n_c > 0 && model_.mu_s > 0;
+    return mode_.b == Law::kSlide && f.n_o > 0 && model_.mu_s > 0;
+  }
+
+  // ---- guards ----
+  bool GuardActive(int g) const;
+  double GuardValue(int g, const Y& y, const Forces& f) const;
+  Forces ForcesAt(const State& x) const { return impulse::ComputeForces(x, mode_, model_); }
+  // Earliest root in (0, 1] of guard g on the cubic Hermite interpolant of a step.
+  double HermiteRoot(int g, double g0, const StepOut& s, double h) const;
+  // Shortens the step `s` (of length h) to end on the first guard crossing in it.
+  // Returns the guard, or -1 if none crosses; `h` becomes the shortened length.
+  int LocateEvent(StepOut* s, double* h);
+
+  // ---- modes ----
+  void SettleA();
+  // c = kD or kB; `count` is false at the start, where a zero slip is no transition.
+  void SettleCloth(int c, bool count = true);
+  void Settle(bool count = true) {
+    SettleA();
+    Refresh();  // forces at A decide which ball the cloth holds
+    SettleCloth(kD, count);
+    SettleCloth(kB, count);
+    Refresh();
+  }
+  void SnapSlipToZero(int c);
+  void Refresh() { F(y_, &k1_, &f1_); }  // derivative at y_ after a mode or clock change
+  void CountLiftoff() {
+    if (mode_.a != Law::kSlide) return;
+    if (f1_.f_a.y() > 0 && mode_.c_on_cloth) ++r_.c_liftoffs;
+    if (f1_.f_a.y() < 0 && mode_.o_on_cloth) ++r_.o_liftoffs;
+  }
+  bool ApplyGuardEvent(int g);  // true when the impact is over
+  void SlipReachedZero(int c);
+  // Can the friction cone at contact c hold its slip at zero (f1_ forces)?
+  bool CanHold(int c) const {
+    if (c == kA) return true;
+    const double n = c == kD ? f1_.n_c : f1_.n_o;
+    const Vec2& need = c == kD ? f1_.stick_d : f1_.stick_b;
+    return need.norm() < model_.mu_s * n;
+  }
+  void SetClock(int contact) {  // kNoContact: P_I; otherwise tau = -ln|u_contact|
+    clock_ = contact;
+    Refresh();
+  }
+
+  const Model& model_;
+  const ImpulseSolverOptions& opt_;
+  ImpactResult r_;
+  Y y_;
+  Y k1_;
+  Forces f1_;
+  impulse::Mode mode_;
+  Y weight_;
+  double v_scale_ = 1, atol_ = 0, slip_zero_ = 0, p_scale_ = 0;
+  std::int32_t attempts_ = 0;  // steps tried, accepted or not
+  bool compressed_ = false;
+  double target_ = 0;  // W at the end of restitution
+  int az_sign_ = 1;    // sign of zdot_A in the current mode
+  int clock_ = kNoContact;
+  int no_follow_ = kNoContact;  // a contact whose tau clock just failed
+  std::array<double, kGuards> guard_eps_{};
+};
+
+bool AdaptiveSolver::F(const Y& y, Y* dy, Forces* f) {
+  ++r_.work.rhs_evals;
+  const State x = Head(y);
+  State dx;
+  impulse::Derivative(x, mode_, model_, &dx, f);
+  dy->head<13>() = dx;
+  (*dy)[kP] = 1.0;
+  if (clock_ == kNoContact) return true;
+  const Vec2 u = Slip(clock_, x);
+  const double s = u.norm();
+  const double rate = SlipRate(clock_, x, dx);
+  if (!(s > 0 && rate < 0)) return false;  // |u| not decreasing: tau is no clock here
+  *dy *= s / -rate;
+  return true;
+}
+
+void AdaptiveSolver::TakeStep(const Y& y0, const Y& k1, double h, StepOut* out) {
+  ++attempts_;
+  Y k2, k3, k4, k5, k6, y;
+  std::array<Vec2, kContacts> u0dir;
+  std::array<bool, kContacts> watch;
+  for (int c = 0; c < kContacts; ++c) {
+    watch[c] = SlidingActive(c, f1_) && c != clock_;
+    u0dir[c] = impulse::Direction(Slip(c, Head(y0)), Dir0(c));
+    out->min_dot[c] = 1;
+  }
+  auto check = [&](const Y& s) {
+    for (int c = 0; c < kContacts; ++c) {
+      if (watch[c]) out->min_dot[c] = std::min(out->min_dot[c], Slip(c, Head(s)).dot(u0dir[c]));
+    }
+  };
+  bool ok = true;
+  y = y0 + h * kA21 * k1;
+  check(y);
+  ok &= F(y, &k2);
+  y = y0 + h * (kA31 * k1 + kA32 * k2);
+  check(y);
+  ok &= F(y, &k3);
+  y = y0 + h * (kA41 * k1 + kA42 * k2 + kA43 * k3);
+  check(y);
+  ok &= F(y, &k4);
+  y = y0 + h * (kA51 * k1 + kA52 * k2 + kA53 * k3 + kA54 * k4);
+  check(y);
+  ok &= F(y, &k5);
+  y = y0 + h * (kA61 * k1 + kA62 * k2 + kA63 * k3 + kA64 * k4 + kA65 * k5);
+  check(y);
+  ok &= F(y, &k6);
+  out->y1 = y0 + h * (kB1 * k1 + kB3 * k3 + kB4 * k4 + kB5 * k5 + kB6 * k6);
+  check(out->y1);
+  ok &= F(out->y1, &out->k7, &out->forces1);
+  out->err = h * (kE1 * k1 + kE3 * k3 + kE4 * k4 + kE5 * k5 + kE6 * k6 + kE7 * out->k7);
+  out->valid = ok && out->y1.allFinite();
+}
+
+bool AdaptiveSolver::GuardActive(int g) const {
+  switch (g) {
+    case kCompressionEnd: return !compressed_;
+    case kRestitutionEnd: return compressed_;
+    case kVerticalSlipA: return mode_.a == Law::kSlide;
+    case kLandC: return !mode_.c_on_cloth;
+    case kLandO: return !mode_.o_on_cloth;
+    case kConeD: return mode_.d == Law::kStick && f1_.n_c > 0;
+    case kConeB: return mode_.b == Law::kStick && f1_.n_o > 0;
+    case kSlipZero: return clock_ != kNoContact;
+    default: return false;
+  }
+}
+
+// Each guard is > 0 before its event and <= 0 at or after it.
+double AdaptiveSolver::GuardValue(int g, const Y& y, const Forces& f) const {
+  const State x = Head(y);
+  switch (g) {
+    case kCompressionEnd: return impulse::NormalSpeed(x);
+    case kRestitutionEnd: return x[impulse::kWork] - target_;
+    case kVerticalSlipA: return az_sign_ * impulse::SlipA(x, model_.radius).y();
+    case kLandC: return x[impulse::kVC + 2];
+    case kLandO: return x[impulse::kVO + 2];
+    case kConeD: return model_.mu_s * f.n_c - f.stick_d.norm();
+    case kConeB: return model_.mu_s * f.n_o - f.stick_b.norm();
+    case kSlipZero: {
+      const Vec2 u = Slip(clock_, x);
+      return u.norm() - slip_zero_;
+    }
+    default: return 1;
+  }
+}
+
+double AdaptiveSolver::HermiteRoot(int g, double g0, const StepOut& s, double h) const {
+  auto at = [&](double t) {
+    const double t2 = t * t, t3 = t2 * t;
+    const Y yt = (2 * t3 - 3 * t2 + 1) * y_ + (t3 - 2 * t2 + t) * h * k1_ +
+                 (-2 * t3 + 3 * t2) * s.y1 + (t3 - t2) * h * s.k7;
+    return GuardValue(g, yt, ForcesAt(Head(yt)));
+  };
+  double lo = 0, hi = 1, glo = g0, ghi = std::min(GuardValue(g, s.y1, s.forces1), -1e-300);
+  int side = 0;
+  for (int it = 0; it < 60 && hi - lo > 1e-15; ++it) {  // Illinois
+    double t = (lo * ghi - hi * glo) / (ghi - glo);
+    if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+    const double gt = at(t);
+    if (gt > 0) {
+      lo = t, glo = gt;
+      if (side == 1) ghi *= 0.5;
+      side = 1;
+    } else {
+      hi = t, ghi = gt;
+      if (side == -1) glo *= 0.5;
+      side = -1;
+    }
+  }
+  return hi;
+}
+
+int AdaptiveSolver::LocateEvent(StepOut* s, double* h) {
+  std::array<double, kGuards> g0{};
+  int first = -1;
+  double theta = 2;
+  for (int g = 0; g < kGuards; ++g) {
+    if (!GuardActive(g)) continue;
+    g0[g] = GuardValue(g, y_, f1_);
+    if (!(g0[g] > 0) || GuardValue(g, s->y1, s->forces1) > 0) continue;
+    const double t = HermiteRoot(g, g0[g], *s, *h);
+    if (t < theta) theta = t, first = g;
+  }
+  if (first < 0) return -1;
+
+  // Refine on real steps from y_: bracket [lo, hi] of the step length.
+  double lo = 0, glo = g0[first];
+  double hi = *h, ghi = std::min(GuardValue(first, s->y1, s->forces1), -1e-300);
+  double trial = theta * *h;
+  int side = 0;
+  StepOut t;
+  for (int it = 0; it < kMaxEventIterations; ++it) {
+    if (!(trial > lo && trial < hi)) trial = 0.5 * (lo + hi);
+    TakeStep(y_, k1_, trial, &t);
+    if (!t.valid) {  // cannot happen for a sub-step of a valid step; be safe
+      hi = trial;
+      trial = 0.5 * (lo + hi);
+      continue;
+    }
+    // Another guard crossing earlier takes precedence.
+    int earlier = -1;
+    for (int g = 0; g < kGuards; ++g) {
+      if (g != first && GuardActive(g) && g0[g] > 0 && GuardValue(g, t.y1, t.forces1) <= 0) {
+        earlier = g;
+      }
+    }
+    if (earlier >= 0) {
+      first = earlier;
+      hi = trial, ghi = std::min(GuardValue(first, t.y1, t.forces1), -1e-300);
+      lo = 0, glo = g0[first];
+      trial = 0.5 * (lo + hi);
+      side = 0;
+      continue;
+    }
+    const double gt = GuardValue(first, t.y1, t.forces1);
+    if (std::abs(gt) <= guard_eps_[first] || hi - lo <= 4 * kEps * (std::abs(y_[kP]) + hi)) {
+      *s = t;
+      *h = trial;
+      return first;
+    }
+    if (gt > 0) {
+      lo = trial, glo = gt;
+      if (side == 1) ghi *= 0.5;
+      side = 1;
+    } else {
+      hi = trial, ghi = gt;
+      if (side == -1) glo *= 0.5;
+      side = -1;
+    }
+    trial = (lo * ghi - hi * glo) / (ghi - glo);
+  }
+  // Bracket not closed within the cap: end on its upper side, where the guard fired.
+  TakeStep(y_, k1_, hi, s);
+  *h = hi;
+  return first;
+}
+
+void AdaptiveSolver::SnapSlipToZero(int c) {
+  // Removes a residual slip (below slip_zero_) by adjusting spins only, so that the
+  // stick law starts from an exact zero. The change is of order slip_zero_ / R.
+  const double R = model_.radius;
+  const Vec2 u = Slip(c, Head(y_));
+  if (c == kA) {  // split equally between both balls
+    y_[impulse::kWC + 2] += u.x() / (2 * R);
+    y_[impulse::kWO + 2] += u.x() / (2 * R);
+    y_[impulse::kWC + 0] -= u.y() / (2 * R);
+    y_[impulse::kWO + 0] -= u.y() / (2 * R);
+  } else {
+    const int w = c == kD ? impulse::kWC : impulse::kWO;
+    y_[w + 1] += u.x() / R;
+    y_[w + 0] -= u.y() / R;
+  }
+}
+
+// At zero slip A sticks: with no friction at A there is no cloth reaction either,
+// and nothing else changes the slip at A (the normal impulse passes through both
+// centres), so the friction needed to hold it, zero, lies inside any cone.
+void AdaptiveSolver::SettleA() {
+  if (mode_.a == Law::kStick || !SlidingActive(kA, f1_)) return;  // nothing to hold
+  const Vec2 u = impulse::SlipA(Head(y_), model_.radius);
+  if (u.norm() > slip_zero_) return;
+  SnapSlipToZero(kA);
+  mode_.a = Law::kStick;
+  ++r_.a.stick;
+}
+
+void AdaptiveSolver::SettleCloth(int c, bool count) {
+  Law& law = c == kD ? mode_.d : mode_.b;
+  Vec2& dir0 = c == kD ? mode_.d_dir0 : mode_.b_dir0;
+  ContactTransitions& tr = c == kD ? r_.d : r_.b;
+  const Vec2 u = Slip(c, Head(y_));
+  const Forces f = ForcesAt(Head(y_));
+  const double n = c == kD ? f.n_c : f.n_o;
+  if ((law == Law::kSlide && u.norm() > slip_zero_) || !(n > 0) ||
+      model_.mu_s == 0) {
+    // Sliding away from zero, or no cloth reaction (no friction to decide about).
+    law = Law::kSlide;
+    dir0 = Vec2::Zero();
+    return;
+  }
+  if (law == Law::kSlide) SnapSlipToZero(c);
+  // Stick test: the friction that keeps the slip at zero against the cone.
+  const Vec2 need = c == kD ? f.stick_d : f.stick_b;
+  const double need_norm = need.norm();
+  if (need_norm <= model_.mu_s * n) {
+    if (law == Law::kSlide && count) ++tr.stick;
+    law = Law::kStick;
+    dir0 = Vec2::Zero();
+    return;
+  }
+  // Cannot hold: slide in the direction the other forces drive the slip (the
+  // contact's inverse inertia is isotropic, 7/(2M), so that is -need).
+  if (count) ++(law == Law::kStick ? tr.unstick : tr.reverse);
+  law = Law::kSlide;
+  dir0 = need_norm > 0 ? Vec2(-need / need_norm) : Vec2::Zero();
+}
+
+void AdaptiveSolver::SlipReachedZero(int c) {
+  ++r_.work.events;
+  SnapSlipToZero(c);
+  if (c == kA) {
+    SettleA();
+  } else {
+    SettleCloth(c);
+  }
+}
+
+bool AdaptiveSolver::ApplyGuardEvent(int g) {
+  ++r_.work.events;
+  const int followed = clock_;
+  clock_ = kNoContact;
+  switch (g) {
+    case kCompressionEnd:
+      compressed_ = true;
+      r_.impulse_compression = y_[kP];
+      r_.work_compression = y_[impulse::kWork];
+      target_ = (1.0 - model_.contact.e * model_.contact.e) * r_.work_compression;  // eq. 10c
+      if (model_.contact.e == 0) return true;  // restitution ends where it starts
+      break;
+    case kRestitutionEnd: return true;
+    case kVerticalSlipA:
+      // The ball that was pushed down is now pushed up (it lifts off); the other
+      // is pushed down, and the cloth holds it only if it is not rising.
+      az_sign_ = -az_sign_;
+      mode_.c_on_cloth = y_[impulse::kVC + 2] <= 0;
+      mode_.o_on_cloth = y_[impulse::kVO + 2] <= 0;
+      break;
+    case kLandC:
+      y_[impulse::kVC + 2] = 0;
+      mode_.c_on_cloth = true;
+      break;
+    case kLandO:
+      y_[impulse::kVO + 2] = 0;
+      mode_.o_on_cloth = true;
+      break;
+    case kSlipZero:
+      --r_.work.events;  // counted by SlipReachedZero
+      SlipReachedZero(followed);
+      break;
+    default: break;  // kConeD / kConeB: Settle() unsticks
+  }
+  Settle();
+  if (g == kVerticalSlipA) CountLiftoff();
+  return false;
+}
+
+ImpactResult AdaptiveSolver::Run() {
+  mode_.c_on_cloth = y_[impulse::kVC + 2] <= 0;
+  mode_.o_on_cloth = y_[impulse::kVO + 2] <= 0;
+  az_sign_ = impulse::SlipA(Head(y_), model_.radius).y() > 0 ? 1 : -1;
+  Settle(false);
+  CountLiftoff();
+
+  double h_impulse = 0.05 * p_scale_;  // step in P_I
+  double h_log = 1.0;                  // step in tau
+  StepOut s;
+  bool finished = false;
+  double err_prev = 1e-4;
+  while (attempts_ < opt_.max_steps) {
+    const bool log_clock = clock_ != kNoContact;
+    double h = log_clock ? std::min(h_log, kMaxLogStep) : std::min(h_impulse, p_scale_);
+    // Limit a step in P_I to the predicted zero of every shrinking sliding slip.
+    int landing = kNoContact;
+    if (!log_clock) {
+      double reach = kLogClockReach * h;
+      int follow = kNoContact;
+      for (int c = 0; c < kContacts; ++c) {
+        if (!SlidingActive(c, f1_)) continue;
+        const Vec2 u = Slip(c, Head(y_));
+        const double rate = SlipRate(c, Head(y_), Head(k1_));
+        const double to_zero = u.norm() / -rate;
+        if (!(rate < 0)) continue;
+        if (to_zero < h) h = to_zero, landing = c;
+        // A slip that keeps its direction lands in one step; one that turns is
+        // followed in tau, if it surely reaches zero: at A always (friction at A is
+        // all that changes its slip), at D or B when the cone can hold the slip
+        // (then d|u|/dP_I <= |drive| - friction < 0); otherwise it passes by zero.
+        const Vec2 ud = impulse::Direction(u, Dir0(c));
+        const Vec2 du = Slip(c, Head(k1_));
+        const double turn = std::abs(ud.x() * du.y() - ud.y() * du.x()) / du.norm();
+        if (to_zero < reach && turn > 1e-9 && c != no_follow_ && CanHold(c)) {
+          reach = to_zero, follow = c;
+        }
+      }
+      if (follow != kNoContact) {
+        h_impulse = h;
+        h_log = 0.5;
+        SetClock(follow);
+        continue;
+      }
+    }
+
+    TakeStep(y_, k1_, h, &s);
+    if (!s.valid) {  // the followed slip stopped shrinking: back to P_I
+      no_follow_ = clock_;
+      SetClock(kNoContact);
+      continue;
+    }
+    const double err = std::max(ErrorNorm(s.err), 1e-10);
+    const double pi = std::pow(err, -(0.2 - 0.75 * kBeta));
+    double shrink = err > 1 ? std::max(kMinShrink, kSafety * pi) : 1.0;
+    bool reversed = false;
+    for (int c = 0; c < kContacts; ++c) {
+      if (!SlidingActive(c, f1_) || c == clock_ || s.min_dot[c] > 0) continue;
+      reversed = true;  // secant guess of where the slip along its start direction hits 0
+      const Vec2 u = Slip(c, Head(y_));
+      const double sp = u.norm();
+      shrink = std::min(shrink, std::clamp(0.99 * sp / (sp - s.min_dot[c]), 0.1, 0.9));
+    }
+    if (!(err <= 1) || reversed) {
+      if (landing != kNoContact) {
+        // The landing on a zero failed: follow that slip in tau = -ln|u| instead.
+        h_impulse = h;
+        h_log = 1.0;
+        SetClock(landing);
+      } else if (log_clock) {
+        h_log = h * (std::isfinite(shrink) ? shrink : kMinShrink);
+      } else {
+        h_impulse = h * (std::isfinite(shrink) ? shrink : kMinShrink);
+      }
+      continue;
+    }
+
+    double h_taken = h;
+    const int event = LocateEvent(&s, &h_taken);
+    ++r_.work.steps;
+    if (!log_clock) no_follow_ = kNoContact;
+    y_ = s.y1;
+    k1_ = s.k7;
+    f1_ = s.forces1;
+    const double grow = std::clamp(kSafety * pi * std::pow(err_prev, kBeta), kMinShrink, kMaxGrow);
+    err_prev = std::max(err, 1e-4);
+    if (log_clock) {
+      h_log = h * grow;
+    } else {
+      h_impulse = h * grow;
+    }
+
+    if (event >= 0 && ApplyGuardEvent(event)) {
+      finished = true;
+      break;
+    }
+    if (clock_ != kNoContact) continue;
+    // In P_I: a sliding slip that has reached zero.
+    bool changed = false;
+    for (int c = 0; c < kContacts; ++c) {
+      if (!SlidingActive(c, f1_)) continue;
+      const Vec2 u = Slip(c, Head(y_));
+      const double rate = SlipRate(c, Head(y_), Head(k1_));
+      if (u.norm() <= slip_zero_ && (rate < 0 || c == landing)) {
+        SlipReachedZero(c);
+        changed = true;
+      }
+    }
+    if (changed) Settle();
+  }
+  r_.status = finished ? ImpactStatus::kOk : ImpactStatus::kStepLimit;
+  r_.impulse_final = y_[kP];
+  r_.out = impulse::Unpack(Head(y_));
+  r_.work.rejected_steps = attempts_ - r_.work.steps;
+  return r_;
+}
+
+}  // namespace
+
+ImpactResult SolveAdaptive(const ImpactState& in, const Model& model,
+                           const ImpulseSolverOptions& options) {
+  AdaptiveSolver solver(in, model, options);
+  return solver.Run();
+}
+
+}  // namespace snooker::physics::detail

@@ -1,0 +1,66 @@
+// Physical parameters, kept apart from state (MuJoCo's mjModel/mjData split).
+// Defaults are the snooker values of Mathavan, Jackson & Parkin (2014) and the
+// sources listed in shared physics-notes sections 6 and 9.
+#pragma once
+
+#include <cmath>
+#include <string>
+
+namespace snooker::physics {
+
+/// A snooker ball: a uniform solid sphere.
+struct BallParams {
+  /// Mass. kg. Paper section 2.4.3.
+  double mass = 0.1406;
+  /// Radius. m. Paper section 2.4.3 (52.5 mm diameter).
+  double radius = 0.02625;
+  /// Moment of inertia about a diameter, 2 M R^2 / 5. kg m^2.
+  double Inertia() const { return 0.4 * mass * radius * radius; }
+};
+
+/// The cloth under the balls.
+struct ClothParams {
+  /// Ball-cloth sliding friction coefficient. Paper section 2.4.2 (measured 0.178-0.245).
+  double mu_s = 0.21;
+  /// Rolling resistance coefficient: rolling deceleration is mu_r * g
+  /// (about 0.125 m/s^2 measured on snooker cloth, Mathavan et al. 2009).
+  double mu_r = 0.0128;
+  /// Deceleration of spin about the vertical axis. rad/s^2. Paper eq. 21.
+  double spin_decel = 22.0;
+  /// Gravitational acceleration. m/s^2.
+  double g = 9.81;
+};
+
+/// How the ball-ball sliding friction coefficient is obtained.
+enum class BallBallFrictionLaw {
+  /// mu_bb is the constant `mu_bb` (paper: 0.05, fitted to its Fig. 4).
+  kConstant,
+  /// mu_bb = 9.951e-3 + 0.108 exp(-1.088 s), s the slip speed at A in m/s
+  /// (Marlow 1994, quoted in paper section 2.4.2), evaluated along the impact.
+  kMarlow,
+};
+
+/// Ball-ball contact.
+struct BallBallParams {
+  /// Ball-ball sliding friction coefficient (kConstant law). Paper: 0.05.
+  double mu_bb = 0.05;
+  /// Energetic coefficient of restitution (Stronge). Paper: 0.89.
+  double e = 0.89;
+  BallBallFrictionLaw friction_law = BallBallFrictionLaw::kConstant;
+};
+
+/// Ball-ball friction coefficient at slip speed `s` (m/s).
+inline double BallBallFriction(const BallBallParams& p, double s) {
+  if (p.friction_law == BallBallFrictionLaw::kMarlow) {
+    return 9.951e-3 + 0.108 * std::exp(-1.088 * s);
+  }
+  return p.mu_bb;
+}
+
+/// Checks parameters where they enter the library. Returns an empty string when
+/// valid, otherwise a message that names the bad value.
+std::string ValidateBallParams(const BallParams& p);
+std::string ValidateClothParams(const ClothParams& p);
+std::string ValidateBallBallParams(const BallBallParams& p);
+
+}  // namespace snooker::physics

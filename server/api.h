@@ -1,0 +1,14 @@
+// The service's operations, independent of the transport: the gRPC adapter
+// (grpc_service.h) and the command line both call these. Each validates its
+// request, converts it (convert.h), makes one library call and converts back.
+#pragma once
+
+#include "server/api_status.h"
+#include "snooker/v1/collide.pb.h"
+
+namespace snooker::server {
+
+/// One ball-ball collision (Mathavan et al. 2014) and the slip phases after it.
+ApiStatus Collide(const v1::CollideRequest& request, v1::CollideResponse* response);
+
+}  // namespace snooker::server

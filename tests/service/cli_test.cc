@@ -1,0 +1,183 @@
+// The `snooker` command as a user (or a tool outside the project) runs it: the JSON
+// field names are a contract, bad input gets a message naming the value and a
+// non-zero exit.
+#include <google/protobuf/struct.pb.h>
+#include <google/protobuf/util/json_util.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "tests/physics/paper_shots.h"
+
+namespace snooker {
+namespace {
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+// Runs the built `snooker` binary with `args` (already shell-quoted where needed).
+RunResult RunCli(const std::string& args) {
+  // Unique per process and call: ctest runs test cases in parallel processes.
+  static int calls = 0;
+  const std::string err_file = testing::TempDir() + "snooker_cli_stderr_" +
+                               std::to_string(getpid()) + "_" + std::to_string(++calls) + ".txt";
+  const std::string cmd = std::string(SNOOKER_CLI_PATH) + " " + args + " 2>" + err_file;
+  RunResult r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (p == nullptr) return r;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+  const int status = pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream f(err_file);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  r.err = ss.str();
+  std::remove(err_file.c_str());
+  return r;
+}
+
+using google::protobuf::Struct;
+using google::protobuf::Value;
+
+const Value& Field(const Struct& s, const std::string& name) {
+  static const Value kMissing;
+  const auto it = s.fields().find(name);
+  EXPECT_NE(it, s.fields().end()) << "missing JSON field '" << name << "'";
+  return it == s.fields().end() ? kMissing : it->second;
+}
+
+double Number(const Struct& s, const std::string& name) {
+  const Value& v = Field(s, name);
+  EXPECT_EQ(v.kind_case(), Value::kNumberValue) << name;
+  return v.number_value();
+}
+
+const Struct& Object(const Struct& s, const std::string& name) {
+  const Value& v = Field(s, name);
+  EXPECT_EQ(v.kind_case(), Value::kStructValue) << name;
+  return v.struct_value();
+}
+
+// The field names the issue spells out, checked on one ball.
+void ExpectBallContract(const Struct& ball) {
+  for (const char* vec : {"velocity", "angularVelocity"}) {
+    const Struct& v = Object(ball, vec);
+    for (const char* c : {"x", "y", "z"}) EXPECT_TRUE(std::isfinite(Number(v, c))) << vec << c;
+  }
+  const Struct& slip = Object(ball, "slipEnd");
+  const Struct& v = Object(slip, "velocity");
+  EXPECT_TRUE(std::isfinite(Number(v, "x")));
+  EXPECT_TRUE(std::isfinite(Number(v, "y")));
+  for (const char* f : {"speed", "exitAngleDeg", "time"}) {
+    EXPECT_TRUE(std::isfinite(Number(slip, f))) << f;
+  }
+}
+
+TEST(CliCollideTest, JsonReproducesThePapersTablesWithTheContractedNames) {
+  for (const physics::PaperShot& s : physics::kPaperShots) {
+    std::ostringstream args;
+    args.precision(17);
+    args << "collide --speed " << s.speed << " --topspin " << s.speed / 0.02625 << " --cut-deg "
+         << s.cut_deg << " --json";
+    const RunResult r = RunCli(args.str());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    Struct json;
+    ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &json).ok()) << r.out;
+    ExpectBallContract(Object(json, "cue"));
+    ExpectBallContract(Object(json, "object"));
+    EXPECT_GT(Number(json, "impulseSteps"), 0);
+    EXPECT_GT(Number(json, "rhsEvaluations"), 0);
+    const Struct& cue = Object(Object(json, "cue"), "slipEnd");
+    const Struct& obj = Object(Object(json, "object"), "slipEnd");
+    EXPECT_NEAR(Number(cue, "speed"), s.predicted_cue_speed, 0.005);
+    EXPECT_NEAR(Number(obj, "speed"), s.predicted_object_speed, 0.005);
+    EXPECT_NEAR(Number(cue, "exitAngleDeg"), s.predicted_cue_exit_deg, 0.05);
+    EXPECT_NEAR(Number(obj, "exitAngleDeg"), s.predicted_object_exit_deg, 0.05);
+  }
+}
+
+TEST(CliCollideTest, FixedStepSchemeThroughTheCommandLine) {
+  const RunResult r = RunCli("collide --speed 1.539 --topspin 58.6286 --cut-deg 33.83 --steps 10000 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  Struct json;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &json).ok());
+  EXPECT_NEAR(Number(Object(Object(json, "cue"), "slipEnd"), "exitAngleDeg"), 31.93, 0.05);
+  EXPECT_NEAR(Number(json, "impulseSteps"), 5000, 100);
+}
+
+TEST(CliCollideTest, ReadableTableByDefault) {
+  const RunResult r = RunCli("collide --speed 1.539 --topspin 58.6286 --cut-deg 33.83");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("exit angle (deg)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("31.92"), std::string::npos) << r.out;
+}
+
+struct BadInput {
+  const char* args;
+  const char* must_mention;
+};
+
+class CliBadInputTest : public testing::TestWithParam<BadInput> {};
+
+TEST_P(CliBadInputTest, ExitsNonZeroNamingTheValue) {
+  const RunResult r = RunCli(std::string("collide ") + GetParam().args);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(GetParam().must_mention), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, CliBadInputTest,
+    testing::Values(BadInput{"--speed fast", "--speed 'fast' is not a number"},
+                    BadInput{"--speed 1 --cut-deg 12x", "--cut-deg '12x'"},
+                    BadInput{"--speed nan", "--speed 'nan' is not a finite number"},
+                    BadInput{"--speed inf", "--speed 'inf'"},
+                    BadInput{"--speed -2", "--speed -2"},
+                    BadInput{"--speed 0", "--speed 0"},
+                    BadInput{"--speed 1 --cut-deg 90", "--cut-deg 90"},
+                    BadInput{"--speed 1 --cut-deg 120", "--cut-deg 120"},
+                    BadInput{"--speed 1 --cut-deg -95", "--cut-deg -95"},
+                    BadInput{"--speed 1 --steps 0", "--steps 0"},
+                    BadInput{"--speed 1 --steps 2.5", "--steps '2.5'"},
+                    BadInput{"--speed 1 --mu-bb 3", "--mu-bb 3"},
+                    BadInput{"--speed 1 --restitution 1.2", "--restitution 1.2"},
+                    BadInput{"--speed 1 --tolerance 0", "--tolerance 0"},
+                    BadInput{"--cut-deg 10", "--speed is required"},
+                    BadInput{"--speed 1 --spin 3", "unknown option --spin"},
+                    BadInput{"--speed", "--speed needs a value"}));
+
+TEST(CliCollideTest, HelpExplainsEveryOptionWithItsUnit) {
+  const RunResult r = RunCli("collide --help");
+  ASSERT_EQ(r.exit_code, 0);
+  for (const char* s : {"--speed V0", "m/s", "--topspin wT", "rad/s", "--sidespin wS",
+                        "--cut-deg THETA", "degrees", "--steps N", "--tolerance X", "--mu-bb X",
+                        "--restitution E", "--mu-s X", "--json"}) {
+    EXPECT_NE(r.out.find(s), std::string::npos) << s;
+  }
+}
+
+TEST(CliTest, UnknownCommandIsAUsageError) {
+  const RunResult r = RunCli("collied");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("unknown command 'collied'"), std::string::npos);
+}
+
+TEST(CliTest, DemoRunsThePapersFirstShot) {
+  const RunResult r = RunCli("demo");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("0.9139"), std::string::npos) << r.out;
+}
+
+}  // namespace
+}  // namespace snooker

@@ -1,0 +1,65 @@
+// The gRPC service through an in-process server on a free loopback port and a real
+// client stub.
+#include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
+
+#include "health.grpc.pb.h"
+#include "server/server.h"
+#include "snooker/v1/service.grpc.pb.h"
+
+namespace snooker::server {
+namespace {
+
+class GrpcServiceTest : public testing::Test {
+ protected:
+  void SetUp() override {
+    std::string error;
+    server_ = Server::Start("127.0.0.1:0", &error);
+    ASSERT_NE(server_, nullptr) << error;
+    channel_ = grpc::CreateChannel("127.0.0.1:" + std::to_string(server_->port()),
+                                   grpc::InsecureChannelCredentials());
+    stub_ = v1::ShotPlanner::NewStub(channel_);
+  }
+  void TearDown() override {
+    if (server_) server_->Shutdown();
+  }
+  std::unique_ptr<Server> server_;
+  std::shared_ptr<grpc::Channel> channel_;
+  std::unique_ptr<v1::ShotPlanner::Stub> stub_;
+};
+
+TEST_F(GrpcServiceTest, HealthReportsServing) {
+  auto health = grpc::health::v1::Health::NewStub(channel_);
+  grpc::health::v1::HealthCheckRequest req;
+  req.set_service(kServiceName);
+  grpc::health::v1::HealthCheckResponse resp;
+  grpc::ClientContext ctx;
+  ASSERT_TRUE(health->Check(&ctx, req, &resp).ok());
+  EXPECT_EQ(resp.status(), grpc::health::v1::HealthCheckResponse::SERVING);
+}
+
+TEST_F(GrpcServiceTest, CollideAnswersThePapersFirstShot) {
+  v1::CollideRequest req;
+  req.set_speed(1.539);
+  req.set_topspin(1.539 / 0.02625);
+  req.set_cut_angle_deg(33.83);
+  v1::CollideResponse resp;
+  grpc::ClientContext ctx;
+  const grpc::Status st = stub_->Collide(&ctx, req, &resp);
+  ASSERT_TRUE(st.ok()) << st.error_message();
+  EXPECT_NEAR(resp.cue().slip_end().speed(), 0.914, 0.005);
+  EXPECT_NEAR(resp.cue().slip_end().exit_angle_deg(), 31.93, 0.05);
+}
+
+TEST_F(GrpcServiceTest, BadRequestIsInvalidArgumentNamingTheField) {
+  v1::CollideRequest req;
+  req.set_speed(std::nan(""));
+  v1::CollideResponse resp;
+  grpc::ClientContext ctx;
+  const grpc::Status st = stub_->Collide(&ctx, req, &resp);
+  EXPECT_EQ(st.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(st.error_message().find("speed = nan"), std::string::npos) << st.error_message();
+}
+
+}  // namespace
+}  // namespace snooker::server
