@@ -65,6 +65,11 @@ constexpr double kMaxGrow = 5.0;
 // A shrinking slip whose predicted zero is closer than this many steps is followed
 // in tau = -ln|u|: that close, its direction varies too fast for steps in P_I.
 constexpr double kLogClockReach = 8.0;
+constexpr double kLandingMargin = 1e-12;
+// ... and only once the slip is below this fraction of the speed scale: in tau the
+// normal-direction quantities (P_I, W, ydot_A), trivial in P_I, decay like the slip
+// and their error limits the step, which pays only close to the zero.
+constexpr double kLogClockSlip = 2e-3;
 // Largest step in tau = -ln|u| (the slip shrinks by at most e^20 per step).
 constexpr double kMaxLogStep = 20.0;
 // Real steps allowed to refine one event.
@@ -530,7 +535,9 @@ ImpactResult AdaptiveSolver::Run() {
         const double rate = SlipRate(c, Head(y_), Head(k1_));
         const double to_zero = u.norm() / -rate;
         if (!(rate < 0)) continue;
-        if (to_zero < h) h = to_zero, landing = c;
+        // Land a hair short: a stage exactly on the zero could see the slip reversed
+        // by rounding; the residual (1e-12 of the slip) is then settled as zero.
+        if (to_zero < h) h = to_zero * (1 - kLandingMargin), landing = c;
         // A slip that keeps its direction lands in one step; one that turns is
         // followed in tau, if it surely reaches zero: at A always (friction at A is
         // all that changes its slip), at D or B when the cone can hold the slip
@@ -538,7 +545,8 @@ ImpactResult AdaptiveSolver::Run() {
         const Vec2 ud = impulse::Direction(u, Dir0(c));
         const Vec2 du = Slip(c, Head(k1_));
         const double turn = std::abs(ud.x() * du.y() - ud.y() * du.x()) / du.norm();
-        if (to_zero < reach && turn > 1e-9 && c != no_follow_ && CanHold(c)) {
+        if (to_zero < reach && turn > 1e-9 && u.norm() < kLogClockSlip * v_scale_ &&
+            c != no_follow_ && CanHold(c)) {
           reach = to_zero, follow = c;
         }
       }
