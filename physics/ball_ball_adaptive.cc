@@ -66,6 +66,14 @@ constexpr double kMaxGrow = 5.0;
 // in tau = -ln|u|: that close, its direction varies too fast for steps in P_I.
 constexpr double kLogClockReach = 8.0;
 constexpr double kLandingMargin = 1e-12;
+// A cloth slip that starts from zero slides slaved to its drive (Law::kSlideSlaved,
+// quasi-steady direction with its first-order lag) until it exceeds
+// kSlavedSlipLimit * slip_zero_ - and, where friction nearly balances the drive
+// (the stiff, quasi-steady case), until free sliding is no longer stiff for the step
+// at hand (friction's slip rate * h <= |u|) - or until the lag exceeds kSlavedMaxLag
+// (then the quasi-steady picture fails and the direction must be integrated).
+constexpr double kSlavedSlipLimit = 1e3;
+constexpr double kSlavedMaxLag = 0.05;  // rad
 // ... and only once the slip is below this fraction of the speed scale: in tau the
 // normal-direction quantities (P_I, W, ydot_A), trivial in P_I, decay like the slip
 // and their error limits the step, which pays only close to the zero.
@@ -92,6 +100,8 @@ enum Guard {
   kConeD,               // stuck D leaves its friction cone
   kConeB,
   kSlipZero,            // the slip followed in tau reaches slip_zero_
+  kReleaseD,            // a slaved slide at D (not stiff) reaches free_slip_
+  kReleaseB,
   kGuards
 };
 
@@ -120,6 +130,7 @@ class AdaptiveSolver {
     // it to zero changes spins by at most atol_ / R, within the tolerance. The floor
     // keeps it above the rounding of velocities of size v_scale_.
     slip_zero_ = std::max(atol_, 64 * kEps * v_scale_);
+    free_slip_ = kSlavedSlipLimit * slip_zero_;
     weight_.setConstant(1.0 / v_scale_);
     for (int i : {impulse::kWC, impulse::kWO}) weight_.segment<3>(i).setConstant(R / v_scale_);
     weight_[impulse::kWork] = model.inv_mass / (v_scale_ * v_scale_);
@@ -131,6 +142,7 @@ class AdaptiveSolver {
     guard_eps_[kLandC] = guard_eps_[kLandO] = 1e-3 * atol_;
     guard_eps_[kConeD] = guard_eps_[kConeB] = 1e-3 * opt.tolerance;
     guard_eps_[kSlipZero] = 0.5 * slip_zero_;
+    guard_eps_[kReleaseD] = guard_eps_[kReleaseB] = 0.5 * slip_zero_;
   }
 
   ImpactResult Run();
@@ -146,10 +158,17 @@ class AdaptiveSolver {
     const double R = model_.radius;
     return c == kA ? impulse::SlipA(x, R) : c == kD ? impulse::SlipD(x, R) : impulse::SlipB(x, R);
   }
-  Vec2 Dir0(int c) const { return c == kA ? mode_.a_dir0 : c == kD ? mode_.d_dir0 : mode_.b_dir0; }
+  Law LawOf(int c) const { return c == kA ? mode_.a : c == kD ? mode_.d : mode_.b; }
+  // Direction of the slip at contact c; a slaved slide at zero slip points along
+  // its drive (-stick friction).
+  Vec2 SlipDirection(int c, const State& x, const Forces& f) const {
+    const Vec2 u = Slip(c, x);
+    if (u.norm() > 0 || LawOf(c) != Law::kSlideSlaved) return impulse::Direction(u);
+    return -impulse::Direction(c == kD ? f.stick_d : f.stick_b);
+  }
   // Rate of change of |u_c| per unit P_I, from a derivative per unit P_I.
-  double SlipRate(int c, const State& x, const State& dxdp) const {
-    return impulse::Direction(Slip(c, x), Dir0(c)).dot(Slip(c, dxdp));
+  double SlipRate(int c, const State& x, const State& dxdp, const Forces& f) const {
+    return SlipDirection(c, x, f).dot(Slip(c, dxdp));
   }
   // Is contact c sliding with friction acting, so that its slip direction matters?
   bool SlidingActive(int c, const Forces& f) const {
@@ -158,8 +177,8 @@ class AdaptiveSolver {
              (model_.contact.friction_law == BallBallFrictionLaw::kMarlow ||
               model_.contact.mu_bb > 0);
     }
-    if (c == kD) return mode_.d == Law::kSlide && f.n_c > 0 && model_.mu_s > 0;
-    return mode_.b == Law::kSlide && f.n_o > 0 && model_.mu_s > 0;
+    const double n = c == kD ? f.n_c : f.n_o;
+    return LawOf(c) != Law::kStick && n > 0 && model_.mu_s > 0;
   }
 
   // ---- guards ----
@@ -191,6 +210,9 @@ class AdaptiveSolver {
     if (f1_.f_a.y() < 0 && mode_.o_on_cloth) ++r_.o_liftoffs;
   }
   bool ApplyGuardEvent(int g);  // true when the impact is over
+  // Hands slaved cloth slides over to free sliding where that is accurate and not
+  // stiff for a step h. Returns true if the mode changed.
+  bool ReleaseSlaved(double h);
   void SlipReachedZero(int c);
   // Can the friction cone at contact c hold its slip at zero (f1_ forces)?
   bool CanHold(int c) const {
@@ -213,6 +235,7 @@ class AdaptiveSolver {
   impulse::Mode mode_;
   Y weight_;
   double v_scale_ = 1, atol_ = 0, slip_zero_ = 0, p_scale_ = 0;
+  double free_slip_ = 0;  // a slaved slide may slide freely beyond this slip, m/s
   std::int32_t attempts_ = 0;  // steps tried, accepted or not
   bool compressed_ = false;
   double target_ = 0;  // W at the end of restitution
@@ -220,6 +243,9 @@ class AdaptiveSolver {
   int clock_ = kNoContact;
   int no_follow_ = kNoContact;  // a contact whose tau clock just failed
   std::array<double, kGuards> guard_eps_{};
+  // Per cloth contact: a slaved slide whose release is the guard kRelease*
+  // (not stiff), set by ReleaseSlaved at every step start.
+  std::array<bool, kContacts> release_watch_{};
 };
 
 bool AdaptiveSolver::F(const Y& y, Y* dy, Forces* f) {
@@ -232,7 +258,7 @@ bool AdaptiveSolver::F(const Y& y, Y* dy, Forces* f) {
   if (clock_ == kNoContact) return true;
   const Vec2 u = Slip(clock_, x);
   const double s = u.norm();
-  const double rate = SlipRate(clock_, x, dx);
+  const double rate = impulse::Direction(u).dot(Slip(clock_, dx));
   if (!(s > 0 && rate < 0)) return false;  // |u| not decreasing: tau is no clock here
   *dy *= s / -rate;
   return true;
@@ -245,7 +271,7 @@ void AdaptiveSolver::TakeStep(const Y& y0, const Y& k1, double h, StepOut* out) 
   std::array<bool, kContacts> watch;
   for (int c = 0; c < kContacts; ++c) {
     watch[c] = SlidingActive(c, f1_) && c != clock_;
-    u0dir[c] = impulse::Direction(Slip(c, Head(y0)), Dir0(c));
+    u0dir[c] = SlipDirection(c, Head(y0), f1_);
     out->min_dot[c] = 1;
   }
   auto check = [&](const Y& s) {
@@ -286,6 +312,8 @@ bool AdaptiveSolver::GuardActive(int g) const {
     case kConeD: return mode_.d == Law::kStick && f1_.n_c > 0;
     case kConeB: return mode_.b == Law::kStick && f1_.n_o > 0;
     case kSlipZero: return clock_ != kNoContact;
+    case kReleaseD: return release_watch_[kD];
+    case kReleaseB: return release_watch_[kB];
     default: return false;
   }
 }
@@ -301,10 +329,9 @@ double AdaptiveSolver::GuardValue(int g, const Y& y, const Forces& f) const {
     case kLandO: return x[impulse::kVO + 2];
     case kConeD: return model_.mu_s * f.n_c - f.stick_d.norm();
     case kConeB: return model_.mu_s * f.n_o - f.stick_b.norm();
-    case kSlipZero: {
-      const Vec2 u = Slip(clock_, x);
-      return u.norm() - slip_zero_;
-    }
+    case kSlipZero: return Slip(clock_, x).norm() - slip_zero_;
+    case kReleaseD: return free_slip_ - impulse::SlipD(x, model_.radius).norm();
+    case kReleaseB: return free_slip_ - impulse::SlipB(x, model_.radius).norm();
     default: return 1;
   }
 }
@@ -431,33 +458,27 @@ void AdaptiveSolver::SettleA() {
 
 void AdaptiveSolver::SettleCloth(int c, bool count) {
   Law& law = c == kD ? mode_.d : mode_.b;
-  Vec2& dir0 = c == kD ? mode_.d_dir0 : mode_.b_dir0;
   ContactTransitions& tr = c == kD ? r_.d : r_.b;
   const Vec2 u = Slip(c, Head(y_));
   const Forces f = ForcesAt(Head(y_));
   const double n = c == kD ? f.n_c : f.n_o;
-  if ((law == Law::kSlide && u.norm() > slip_zero_) || !(n > 0) ||
-      model_.mu_s == 0) {
-    // Sliding away from zero, or no cloth reaction (no friction to decide about).
+  if (!(n > 0) || model_.mu_s == 0) {  // no cloth reaction: no friction to decide about
     law = Law::kSlide;
-    dir0 = Vec2::Zero();
     return;
   }
-  if (law == Law::kSlide) SnapSlipToZero(c);
+  if (law != Law::kStick && u.norm() > slip_zero_) return;  // sliding away from zero
+  if (law != Law::kStick) SnapSlipToZero(c);
   // Stick test: the friction that keeps the slip at zero against the cone.
   const Vec2 need = c == kD ? f.stick_d : f.stick_b;
-  const double need_norm = need.norm();
-  if (need_norm <= model_.mu_s * n) {
-    if (law == Law::kSlide && count) ++tr.stick;
+  if (need.norm() <= model_.mu_s * n) {
+    if (law != Law::kStick && count) ++tr.stick;
     law = Law::kStick;
-    dir0 = Vec2::Zero();
     return;
   }
-  // Cannot hold: slide in the direction the other forces drive the slip (the
-  // contact's inverse inertia is isotropic, 7/(2M), so that is -need).
+  // Cannot hold: slide from zero along the drive (the contact's inverse inertia is
+  // isotropic, 7/(2M), so the slip grows along -need), slaved to it at first.
   if (count) ++(law == Law::kStick ? tr.unstick : tr.reverse);
-  law = Law::kSlide;
-  dir0 = need_norm > 0 ? Vec2(-need / need_norm) : Vec2::Zero();
+  law = Law::kSlideSlaved;
 }
 
 void AdaptiveSolver::SlipReachedZero(int c) {
@@ -502,11 +523,45 @@ bool AdaptiveSolver::ApplyGuardEvent(int g) {
       --r_.work.events;  // counted by SlipReachedZero
       SlipReachedZero(followed);
       break;
+    case kReleaseD: mode_.d = Law::kSlide; break;
+    case kReleaseB: mode_.b = Law::kSlide; break;
     default: break;  // kConeD / kConeB: Settle() unsticks
   }
   Settle();
   if (g == kVerticalSlipA) CountLiftoff();
   return false;
+}
+
+bool AdaptiveSolver::ReleaseSlaved(double h) {
+  bool changed = false;
+  const State x = Head(y_);
+  const double k = 1.0 + model_.radius * model_.r_over_i / model_.inv_mass;   // 7/2
+  const double kz = model_.radius * model_.r_over_i / model_.inv_mass;        // 5/2
+  for (int c : {kD, kB}) {
+    Law& law = c == kD ? mode_.d : mode_.b;
+    const double n = c == kD ? f1_.n_c : f1_.n_o;
+    release_watch_[c] = false;
+    if (law != Law::kSlideSlaved || !(n > 0)) continue;
+    const Vec2 u = Slip(c, x);
+    const Vec2 stick = c == kD ? f1_.stick_d : f1_.stick_b;
+    const Vec2 dfa = impulse::FrictionARate(x, Head(k1_), mode_, model_);
+    const Vec2 dstick = c == kD ? Vec2(-dfa.x() / k, -kz * dfa.y() / k)
+                                : Vec2(dfa.x() / k, -kz * dfa.y() / k);
+    const double lag = std::abs(impulse::SlavedLag(u, stick, dstick, model_, k));
+    const double friction_rate = k * model_.mu_s * n * model_.inv_mass;  // (m/s)/(N s)
+    const double drive = k * model_.inv_mass * stick.norm();             // (m/s)/(N s)
+    // Where friction is weak against the drive the slip grows like the integral of
+    // the drive (not quasi-steady) and free sliding is not stiff: release at once.
+    const bool stiff = friction_rate > 0.5 * drive && friction_rate * h > u.norm();
+    release_watch_[c] = false;
+    if ((u.norm() >= free_slip_ && !stiff) || lag >= kSlavedMaxLag) {
+      law = Law::kSlide;
+      changed = true;
+    } else if (!stiff) {
+      release_watch_[c] = true;  // release where |u| reaches free_slip_, inside the step
+    }
+  }
+  return changed;
 }
 
 ImpactResult AdaptiveSolver::Run() {
@@ -524,6 +579,7 @@ ImpactResult AdaptiveSolver::Run() {
   while (attempts_ < opt_.max_steps) {
     const bool log_clock = clock_ != kNoContact;
     double h = log_clock ? std::min(h_log, kMaxLogStep) : std::min(h_impulse, p_scale_);
+    if (!log_clock && ReleaseSlaved(h)) Refresh();
     // Limit a step in P_I to the predicted zero of every shrinking sliding slip.
     int landing = kNoContact;
     if (!log_clock) {
@@ -532,7 +588,7 @@ ImpactResult AdaptiveSolver::Run() {
       for (int c = 0; c < kContacts; ++c) {
         if (!SlidingActive(c, f1_)) continue;
         const Vec2 u = Slip(c, Head(y_));
-        const double rate = SlipRate(c, Head(y_), Head(k1_));
+        const double rate = SlipRate(c, Head(y_), Head(k1_), f1_);
         const double to_zero = u.norm() / -rate;
         if (!(rate < 0)) continue;
         // Land a hair short: a stage exactly on the zero could see the slip reversed
@@ -542,11 +598,11 @@ ImpactResult AdaptiveSolver::Run() {
         // followed in tau, if it surely reaches zero: at A always (friction at A is
         // all that changes its slip), at D or B when the cone can hold the slip
         // (then d|u|/dP_I <= |drive| - friction < 0); otherwise it passes by zero.
-        const Vec2 ud = impulse::Direction(u, Dir0(c));
+        const Vec2 ud = impulse::Direction(u);
         const Vec2 du = Slip(c, Head(k1_));
         const double turn = std::abs(ud.x() * du.y() - ud.y() * du.x()) / du.norm();
         if (to_zero < reach && turn > 1e-9 && u.norm() < kLogClockSlip * v_scale_ &&
-            c != no_follow_ && CanHold(c)) {
+            LawOf(c) == Law::kSlide && c != no_follow_ && CanHold(c)) {
           reach = to_zero, follow = c;
         }
       }
@@ -614,7 +670,7 @@ ImpactResult AdaptiveSolver::Run() {
     for (int c = 0; c < kContacts; ++c) {
       if (!SlidingActive(c, f1_)) continue;
       const Vec2 u = Slip(c, Head(y_));
-      const double rate = SlipRate(c, Head(y_), Head(k1_));
+      const double rate = SlipRate(c, Head(y_), Head(k1_), f1_);
       if (u.norm() <= slip_zero_ && (rate < 0 || c == landing)) {
         SlipReachedZero(c);
         changed = true;

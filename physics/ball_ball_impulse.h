@@ -15,6 +15,7 @@
 //   at D (or B) (eq. 9), or, when stuck, the friction that keeps that slip at zero.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -32,21 +33,29 @@ inline constexpr int kVO = 6;
 inline constexpr int kWO = 9;
 inline constexpr int kWork = 12;
 
-enum class Law : std::uint8_t { kSlide, kStick };
+/// Friction law of one contact.
+enum class Law : std::uint8_t {
+  /// Sliding: friction opposes the slip, -mu N u/|u|; none at exactly zero slip
+  /// (the paper's "rolling" rule).
+  kSlide,
+  /// Sliding that has just started from zero slip at a cloth contact (D or B).
+  /// While |u| is small the slip direction is a fast variable: it relaxes towards
+  /// the drive a (the slip rate from all other forces) at the rate |a|/|u|, and the
+  /// friction makes the slip equation stiff (rate mu N (7/2M) / |u|). This law uses
+  /// the quasi-steady direction instead: the drive's direction, lagging it by
+  /// delta = |u| (d angle(a)/dP_I) / |a| (first order in |u|).
+  kSlideSlaved,
+  /// Stuck: the friction that keeps the slip constant (inside the cone).
+  kStick,
+};
 
 /// The discrete part of the hybrid system, held constant during a step.
 struct Mode {
-  Law a = Law::kSlide;  ///< ball-ball contact A
+  Law a = Law::kSlide;  ///< ball-ball contact A (kSlide or kStick)
   Law d = Law::kSlide;  ///< C on the cloth
   Law b = Law::kSlide;  ///< O on the cloth
   bool c_on_cloth = true;
   bool o_on_cloth = true;
-  /// Slide direction used while a sliding contact's slip is exactly zero (the
-  /// direction the dynamics drive it). Zero vector: no friction at zero slip (the
-  /// paper's "rolling" rule).
-  Vec2 a_dir0 = Vec2::Zero();
-  Vec2 d_dir0 = Vec2::Zero();
-  Vec2 b_dir0 = Vec2::Zero();
 };
 
 /// Constants of the model, precomputed once per impact.
@@ -100,10 +109,10 @@ inline Vec2 SlipB(const State& x, double R) {
 /// Normal relative velocity at A, ydot_A (eq. 5c). Positive while approaching.
 inline double NormalSpeed(const State& x) { return x[kVC + 1] - x[kVO + 1]; }
 
-/// Unit vector along u, or `fallback` when u is exactly zero.
-inline Vec2 Direction(const Vec2& u, const Vec2& fallback) {
+/// Unit vector along u, or zero when u is exactly zero.
+inline Vec2 Direction(const Vec2& u) {
   const double n = u.norm();
-  return n > 0 ? Vec2(u / n) : fallback;
+  return n > 0 ? Vec2(u / n) : Vec2::Zero();
 }
 
 /// Forces of one evaluation, per unit dP_I, exposed for event guards.
@@ -122,7 +131,27 @@ inline Vec2 FrictionA(const State& x, const Mode& m, const Model& p) {
   if (m.a == Law::kStick) return Vec2::Zero();
   const Vec2 u = SlipA(x, p.radius);
   const double s = u.norm();
-  return -BallBallFriction(p.contact, s) * Direction(u, m.a_dir0);
+  return -BallBallFriction(p.contact, s) * Direction(u);
+}
+
+/// Cloth friction at a contact with normal force n, slip u and stick friction
+/// `stick` (the friction that would hold the slip constant). `lag` is the slaved
+/// direction's lag behind the drive, rad.
+inline Vec2 ClothFriction(Law law, double n, const Vec2& u, const Vec2& stick, double mu_s,
+                          double lag = 0) {
+  if (!(n > 0)) return Vec2::Zero();
+  switch (law) {
+    case Law::kStick: return stick;
+    case Law::kSlideSlaved: {
+      // The slip points along the drive -stick, rotated back by `lag`; friction
+      // opposes it.
+      const Vec2 d = Direction(stick);
+      const double c = std::cos(lag), s = std::sin(lag);
+      return mu_s * n * Vec2(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
+    }
+    case Law::kSlide: break;
+  }
+  return -mu_s * n * Direction(u);
 }
 
 /// Cloth forces on C (at D) and O (at B) given the friction at A.
@@ -142,23 +171,13 @@ inline Forces ComputeForces(const State& x, const Mode& m, const Model& p) {
   f.n_o = m.o_on_cloth ? std::max(0.0, f2) : 0.0;
   f.stick_d = Vec2(-f1, 1.0 - kz * f2) / k;
   f.stick_b = Vec2(f1, -1.0 - kz * f2) / k;
-  if (f.n_c > 0) {
-    f.f_d = m.d == Law::kStick
-                ? f.stick_d
-                : Vec2(-p.mu_s * f.n_c * Direction(SlipD(x, R), m.d_dir0));
-  }
-  if (f.n_o > 0) {
-    f.f_b = m.b == Law::kStick
-                ? f.stick_b
-                : Vec2(-p.mu_s * f.n_o * Direction(SlipB(x, R), m.b_dir0));
-  }
+  f.f_d = ClothFriction(m.d, f.n_c, SlipD(x, R), f.stick_d, p.mu_s);
+  f.f_b = ClothFriction(m.b, f.n_o, SlipB(x, R), f.stick_b, p.mu_s);
   return f;
 }
 
-/// d(state)/dP_I (eqs. 3, 4, 10a).
-inline void Derivative(const State& x, const Mode& m, const Model& p, State* dx,
-                       Forces* forces_out = nullptr) {
-  const Forces f = ComputeForces(x, m, p);
+/// d(state)/dP_I for given forces (eqs. 3, 4, 10a).
+inline void DerivativeFromForces(const State& x, const Forces& f, const Model& p, State* dx) {
   const double f1 = f.f_a.x();
   const double f2 = f.f_a.y();
   const double im = p.inv_mass;
@@ -177,6 +196,62 @@ inline void Derivative(const State& x, const Mode& m, const Model& p, State* dx,
   d[kWO + 1] = -f.f_b.x() * ri;
   d[kWO + 2] = -f1 * ri;
   d[kWork] = NormalSpeed(x);
+}
+
+/// Rate of change of the friction at A along the trajectory, per unit P_I, from the
+/// state's derivative dx.
+inline Vec2 FrictionARate(const State& x, const State& dx, const Mode& m, const Model& p) {
+  if (m.a == Law::kStick) return Vec2::Zero();
+  const Vec2 u = SlipA(x, p.radius);
+  const double s = u.norm();
+  if (!(s > 0)) return Vec2::Zero();
+  const Vec2 uh = u / s;
+  const Vec2 du = SlipA(dx, p.radius);
+  const double ds = uh.dot(du);
+  Vec2 rate = -BallBallFriction(p.contact, s) * (du - ds * uh) / s;  // turning of u/|u|
+  if (p.contact.friction_law == BallBallFrictionLaw::kMarlow) {  // d mu/ds along the way
+    rate -= -0.108 * 1.088 * std::exp(-1.088 * s) * ds * uh;
+  }
+  return rate;
+}
+
+/// Lag of a slaved slide's direction behind its drive: |u| (d angle/dP_I) / |drive|,
+/// with the drive -stick (M / k) and d(stick)/dP_I = dstick. Capped at 0.1 rad,
+/// beyond which the quasi-steady picture no longer holds (the solver hands over).
+inline double SlavedLag(const Vec2& u, const Vec2& stick, const Vec2& dstick, const Model& p,
+                        double k) {
+  const double n = stick.norm();
+  if (!(n > 0)) return 0;
+  const double turn = (stick.x() * dstick.y() - stick.y() * dstick.x()) / (n * n);  // rad/(N s)
+  const double drive = k * p.inv_mass * n;  // |drive| = k |stick| / M, (m/s)/(N s)
+  return std::clamp(u.norm() * turn / drive, -0.1, 0.1);
+}
+
+/// d(state)/dP_I (eqs. 3, 4, 10a). A slaved cloth slide takes a second pass for its
+/// lag, which needs the rate of change of the friction at A.
+inline void Derivative(const State& x, const Mode& m, const Model& p, State* dx,
+                       Forces* forces_out = nullptr) {
+  Forces f = ComputeForces(x, m, p);
+  DerivativeFromForces(x, f, p, dx);
+  const bool slaved_d = m.d == Law::kSlideSlaved && f.n_c > 0;
+  const bool slaved_b = m.b == Law::kSlideSlaved && f.n_o > 0;
+  if (slaved_d || slaved_b) {
+    const Vec2 dfa = FrictionARate(x, *dx, m, p);
+    const double k = 1.0 + p.radius * p.r_over_i / p.inv_mass;  // 7/2
+    const double kz = p.radius * p.r_over_i / p.inv_mass;       // 5/2
+    const double R = p.radius;
+    if (slaved_d) {  // stick_d = (-f1, 1 - kz f2) / k
+      const Vec2 dstick(-dfa.x() / k, -kz * dfa.y() / k);
+      f.f_d = ClothFriction(m.d, f.n_c, SlipD(x, R), f.stick_d, p.mu_s,
+                            SlavedLag(SlipD(x, R), f.stick_d, dstick, p, k));
+    }
+    if (slaved_b) {  // stick_b = (f1, -1 - kz f2) / k
+      const Vec2 dstick(dfa.x() / k, -kz * dfa.y() / k);
+      f.f_b = ClothFriction(m.b, f.n_o, SlipB(x, R), f.stick_b, p.mu_s,
+                            SlavedLag(SlipB(x, R), f.stick_b, dstick, p, k));
+    }
+    DerivativeFromForces(x, f, p, dx);
+  }
   if (forces_out != nullptr) *forces_out = f;
 }
 
