@@ -1,43 +1,115 @@
-// Speed of the ball-ball collision solver (physics/ball_ball.h) on the paper's five
-// shots: the fixed-step scheme at several N and the adaptive integrator at several
-// tolerances. Run: build/bench/ball_ball_bench
+// Speed against error of the ball-ball solver (physics/ball_ball.h): the paper's
+// fixed-step scheme at N = 10 ... 1e6 and the adaptive integrator at tolerances
+// 1e-3 ... 1e-12, over the shot set of bench/collision_shots.h.
+//
+// Each iteration resolves one collision (cycling through the shots), so the time
+// reported is per collision. Before timing, each benchmark computes its worst
+// errors over the shots against a converged reference and reports them as counters:
+//   vel_err    max |error| of the post-impact velocities and R * spins, m/s
+//   angle_err  max |error| of both balls' exit angles after their slip, deg
+// Run: scripts/speed-error-report (writes docs/speed-vs-error.*), or
+//   build/bench/ball_ball_bench --benchmark_filter=... for a quick look.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
+#include "bench/collision_shots.h"
 #include "physics/ball_ball.h"
-#include "tests/physics/paper_shots.h"
+#include "physics/slip_phase.h"
 
 namespace snooker::physics {
 namespace {
 
-ImpactState Shot(int i) {
-  const PaperShot& s = kPaperShots[static_cast<size_t>(i)];
-  return PaperIncidentState(s.speed, s.speed / BallParams{}.radius, 0.0, DegToRad(s.cut_deg));
+struct Outcome {
+  ImpactState out;
+  double cue_exit_deg, object_exit_deg;
+};
+
+Outcome Solve(const NamedShot& shot, const ImpulseSolverOptions& options) {
+  const BallParams ball;
+  const ClothParams cloth;
+  const ImpactState in = ReportShotState(shot);
+  ImpulseSolverOptions o = options;
+  o.max_steps = 100'000'000;
+  const ImpactResult r = ResolveImpact(in, ball, {}, cloth.mu_s, o);
+  const Vec2 incoming(in.c.v.x(), in.c.v.y());
+  return {r.out,
+          RadToDeg(AngleBetween(SlipPhaseEnd(r.out.c, ball, cloth).velocity, incoming)),
+          RadToDeg(AngleBetween(SlipPhaseEnd(r.out.o, ball, cloth).velocity, incoming))};
+}
+
+// The reference: the adaptive integrator at tolerance 1e-14 (its agreement with
+// tolerance 1e-13 is reported as the counter ref_spread of BM_Reference).
+const std::vector<Outcome>& Reference() {
+  static const std::vector<Outcome> ref = [] {
+    std::vector<Outcome> r;
+    ImpulseSolverOptions o;
+    o.tolerance = 1e-14;
+    for (const NamedShot& s : kReportShots) r.push_back(Solve(s, o));
+    return r;
+  }();
+  return ref;
+}
+
+void ReportErrors(benchmark::State& state, const ImpulseSolverOptions& options) {
+  const double radius = BallParams{}.radius;
+  double vel = 0, angle = 0;
+  for (size_t i = 0; i < kReportShots.size(); ++i) {
+    const Outcome o = Solve(kReportShots[i], options);
+    const Outcome& r = Reference()[i];
+    vel = std::max({vel, (o.out.c.v - r.out.c.v).cwiseAbs().maxCoeff(),
+                    (o.out.o.v - r.out.o.v).cwiseAbs().maxCoeff(),
+                    radius * (o.out.c.w - r.out.c.w).cwiseAbs().maxCoeff(),
+                    radius * (o.out.o.w - r.out.o.w).cwiseAbs().maxCoeff()});
+    angle = std::max({angle, std::abs(o.cue_exit_deg - r.cue_exit_deg),
+                      std::abs(o.object_exit_deg - r.object_exit_deg)});
+  }
+  state.counters["vel_err"] = vel;
+  state.counters["angle_err"] = angle;
+}
+
+void Time(benchmark::State& state, const ImpulseSolverOptions& options) {
+  std::vector<ImpactState> inputs;
+  for (const NamedShot& s : kReportShots) inputs.push_back(ReportShotState(s));
+  const BallParams ball;
+  size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(ResolveImpact(inputs[i], ball, {}, 0.21, options));
+    i = (i + 1) % inputs.size();
+  }
 }
 
 void BM_FixedStep(benchmark::State& state) {
   ImpulseSolverOptions o;
   o.integrator = ImpulseIntegrator::kFixedStep;
   o.steps = static_cast<int>(state.range(0));
-  int i = 0;
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(ResolveImpact(Shot(i), {}, {}, 0.21, o));
-    i = (i + 1) % 5;
-  }
+  o.max_steps = 100'000'000;
+  ReportErrors(state, o);
+  Time(state, o);
 }
-BENCHMARK(BM_FixedStep)->RangeMultiplier(10)->Range(10, 100000);
+BENCHMARK(BM_FixedStep)
+    ->Arg(10)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Arg(3000)->Arg(10000)->Arg(30000)
+    ->Arg(100000)->Arg(300000)->Arg(1000000);
 
-void BM_Adaptive(benchmark::State& state) {
+void BM_Adaptive(benchmark::State& state) {  // tolerance 10^-range(0)
   ImpulseSolverOptions o;
   o.tolerance = std::pow(10.0, -static_cast<double>(state.range(0)));
-  int i = 0;
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(ResolveImpact(Shot(i), {}, {}, 0.21, o));
-    i = (i + 1) % 5;
-  }
+  ReportErrors(state, o);
+  Time(state, o);
 }
-BENCHMARK(BM_Adaptive)->DenseRange(4, 12, 2);
+BENCHMARK(BM_Adaptive)->DenseRange(3, 12, 1);
+
+// How converged the reference is: tolerance 1e-13 against 1e-14.
+void BM_Reference(benchmark::State& state) {
+  ImpulseSolverOptions o;
+  o.tolerance = 1e-13;
+  ReportErrors(state, o);
+  state.counters["ref_spread"] = state.counters["vel_err"];
+  Time(state, o);
+}
+BENCHMARK(BM_Reference);
 
 }  // namespace
 }  // namespace snooker::physics

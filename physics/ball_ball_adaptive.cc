@@ -10,9 +10,11 @@
 //    step and the right-hand side is evaluated for that mode.
 //  * Smooth guards (end of compression, end of restitution, the vertical slip at A,
 //    an airborne ball's vertical velocity, a stuck contact's cone margin) are
-//    checked at the end of every step. A sign change is located on the step's cubic
-//    Hermite interpolant, then refined with real steps from the step start
-//    (Illinois), so the switch happens on the event to the guard's tolerance.
+//    checked at the end of every step. A sign change is located (Illinois) on the
+//    step's dense output, a 4th-order continuous extension as accurate as the step
+//    itself, and the step ends there with the dense state: one new right-hand side
+//    per event instead of refining with real steps. The end of compression changes
+//    no dynamics, so it is only recorded (W_c, P_c) and the step runs on.
 //  * A sliding slip heading for zero limits the step to its predicted zero (slip
 //    speed over its rate of decrease). Where that landing fails - near a sticking
 //    zero the slip direction behaves like |u|^(1/6) at A (unequal inverse inertia
@@ -52,6 +54,10 @@ constexpr double kA61 = 9017.0 / 3168, kA62 = -355.0 / 33, kA63 = 46732.0 / 5247
                  kA64 = 49.0 / 176, kA65 = -5103.0 / 18656;
 constexpr double kB1 = 35.0 / 384, kB3 = 500.0 / 1113, kB4 = 125.0 / 192,
                  kB5 = -2187.0 / 6784, kB6 = 11.0 / 84;
+// Dense output of order 4 (Hairer, Norsett & Wanner, II.6; the DOPRI5 code).
+constexpr double kD1 = -12715105075.0 / 11282082432.0, kD3 = 87487479700.0 / 32700410799.0,
+                 kD4 = -10690763975.0 / 1880347072.0, kD5 = 701980252875.0 / 199316789632.0,
+                 kD6 = -1453857185.0 / 822651844.0, kD7 = 69997945.0 / 29380423.0;
 // Error coefficients: 5th-order minus embedded 4th-order weights.
 constexpr double kE1 = 71.0 / 57600, kE3 = -71.0 / 16695, kE4 = 71.0 / 1920,
                  kE5 = -17253.0 / 339200, kE6 = 22.0 / 525, kE7 = -1.0 / 40;
@@ -73,6 +79,7 @@ constexpr double kLandingMargin = 1e-12;
 // at hand (friction's slip rate * h <= |u|) - or until the lag exceeds kSlavedMaxLag
 // (then the quasi-steady picture fails and the direction must be integrated).
 constexpr double kSlavedSlipLimit = 1e3;
+constexpr double kSlavedSlipCap = 1e-6;  // ... but at most this fraction of the speed scale
 constexpr double kSlavedMaxLag = 0.05;  // rad
 // ... and only once the slip is below this fraction of the speed scale: in tau the
 // normal-direction quantities (P_I, W, ydot_A), trivial in P_I, decay like the slip
@@ -80,8 +87,8 @@ constexpr double kSlavedMaxLag = 0.05;  // rad
 constexpr double kLogClockSlip = 2e-3;
 // Largest step in tau = -ln|u| (the slip shrinks by at most e^20 per step).
 constexpr double kMaxLogStep = 20.0;
-// Real steps allowed to refine one event.
-constexpr int kMaxEventIterations = 40;
+// Iterations allowed to locate one event on the dense output (Illinois).
+constexpr int kMaxEventIterations = 100;
 constexpr double kEps = 2.220446049250313e-16;  // machine epsilon
 
 // Integrated vector: the impulse state and P_I itself (so that either P_I or tau
@@ -109,6 +116,7 @@ struct StepOut {
   Y y1;
   Y k7;            // derivative at y1 (FSAL)
   Y err;
+  std::array<Y, 4> dense;  // r2..r5 of the dense output: y0 + t (r2 + (1-t)(r3 + t(r4 + (1-t) r5)))
   Forces forces1;  // forces at y1
   std::array<double, kContacts> min_dot;  // min over stages of u . (start direction)
   bool valid = true;  // false if the tau clock broke down inside the step
@@ -130,19 +138,14 @@ class AdaptiveSolver {
     // it to zero changes spins by at most atol_ / R, within the tolerance. The floor
     // keeps it above the rounding of velocities of size v_scale_.
     slip_zero_ = std::max(atol_, 64 * kEps * v_scale_);
-    free_slip_ = kSlavedSlipLimit * slip_zero_;
+    free_slip_ = std::max(2 * slip_zero_, std::min(kSlavedSlipLimit * slip_zero_,
+                                                   kSlavedSlipCap * v_scale_));
     weight_.setConstant(1.0 / v_scale_);
     for (int i : {impulse::kWC, impulse::kWO}) weight_.segment<3>(i).setConstant(R / v_scale_);
     weight_[impulse::kWork] = model.inv_mass / (v_scale_ * v_scale_);
     weight_[kP] = model.inv_mass / v_scale_;
+    event_resolution_ = std::max(4 * kEps, 1e-3 * opt.tolerance);
     p_scale_ = (1.0 + model.contact.e) * impulse::NormalSpeed(Head(y_)) / model.inv_mass;
-    guard_eps_[kCompressionEnd] = 1e-3 * atol_;
-    guard_eps_[kRestitutionEnd] = 1e-3 * atol_ * v_scale_ / model.inv_mass;
-    guard_eps_[kVerticalSlipA] = 1e-3 * atol_;
-    guard_eps_[kLandC] = guard_eps_[kLandO] = 1e-3 * atol_;
-    guard_eps_[kConeD] = guard_eps_[kConeB] = 1e-3 * opt.tolerance;
-    guard_eps_[kSlipZero] = 0.5 * slip_zero_;
-    guard_eps_[kReleaseD] = guard_eps_[kReleaseB] = 0.5 * slip_zero_;
   }
 
   ImpactResult Run();
@@ -184,12 +187,18 @@ class AdaptiveSolver {
   // ---- guards ----
   bool GuardActive(int g) const;
   double GuardValue(int g, const Y& y, const Forces& f) const;
+  static bool GuardNeedsForces(int g) { return g == kConeD || g == kConeB; }
   Forces ForcesAt(const State& x) const { return impulse::ComputeForces(x, mode_, model_); }
-  // Earliest root in (0, 1] of guard g on the cubic Hermite interpolant of a step.
-  double HermiteRoot(int g, double g0, const StepOut& s, double h) const;
-  // Shortens the step `s` (of length h) to end on the first guard crossing in it.
-  // Returns the guard, or -1 if none crosses; `h` becomes the shortened length.
-  int LocateEvent(StepOut* s, double* h);
+  // The state at fraction t of the step `s` from y_ (dense output, order 4).
+  Y Dense(const StepOut& s, double t) const {
+    return y_ + t * (s.dense[0] + (1 - t) * (s.dense[1] + t * (s.dense[2] + (1 - t) * s.dense[3])));
+  }
+  double GuardAt(int g, const Y& y) const {
+    return GuardValue(g, y, GuardNeedsForces(g) ? ForcesAt(Head(y)) : f1_);
+  }
+  // The first guard to cross zero in (t0, 1] of step `s`, located on the dense
+  // output; returns it and its fraction `*t`, or -1 if none crosses.
+  int LocateEvent(const StepOut& s, double t0, double* t) const;
 
   // ---- modes ----
   void SettleA();
@@ -210,6 +219,13 @@ class AdaptiveSolver {
     if (f1_.f_a.y() < 0 && mode_.o_on_cloth) ++r_.o_liftoffs;
   }
   bool ApplyGuardEvent(int g);  // true when the impact is over
+  void RecordCompressionEnd(const Y& y) {
+    ++r_.work.events;
+    compressed_ = true;
+    r_.impulse_compression = y[kP];
+    r_.work_compression = y[impulse::kWork];
+    target_ = (1.0 - model_.contact.e * model_.contact.e) * r_.work_compression;  // eq. 10c
+  }
   // Hands slaved cloth slides over to free sliding where that is accurate and not
   // stiff for a step h. Returns true if the mode changed.
   bool ReleaseSlaved(double h);
@@ -236,13 +252,13 @@ class AdaptiveSolver {
   Y weight_;
   double v_scale_ = 1, atol_ = 0, slip_zero_ = 0, p_scale_ = 0;
   double free_slip_ = 0;  // a slaved slide may slide freely beyond this slip, m/s
+  double event_resolution_ = 0;  // events are located to this fraction of a step
   std::int32_t attempts_ = 0;  // steps tried, accepted or not
   bool compressed_ = false;
   double target_ = 0;  // W at the end of restitution
   int az_sign_ = 1;    // sign of zdot_A in the current mode
   int clock_ = kNoContact;
   int no_follow_ = kNoContact;  // a contact whose tau clock just failed
-  std::array<double, kGuards> guard_eps_{};
   // Per cloth contact: a slaved slide whose release is the guard kRelease*
   // (not stiff), set by ReleaseSlaved at every step start.
   std::array<bool, kContacts> release_watch_{};
@@ -299,6 +315,10 @@ void AdaptiveSolver::TakeStep(const Y& y0, const Y& k1, double h, StepOut* out) 
   check(out->y1);
   ok &= F(out->y1, &out->k7, &out->forces1);
   out->err = h * (kE1 * k1 + kE3 * k3 + kE4 * k4 + kE5 * k5 + kE6 * k6 + kE7 * out->k7);
+  out->dense[0] = out->y1 - y0;
+  out->dense[1] = h * k1 - out->dense[0];
+  out->dense[2] = out->dense[0] - h * out->k7 - out->dense[1];
+  out->dense[3] = h * (kD1 * k1 + kD3 * k3 + kD4 * k4 + kD5 * k5 + kD6 * k6 + kD7 * out->k7);
   out->valid = ok && out->y1.allFinite();
 }
 
@@ -336,94 +356,37 @@ double AdaptiveSolver::GuardValue(int g, const Y& y, const Forces& f) const {
   }
 }
 
-double AdaptiveSolver::HermiteRoot(int g, double g0, const StepOut& s, double h) const {
-  auto at = [&](double t) {
-    const double t2 = t * t, t3 = t2 * t;
-    const Y yt = (2 * t3 - 3 * t2 + 1) * y_ + (t3 - 2 * t2 + t) * h * k1_ +
-                 (-2 * t3 + 3 * t2) * s.y1 + (t3 - t2) * h * s.k7;
-    return GuardValue(g, yt, ForcesAt(Head(yt)));
-  };
-  double lo = 0, hi = 1, glo = g0, ghi = std::min(GuardValue(g, s.y1, s.forces1), -1e-300);
-  int side = 0;
-  for (int it = 0; it < 60 && hi - lo > 1e-15; ++it) {  // Illinois
-    double t = (lo * ghi - hi * glo) / (ghi - glo);
-    if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
-    const double gt = at(t);
-    if (gt > 0) {
-      lo = t, glo = gt;
-      if (side == 1) ghi *= 0.5;
-      side = 1;
-    } else {
-      hi = t, ghi = gt;
-      if (side == -1) glo *= 0.5;
-      side = -1;
-    }
-  }
-  return hi;
-}
-
-int AdaptiveSolver::LocateEvent(StepOut* s, double* h) {
-  std::array<double, kGuards> g0{};
+int AdaptiveSolver::LocateEvent(const StepOut& s, double t0, double* t_event) const {
+  const Y y0 = t0 > 0 ? Dense(s, t0) : y_;
   int first = -1;
-  double theta = 2;
+  double first_t = 2;
   for (int g = 0; g < kGuards; ++g) {
     if (!GuardActive(g)) continue;
-    g0[g] = GuardValue(g, y_, f1_);
-    if (!(g0[g] > 0) || GuardValue(g, s->y1, s->forces1) > 0) continue;
-    const double t = HermiteRoot(g, g0[g], *s, *h);
-    if (t < theta) theta = t, first = g;
-  }
-  if (first < 0) return -1;
-
-  // Refine on real steps from y_: bracket [lo, hi] of the step length.
-  double lo = 0, glo = g0[first];
-  double hi = *h, ghi = std::min(GuardValue(first, s->y1, s->forces1), -1e-300);
-  double trial = theta * *h;
-  int side = 0;
-  StepOut t;
-  for (int it = 0; it < kMaxEventIterations; ++it) {
-    if (!(trial > lo && trial < hi)) trial = 0.5 * (lo + hi);
-    TakeStep(y_, k1_, trial, &t);
-    if (!t.valid) {  // cannot happen for a sub-step of a valid step; be safe
-      hi = trial;
-      trial = 0.5 * (lo + hi);
-      continue;
-    }
-    // Another guard crossing earlier takes precedence.
-    int earlier = -1;
-    for (int g = 0; g < kGuards; ++g) {
-      if (g != first && GuardActive(g) && g0[g] > 0 && GuardValue(g, t.y1, t.forces1) <= 0) {
-        earlier = g;
+    double glo = GuardAt(g, y0);
+    double ghi = GuardAt(g, s.y1);
+    if (!(glo > 0) || ghi > 0) continue;
+    // Illinois on the dense output, bracket [lo, hi] with g(lo) > 0 >= g(hi).
+    double lo = t0, hi = 1;
+    int side = 0;
+    // A location error dt moves the state by about h |y'| dt, within the step's
+    // own error: the bracket needs to close to 1e-3 of the tolerance only.
+    for (int it = 0; it < kMaxEventIterations && hi - lo > event_resolution_; ++it) {
+      double t = (lo * ghi - hi * glo) / (ghi - glo);
+      if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+      const double gt = GuardAt(g, Dense(s, t));
+      if (gt > 0) {
+        lo = t, glo = gt;
+        if (side == 1) ghi *= 0.5;
+        side = 1;
+      } else {
+        hi = t, ghi = gt;
+        if (side == -1) glo *= 0.5;
+        side = -1;
       }
     }
-    if (earlier >= 0) {
-      first = earlier;
-      hi = trial, ghi = std::min(GuardValue(first, t.y1, t.forces1), -1e-300);
-      lo = 0, glo = g0[first];
-      trial = 0.5 * (lo + hi);
-      side = 0;
-      continue;
-    }
-    const double gt = GuardValue(first, t.y1, t.forces1);
-    if (std::abs(gt) <= guard_eps_[first] || hi - lo <= 4 * kEps * (std::abs(y_[kP]) + hi)) {
-      *s = t;
-      *h = trial;
-      return first;
-    }
-    if (gt > 0) {
-      lo = trial, glo = gt;
-      if (side == 1) ghi *= 0.5;
-      side = 1;
-    } else {
-      hi = trial, ghi = gt;
-      if (side == -1) glo *= 0.5;
-      side = -1;
-    }
-    trial = (lo * ghi - hi * glo) / (ghi - glo);
+    if (hi < first_t) first_t = hi, first = g;
   }
-  // Bracket not closed within the cap: end on its upper side, where the guard fired.
-  TakeStep(y_, k1_, hi, s);
-  *h = hi;
+  *t_event = first_t;
   return first;
 }
 
@@ -477,6 +440,7 @@ void AdaptiveSolver::SettleCloth(int c, bool count) {
   }
   // Cannot hold: slide from zero along the drive (the contact's inverse inertia is
   // isotropic, 7/(2M), so the slip grows along -need), slaved to it at first.
+  if (law == Law::kSlideSlaved) return;  // already sliding from zero: no new transition
   if (count) ++(law == Law::kStick ? tr.unstick : tr.reverse);
   law = Law::kSlideSlaved;
 }
@@ -496,13 +460,10 @@ bool AdaptiveSolver::ApplyGuardEvent(int g) {
   const int followed = clock_;
   clock_ = kNoContact;
   switch (g) {
-    case kCompressionEnd:
-      compressed_ = true;
-      r_.impulse_compression = y_[kP];
-      r_.work_compression = y_[impulse::kWork];
-      target_ = (1.0 - model_.contact.e * model_.contact.e) * r_.work_compression;  // eq. 10c
-      if (model_.contact.e == 0) return true;  // restitution ends where it starts
-      break;
+    case kCompressionEnd:  // reached here only when e = 0
+      --r_.work.events;      // counted by RecordCompressionEnd
+      RecordCompressionEnd(y_);
+      return true;  // restitution ends where it starts
     case kRestitutionEnd: return true;
     case kVerticalSlipA:
       // The ball that was pushed down is now pushed up (it lifts off); the other
@@ -549,10 +510,10 @@ bool AdaptiveSolver::ReleaseSlaved(double h) {
                                 : Vec2(dfa.x() / k, -kz * dfa.y() / k);
     const double lag = std::abs(impulse::SlavedLag(u, stick, dstick, model_, k));
     const double friction_rate = k * model_.mu_s * n * model_.inv_mass;  // (m/s)/(N s)
-    const double drive = k * model_.inv_mass * stick.norm();             // (m/s)/(N s)
     // Where friction is weak against the drive the slip grows like the integral of
     // the drive (not quasi-steady) and free sliding is not stiff: release at once.
-    const bool stiff = friction_rate > 0.5 * drive && friction_rate * h > u.norm();
+    const bool stiff =
+        impulse::SlavedStiff(n, stick, model_.mu_s) && friction_rate * h > u.norm();
     release_watch_[c] = false;
     if ((u.norm() >= free_slip_ && !stiff) || lag >= kSlavedMaxLag) {
       law = Law::kSlide;
@@ -645,13 +606,24 @@ ImpactResult AdaptiveSolver::Run() {
       continue;
     }
 
-    double h_taken = h;
-    const int event = LocateEvent(&s, &h_taken);
+    // Events inside the step, on its dense output. The end of compression changes no
+    // dynamics: it is recorded and the search goes on in the rest of the step.
+    double t_event = 1;
+    int event = LocateEvent(s, 0.0, &t_event);
+    if (event == kCompressionEnd && model_.contact.e > 0) {
+      const Y yc = Dense(s, t_event);
+      RecordCompressionEnd(yc);
+      event = LocateEvent(s, t_event, &t_event);
+    }
     ++r_.work.steps;
     if (!log_clock) no_follow_ = kNoContact;
-    y_ = s.y1;
-    k1_ = s.k7;
-    f1_ = s.forces1;
+    if (event >= 0) {
+      y_ = Dense(s, t_event);  // the step ends on the event; Apply refreshes k1_, f1_
+    } else {
+      y_ = s.y1;
+      k1_ = s.k7;
+      f1_ = s.forces1;
+    }
     const double grow = std::clamp(kSafety * pi * std::pow(err_prev, kBeta), kMinShrink, kMaxGrow);
     err_prev = std::max(err, 1e-4);
     if (log_clock) {

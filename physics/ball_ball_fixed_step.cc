@@ -7,6 +7,7 @@
 // and the work W (eq. 12, exact for a linear ydot_A) is quadratic, so the end of
 // compression (eq. 10d) and the end of restitution (eqs. 10c, 15) are located inside
 // the step exactly instead of overshooting it (physics-notes section 4).
+#include <algorithm>
 #include <cmath>
 
 #include "physics/ball_ball_detail.h"
@@ -21,20 +22,26 @@ using impulse::State;
 
 namespace {
 
-// Smallest root in [lo, hi] of a + b t + c t^2 = 0 where the function changes sign
-// from >0 to <=0 (c may be zero). Returns hi + 1 when there is none.
+// First t in [lo, hi] where a + b t + c t^2 goes from > 0 to <= 0, for the two
+// uses here: a linear function (c = 0) and a concave one (c < 0) that is positive
+// at lo. Returns hi + 1 when there is none. Closed form with the cancellation-free
+// quadratic formula; the result is clamped into the bracket.
 double FirstDownCrossing(double a, double b, double c, double lo, double hi) {
   auto f = [&](double t) { return a + t * (b + t * c); };
   if (f(lo) <= 0) return lo;
   if (f(hi) > 0) return hi + 1;
-  // One crossing from > 0 to <= 0 in [lo, hi]: bisection is exact enough and never
-  // fails; 200 halvings reach the spacing of doubles.
-  for (int i = 0; i < 200 && hi - lo > 0; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    if (mid <= lo || mid >= hi) break;
-    (f(mid) > 0 ? lo : hi) = mid;
+  double t;
+  if (c == 0) {
+    t = -a / b;
+  } else {
+    // Roots of c t^2 + b t + a: q = -(b + sign(b) sqrt(b^2 - 4ac)) / 2, t = q/c or a/q.
+    // With f(lo) > 0 >= f(hi) and c < 0 the crossing is the larger root.
+    const double disc = std::sqrt(std::max(0.0, b * b - 4 * a * c));
+    const double q = -0.5 * (b + std::copysign(disc, b));
+    const double t1 = q / c, t2 = q != 0 ? a / q : t1;
+    t = std::max(t1, t2);
   }
-  return hi;
+  return std::clamp(t, lo, hi);
 }
 
 }  // namespace

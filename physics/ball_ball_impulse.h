@@ -227,14 +227,23 @@ inline double SlavedLag(const Vec2& u, const Vec2& stick, const Vec2& dstick, co
   return std::clamp(u.norm() * turn / drive, -0.1, 0.1);
 }
 
-/// d(state)/dP_I (eqs. 3, 4, 10a). A slaved cloth slide takes a second pass for its
-/// lag, which needs the rate of change of the friction at A.
+/// Is a slaved slide with normal force n and stick friction `stick` in the stiff,
+/// quasi-steady regime, where friction nearly balances the drive (friction's effect
+/// on the slip above half the drive's)? Only there is its lag meaningful.
+inline bool SlavedStiff(double n, const Vec2& stick, double mu_s) {
+  return mu_s * n > 0.5 * stick.norm();
+}
+
+/// d(state)/dP_I (eqs. 3, 4, 10a). A slaved cloth slide in its stiff regime takes a
+/// second pass for its lag, which needs the rate of change of the friction at A.
 inline void Derivative(const State& x, const Mode& m, const Model& p, State* dx,
                        Forces* forces_out = nullptr) {
   Forces f = ComputeForces(x, m, p);
   DerivativeFromForces(x, f, p, dx);
-  const bool slaved_d = m.d == Law::kSlideSlaved && f.n_c > 0;
-  const bool slaved_b = m.b == Law::kSlideSlaved && f.n_o > 0;
+  const bool slaved_d =
+      m.d == Law::kSlideSlaved && f.n_c > 0 && SlavedStiff(f.n_c, f.stick_d, p.mu_s);
+  const bool slaved_b =
+      m.b == Law::kSlideSlaved && f.n_o > 0 && SlavedStiff(f.n_o, f.stick_b, p.mu_s);
   if (slaved_d || slaved_b) {
     const Vec2 dfa = FrictionARate(x, *dx, m, p);
     const double k = 1.0 + p.radius * p.r_over_i / p.inv_mass;  // 7/2
