@@ -65,7 +65,7 @@ struct ImpulseSolverOptions {
   double tolerance = 1e-10;
   /// Cap on steps (accepted plus rejected) for either integrator. When reached the
   /// solver stops with kStepLimit and returns the state it had reached.
-  std::int32_t max_steps = 2'000'000;
+  std::int32_t max_steps = 100'000;
 };
 
 enum class ImpactStatus : std::uint8_t {

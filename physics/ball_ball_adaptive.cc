@@ -364,6 +364,10 @@ int AdaptiveSolver::LocateEvent(const StepOut& s, double t0, double* t_event) co
     if (!GuardActive(g)) continue;
     double glo = GuardAt(g, y0);
     double ghi = GuardAt(g, s.y1);
+    if (g == kRestitutionEnd && !(glo > 0)) {  // already reached (e ~ 0): ends at t0
+      if (t0 < first_t) first_t = t0, first = g;
+      continue;
+    }
     if (!(glo > 0) || ghi > 0) continue;
     // Illinois on the dense output, bracket [lo, hi] with g(lo) > 0 >= g(hi).
     double lo = t0, hi = 1;
@@ -538,6 +542,10 @@ ImpactResult AdaptiveSolver::Run() {
   bool finished = false;
   double err_prev = 1e-4;
   while (attempts_ < opt_.max_steps) {
+    if (compressed_ && !(GuardValue(kRestitutionEnd, y_, f1_) > 0)) {  // safety net
+      finished = true;
+      break;
+    }
     const bool log_clock = clock_ != kNoContact;
     double h = log_clock ? std::min(h_log, kMaxLogStep) : std::min(h_impulse, p_scale_);
     if (!log_clock && ReleaseSlaved(h)) Refresh();
