@@ -1,0 +1,142 @@
+// The Dormand-Prince 5(4) embedded Runge-Kutta pair and the pieces an event-locating
+// integrator needs around it: the cubic Hermite interpolant of a step, an Illinois
+// root finder and Hairer's PI step-size controller. Internal to physics/.
+//
+// Header-only templates over a fixed-size Eigen vector: no allocation, no exception,
+// no virtual call, every loop capped. Written for the ball-cushion integrator
+// (ball_cushion_adaptive.cc); the ball-ball integrator (ball_ball_adaptive.cc) keeps
+// its own copy of the same tableau, step and controller and could use this instead.
+//
+// Reference: Hairer, Norsett & Wanner, Solving ODEs I: II.5 (tableau, FSAL, local
+// extrapolation), II.6 (dense output), IV.2 (the PI controller for DOPRI5).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+namespace snooker::physics::ode {
+
+namespace dp54 {
+inline constexpr double kA21 = 1.0 / 5;
+inline constexpr double kA31 = 3.0 / 40, kA32 = 9.0 / 40;
+inline constexpr double kA41 = 44.0 / 45, kA42 = -56.0 / 15, kA43 = 32.0 / 9;
+inline constexpr double kA51 = 19372.0 / 6561, kA52 = -25360.0 / 2187,
+                        kA53 = 64448.0 / 6561, kA54 = -212.0 / 729;
+inline constexpr double kA61 = 9017.0 / 3168, kA62 = -355.0 / 33, kA63 = 46732.0 / 5247,
+                        kA64 = 49.0 / 176, kA65 = -5103.0 / 18656;
+// 5th-order weights (also the last row of A: the method is FSAL).
+inline constexpr double kB1 = 35.0 / 384, kB3 = 500.0 / 1113, kB4 = 125.0 / 192,
+                        kB5 = -2187.0 / 6784, kB6 = 11.0 / 84;
+// 5th-order minus embedded 4th-order weights.
+inline constexpr double kE1 = 71.0 / 57600, kE3 = -71.0 / 16695, kE4 = 71.0 / 1920,
+                        kE5 = -17253.0 / 339200, kE6 = 22.0 / 525, kE7 = -1.0 / 40;
+}  // namespace dp54
+
+/// Result of one Dormand-Prince step.
+template <class Y>
+struct Dp54Result {
+  Y y1;               ///< 5th-order solution at the end of the step
+  Y k7;               ///< derivative at y1 (the next step's first stage, FSAL)
+  Y err;              ///< 5th- minus embedded 4th-order solution: local error estimate
+  bool valid = true;  ///< false if a derivative was undefined or y1 is not finite
+};
+
+/// One step of length `h` from `y0`, whose derivative is `k1`.
+/// `rhs(const Y& y, Y* dy) -> bool` evaluates the derivative and returns false where
+/// it is undefined; `observe(const Y& y)` is shown every stage argument and y1 (for
+/// example to watch a quantity that must keep its sign within the step).
+template <class Y, class Rhs, class Observe>
+void Dp54Step(const Y& y0, const Y& k1, double h, Rhs&& rhs, Observe&& observe,
+              Dp54Result<Y>* out) {
+  using namespace dp54;
+  Y k2, k3, k4, k5, k6, y;
+  bool ok = true;
+  y = y0 + h * kA21 * k1;
+  observe(y);
+  ok &= rhs(y, &k2);
+  y = y0 + h * (kA31 * k1 + kA32 * k2);
+  observe(y);
+  ok &= rhs(y, &k3);
+  y = y0 + h * (kA41 * k1 + kA42 * k2 + kA43 * k3);
+  observe(y);
+  ok &= rhs(y, &k4);
+  y = y0 + h * (kA51 * k1 + kA52 * k2 + kA53 * k3 + kA54 * k4);
+  observe(y);
+  ok &= rhs(y, &k5);
+  y = y0 + h * (kA61 * k1 + kA62 * k2 + kA63 * k3 + kA64 * k4 + kA65 * k5);
+  observe(y);
+  ok &= rhs(y, &k6);
+  out->y1 = y0 + h * (kB1 * k1 + kB3 * k3 + kB4 * k4 + kB5 * k5 + kB6 * k6);
+  observe(out->y1);
+  ok &= rhs(out->y1, &out->k7);
+  out->err = h * (kE1 * k1 + kE3 * k3 + kE4 * k4 + kE5 * k5 + kE6 * k6 + kE7 * out->k7);
+  out->valid = ok && out->y1.allFinite();
+}
+
+/// Cubic Hermite interpolant of a step of length h from (y0, dy0) to (y1, dy1), at the
+/// fraction t in [0, 1] of the step. Third order, enough to place a guard's zero for
+/// the refinement that follows with real steps.
+template <class Y>
+Y HermiteAt(const Y& y0, const Y& dy0, const Y& y1, const Y& dy1, double h, double t) {
+  const double t2 = t * t, t3 = t2 * t;
+  return (2 * t3 - 3 * t2 + 1) * y0 + (t3 - 2 * t2 + t) * h * dy0 + (-2 * t3 + 3 * t2) * y1 +
+         (t3 - t2) * h * dy1;
+}
+
+/// Root of a scalar function on a bracket by the Illinois variant of regula falsi.
+/// Needs g(lo) = g_lo > 0 >= g(hi) = g_hi; `guess` is the first point tried when it
+/// lies inside the bracket (e.g. a root of an interpolant). Stops at the first x with
+/// |g(x)| <= g_tol, when the bracket is narrower than x_tol, or after max_iter
+/// evaluations; then returns that x, or else the upper end of the bracket (where
+/// g <= 0: the event has happened there).
+template <class G>
+double IllinoisRoot(G&& g, double lo, double g_lo, double hi, double g_hi, double guess,
+                    double x_tol, double g_tol, int max_iter) {
+  int side = 0;
+  for (int it = 0; it < max_iter && hi - lo > x_tol; ++it) {
+    double x = it == 0 ? guess : (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+    if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+    const double gx = g(x);
+    if (std::abs(gx) <= g_tol) return x;
+    if (gx > 0) {
+      lo = x, g_lo = gx;
+      if (side == 1) g_hi *= 0.5;
+      side = 1;
+    } else {
+      hi = x, g_hi = gx;
+      if (side == -1) g_lo *= 0.5;
+      side = -1;
+    }
+  }
+  return hi;
+}
+
+/// Hairer's PI step-size controller for DOPRI5 (Solving ODEs I, IV.2):
+/// h_new = h * safety * err^-(1/5 - 0.75 beta) * err_prev^beta, err the error norm
+/// of the step relative to the tolerance (accept when err <= 1).
+class PiStepControl {
+ public:
+  /// Factor for the step size after a step rejected with error norm `err` (> 1).
+  double Rejected(double err) const {
+    const double f = kSafety * std::pow(std::max(err, kErrFloor), -kAlpha);
+    return std::isfinite(f) ? std::max(kMinShrink, f) : kMinShrink;
+  }
+  /// Factor for the next step after a step accepted with error norm `err`.
+  double Accepted(double err) {
+    err = std::max(err, kErrFloor);
+    const double f = kSafety * std::pow(err, -kAlpha) * std::pow(err_prev_, kBeta);
+    err_prev_ = std::max(err, 1e-4);
+    return std::clamp(f, kMinShrink, kMaxGrow);
+  }
+
+ private:
+  static constexpr double kSafety = 0.9;
+  static constexpr double kBeta = 0.04;
+  static constexpr double kAlpha = 0.2 - 0.75 * kBeta;
+  static constexpr double kMinShrink = 0.2;
+  static constexpr double kMaxGrow = 5.0;
+  static constexpr double kErrFloor = 1e-10;
+  double err_prev_ = 1e-4;
+};
+
+}  // namespace snooker::physics::ode
