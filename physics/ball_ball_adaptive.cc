@@ -162,11 +162,11 @@ class AdaptiveSolver {
     return c == kA ? impulse::SlipA(x, R) : c == kD ? impulse::SlipD(x, R) : impulse::SlipB(x, R);
   }
   Law LawOf(int c) const { return c == kA ? mode_.a : c == kD ? mode_.d : mode_.b; }
-  // Direction of the slip at contact c; a slaved slide at zero slip points along
-  // its drive (-stick friction).
+  // Direction of the slip at contact c; a slaved slide whose slip is still within
+  // the zero threshold (rounding residue) points along its drive (-stick friction).
   Vec2 SlipDirection(int c, const State& x, const Forces& f) const {
     const Vec2 u = Slip(c, x);
-    if (u.norm() > 0 || LawOf(c) != Law::kSlideSlaved) return impulse::Direction(u);
+    if (LawOf(c) != Law::kSlideSlaved || u.norm() > slip_zero_) return impulse::Direction(u);
     return -impulse::Direction(c == kD ? f.stick_d : f.stick_b);
   }
   // Rate of change of |u_c| per unit P_I, from a derivative per unit P_I.
@@ -557,6 +557,7 @@ ImpactResult AdaptiveSolver::Run() {
       for (int c = 0; c < kContacts; ++c) {
         if (!SlidingActive(c, f1_)) continue;
         const Vec2 u = Slip(c, Head(y_));
+        if (u.norm() <= slip_zero_) continue;  // at zero already: settled, not landing
         const double rate = SlipRate(c, Head(y_), Head(k1_), f1_);
         const double to_zero = u.norm() / -rate;
         if (!(rate < 0)) continue;
@@ -594,11 +595,12 @@ ImpactResult AdaptiveSolver::Run() {
     double shrink = err > 1 ? std::max(kMinShrink, kSafety * pi) : 1.0;
     bool reversed = false;
     for (int c = 0; c < kContacts; ++c) {
-      if (!SlidingActive(c, f1_) || c == clock_ || s.min_dot[c] > 0) continue;
+      // A reversal beyond the noise level of a slip (half the zero threshold).
+      if (!SlidingActive(c, f1_) || c == clock_ || s.min_dot[c] > -0.5 * slip_zero_) continue;
       reversed = true;  // secant guess of where the slip along its start direction hits 0
-      const Vec2 u = Slip(c, Head(y_));
-      const double sp = u.norm();
-      shrink = std::min(shrink, std::clamp(0.99 * sp / (sp - s.min_dot[c]), 0.1, 0.9));
+      const double sp = Slip(c, Head(y_)).norm();
+      const double guess = 0.99 * sp / (sp - s.min_dot[c]);
+      shrink = std::min(shrink, std::isfinite(guess) ? std::clamp(guess, 0.1, 0.9) : 0.5);
     }
     if (!(err <= 1) || reversed) {
       if (landing != kNoContact) {

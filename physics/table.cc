@@ -235,9 +235,15 @@ TableModel::TableModel(const TableSpec& spec, const BallParams& ball)
   }
 }
 
+double TableModel::cushion_contact_distance() const {
+  const double lift = spec_.cushion_height - radius_;
+  return std::sqrt(std::max(0.0, radius_ * radius_ - lift * lift));
+}
+
 std::string TableModel::ValidatePlacement(std::span<const BallPlacement> balls) const {
   std::ostringstream out;
   const double r = radius_;
+  const double c = cushion_contact_distance();
   const double tol = kPlacementTolerance;
   struct Limit {
     int axis;
@@ -246,10 +252,10 @@ std::string TableModel::ValidatePlacement(std::span<const BallPlacement> balls) 
     const char* cushion;
   };
   const std::array<Limit, 4> limits = {{
-      {0, 1, r, "left cushion (x = 0)"},
-      {0, -1, spec_.width - r, "right cushion (x = width)"},
-      {1, 1, r, "baulk cushion (y = 0)"},
-      {1, -1, spec_.length - r, "top cushion (y = length)"},
+      {0, 1, c, "left cushion (x = 0)"},
+      {0, -1, spec_.width - c, "right cushion (x = width)"},
+      {1, 1, c, "baulk cushion (y = 0)"},
+      {1, -1, spec_.length - c, "top cushion (y = length)"},
   }};
   for (std::size_t i = 0; i < balls.size(); ++i) {
     const Vec2& p = balls[i].r;
@@ -264,8 +270,9 @@ std::string TableModel::ValidatePlacement(std::span<const BallPlacement> balls) 
       if (lim.sign * (x - lim.bound) >= -tol) continue;
       StartEntry(out);
       WriteBall(out, balls[i].name, i, p);
-      out << ": " << (lim.axis == 0 ? "x" : "y") << " = " << x << " m is closer than R = " << r
-          << " m to the " << lim.cushion;
+      out << ": " << (lim.axis == 0 ? "x" : "y") << " = " << x
+          << " m is closer than the cushion contact distance " << c << " m to the "
+          << lim.cushion;
     }
   }
   for (std::size_t i = 0; i < balls.size(); ++i) {

@@ -21,9 +21,10 @@
 // keep every detector a polynomial root problem (physics/detect.h).
 // docs/table-model.md lists each value and its source or reasoning.
 //
-// Contact distances: the detectors take the contact distance from the nose line as
-// a parameter. This model's markings and ValidatePlacement use R (the ball touches
-// the nose line); cushion_height records the nose height for the cushion resolver.
+// Contact distances: a ball touches a cushion nose at cushion_height above the
+// cloth, so its centre is then cushion_contact_distance() (< R) from the nose line.
+// ValidatePlacement and the simulator (physics/simulate.h) both use that distance,
+// and the simulator gives the cushion model this same contact height.
 #pragma once
 
 #include <array>
@@ -194,6 +195,10 @@ class TableModel {
   const TableSpec& spec() const { return spec_; }
   /// Ball radius used for the markings and placement checks. m.
   double ball_radius() const { return radius_; }
+  /// Horizontal distance from a ball's centre to a cushion nose line when the ball
+  /// touches the nose at cushion_height h: sqrt(R^2 - (h - R)^2). A ball frozen to a
+  /// cushion has its centre this far inside the playing area. m.
+  double cushion_contact_distance() const;
 
   /// Cushion noses first (baulk, top, left-baulk, left-top, right-baulk, right-top),
   /// then the jaw walls, two per pocket in PocketId order.
@@ -210,9 +215,9 @@ class TableModel {
   /// 1..5 balls, each row from -x to +x), table frame. m.
   std::span<const Vec2> reds() const { return reds_; }
 
-  /// Empty when every ball lies inside the playing area by at least R and no two
-  /// overlap (both within kPlacementTolerance); otherwise a message naming each
-  /// offending ball and value.
+  /// Empty when every ball lies inside the playing area by at least
+  /// cushion_contact_distance() and no two overlap (both within
+  /// kPlacementTolerance); otherwise a message naming each offending ball and value.
   std::string ValidatePlacement(std::span<const BallPlacement> balls) const;
 
  private:
