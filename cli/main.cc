@@ -11,6 +11,7 @@ constexpr const char* kUsage = R"(usage: snooker <command> [options]
 
 commands:
   collide    resolve one ball-ball collision (Mathavan et al. 2014)
+  simulate   simulate a shot on a table until every ball is at rest
   demo       run the built-in demonstration
   help       this text
 
@@ -28,6 +29,7 @@ int main(int argc, char** argv) {
   const std::string command = argv[1];
   const std::vector<std::string> args(argv + 2, argv + argc);
   if (command == "collide") return RunCollide(args, std::cout, std::cerr);
+  if (command == "simulate") return RunSimulate(args, std::cout, std::cerr);
   if (command == "demo") return RunDemo(args, std::cout, std::cerr);
   if (command == "help" || command == "--help" || command == "-h") {
     std::cout << kUsage;

@@ -3,9 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#ifdef TRACE
-#include <cstdio>
-#endif
 
 #include "physics/detect.h"
 #include "physics/resolve.h"
@@ -282,11 +279,6 @@ SimStatus Simulator::Run(std::span<const BallState> balls, const StopRule& stop,
         slots_[bj].ignore_index = bi;
         RecomputePair(bi, bj);
       } else {
-#ifdef TRACE
-        { const BallState a = StateAt(bi, te), b = StateAt(bj, te); const Eigen::Matrix3d q = FrameAlong((b.r - a.r).normalized());
-          Vec3 vc = q * a.v, wc = q * a.w, vo = q * b.v, wo = q * b.w;
-          fprintf(stderr, "ball-ball failure %s: vC %.17g %.17g %.17g wC %.17g %.17g %.17g vO %.17g %.17g %.17g wO %.17g %.17g %.17g\n", ToString(r.status), vc.x(), vc.y(), vc.z(), wc.x(), wc.y(), wc.z(), vo.x(), vo.y(), vo.z(), wo.x(), wo.y(), wo.z()); }
-#endif
         status = SimStatus::kSolverFailure;
         break;
       }
@@ -340,10 +332,6 @@ SimStatus Simulator::Run(std::span<const BallState> balls, const StopRule& stop,
           slots_[bi].ignore_index = own.where;
           RecomputeOwn(bi);
         } else {
-#ifdef TRACE
-          { const Eigen::Matrix3d q = FrameAlong(-normal); Vec3 v = q * s.v, w = q * s.w;
-            fprintf(stderr, "cushion failure %s: v %.17g %.17g %.17g w %.17g %.17g %.17g\n", ToString(r.status), v.x(), v.y(), v.z(), w.x(), w.y(), w.z()); }
-#endif
           status = SimStatus::kSolverFailure;
         }
         break;

@@ -4,11 +4,19 @@
 #pragma once
 
 #include "server/api_status.h"
+#include "physics/table.h"
 #include "snooker/v1/collide.pb.h"
+#include "snooker/v1/simulate.pb.h"
 
 namespace snooker::server {
 
 /// One ball-ball collision (Mathavan et al. 2014) and the slip phases after it.
 ApiStatus Collide(const v1::CollideRequest& request, v1::CollideResponse* response);
+
+/// The built-in full-size table (physics/table.h defaults), shared and immutable.
+const physics::TableModel& DefaultTable();
+
+/// A shot on a table, simulated until every ball is at rest or pocketed.
+ApiStatus Simulate(const v1::SimulateRequest& request, v1::SimulateResponse* response);
 
 }  // namespace snooker::server

@@ -1,6 +1,7 @@
 #include "server/convert.h"
 
 #include <cmath>
+#include <set>
 #include <sstream>
 
 namespace snooker::server {
@@ -65,6 +66,111 @@ std::vector<FieldError> ValidateCollideRequest(const v1::CollideRequest& r) {
   }
   CheckRange(&errors, s, &S::has_tolerance, &S::tolerance, "solver.tolerance", 1e-15, 0.1);
   return errors;
+}
+
+std::vector<FieldError> ValidateSimulateRequest(const v1::SimulateRequest& r,
+                                                const physics::TableModel& table) {
+  std::vector<FieldError> errors;
+  const v1::TableState& t = r.table();
+  if (t.balls_size() == 0) errors.push_back({"table.balls", "[]", "must list at least the cue ball"});
+  if (t.balls_size() > physics::Simulator::kMaxBalls) {
+    errors.push_back({"table.balls", std::to_string(t.balls_size()) + " balls",
+                      "at most " + std::to_string(physics::Simulator::kMaxBalls)});
+  }
+  std::set<std::string> ids;
+  int cues = 0;
+  bool positions_ok = true;
+  for (int i = 0; i < t.balls_size(); ++i) {
+    const v1::Ball& b = t.balls(i);
+    const std::string where = "table.balls[" + std::to_string(i) + "]";
+    if (b.id().empty()) errors.push_back({where + ".id", "\"\"", "must not be empty"});
+    if (!ids.insert(b.id()).second) {
+      errors.push_back({where + ".id", "\"" + b.id() + "\"", "is used by another ball"});
+    }
+    if (b.kind() == v1::BALL_KIND_UNSPECIFIED || !v1::BallKind_IsValid(b.kind())) {
+      errors.push_back({where + ".kind", std::to_string(b.kind()) + " (ball \"" + b.id() + "\")",
+                        "must be one of CUE, RED, YELLOW, GREEN, BROWN, BLUE, PINK, BLACK"});
+    }
+    if (b.kind() == v1::CUE) ++cues;
+    if (!(std::isfinite(b.position().x()) && std::isfinite(b.position().y()))) {
+      errors.push_back({where + ".position", "(" + Num(b.position().x()) + ", " +
+                                                 Num(b.position().y()) + ") (ball \"" + b.id() + "\")",
+                        "must be finite, in metres"});
+      positions_ok = false;
+    }
+  }
+  if (t.balls_size() > 0 && cues != 1) {
+    errors.push_back({"table.balls", std::to_string(cues) + " CUE balls", "must have exactly one"});
+  }
+  if (positions_ok && t.balls_size() > 0) {
+    std::vector<physics::BallPlacement> placed;
+    for (const v1::Ball& b : t.balls()) {
+      placed.push_back({b.id(), physics::Vec2(b.position().x(), b.position().y())});
+    }
+    const std::string msg = table.ValidatePlacement(placed);
+    if (!msg.empty()) errors.push_back({"table.balls", "positions", msg});
+  }
+  const v1::Shot& shot = r.shot();
+  if (!(std::isfinite(shot.speed()) && shot.speed() >= 0 && shot.speed() <= 20)) {
+    errors.push_back({"shot.speed", Num(shot.speed()), "must be in [0, 20] m/s"});
+  }
+  CheckFinite(&errors, shot.heading_deg(), "shot.heading_deg");
+  for (const auto& [x, name] : {std::pair{shot.topspin(), "shot.topspin"},
+                                std::pair{shot.sidespin(), "shot.sidespin"}}) {
+    if (!(std::isfinite(x) && std::abs(x) <= 1000)) {
+      errors.push_back({name, Num(x), "must be in [-1000, 1000] rad/s"});
+    }
+  }
+  using O = v1::SimulationOptions;
+  const O& o = r.options();
+  if (o.has_max_events() && (o.max_events() < 1 || o.max_events() > 1'000'000)) {
+    errors.push_back({"options.max_events", std::to_string(o.max_events()), "must be in [1, 1000000]"});
+  }
+  CheckRange(&errors, o, &O::has_max_time_s, &O::max_time_s, "options.max_time_s", 1e-3, 3600);
+  CheckRange(&errors, o, &O::has_tolerance, &O::tolerance, "options.tolerance", 1e-15, 0.1);
+  CheckRange(&errors, o, &O::has_path_sample_s, &O::path_sample_s, "options.path_sample_s", 1e-4, 1);
+  return errors;
+}
+
+int CueIndex(const v1::TableState& table) {
+  for (int i = 0; i < table.balls_size(); ++i) {
+    if (table.balls(i).kind() == v1::CUE) return i;
+  }
+  return -1;
+}
+
+physics::BallState ShotState(const v1::Shot& shot, const physics::Vec2& position) {
+  const double h = physics::DegToRad(shot.heading_deg());
+  const physics::Vec2 dir(std::cos(h), std::sin(h));
+  physics::BallState s;
+  s.r = position;
+  s.v = physics::Vec3(shot.speed() * dir.x(), shot.speed() * dir.y(), 0.0);
+  // z x heading = (-sin h, cos h, 0): positive topspin rolls the ball forwards.
+  s.w = physics::Vec3(-shot.topspin() * dir.y(), shot.topspin() * dir.x(), shot.sidespin());
+  return s;
+}
+
+std::vector<physics::BallState> BallStatesFrom(const v1::TableState& table, const v1::Shot& shot) {
+  std::vector<physics::BallState> balls;
+  for (const v1::Ball& b : table.balls()) {
+    const physics::Vec2 r(b.position().x(), b.position().y());
+    if (b.kind() == v1::CUE) {
+      balls.push_back(ShotState(shot, r));
+    } else {
+      physics::BallState s;
+      s.r = r;
+      balls.push_back(s);
+    }
+  }
+  return balls;
+}
+
+physics::SimParams SimParamsFrom(const v1::SimulationOptions& o) {
+  physics::SimParams p;
+  if (o.has_max_events()) p.max_events = o.max_events();
+  if (o.has_max_time_s()) p.max_time = o.max_time_s();
+  if (o.has_tolerance()) p.ball_ball_solver.tolerance = p.cushion_solver.tolerance = o.tolerance();
+  return p;
 }
 
 physics::BallParams BallParamsFrom(const v1::CollisionParameters& p) {

@@ -7,8 +7,13 @@
 #include <vector>
 
 #include "physics/ball_ball.h"
+#include "physics/ball_state.h"
 #include "physics/params.h"
+#include "physics/simulate.h"
+#include "physics/table.h"
 #include "snooker/v1/collide.pb.h"
+#include "snooker/v1/simulate.pb.h"
+#include "snooker/v1/table.pb.h"
 
 namespace snooker::server {
 
@@ -30,6 +35,24 @@ physics::BallParams BallParamsFrom(const v1::CollisionParameters& p);
 physics::ClothParams ClothParamsFrom(const v1::CollisionParameters& p);
 physics::BallBallParams BallBallParamsFrom(const v1::CollisionParameters& p);
 physics::ImpulseSolverOptions SolverOptionsFrom(const v1::ImpulseSolverOptions& o);
+
+/// Checks the table (ids, kinds, one cue ball, placement on `table`), the shot and
+/// the options; each error names the ball id or field and its value.
+std::vector<FieldError> ValidateSimulateRequest(const v1::SimulateRequest& request,
+                                                const physics::TableModel& table);
+
+/// The balls of a (validated) table state, in its order, all at rest; the cue ball
+/// gets the shot: v = speed (cos h, sin h), w = topspin (z x heading) + sidespin z.
+std::vector<physics::BallState> BallStatesFrom(const v1::TableState& table, const v1::Shot& shot);
+
+/// The cue ball's velocity and spin right after the cue strikes it.
+physics::BallState ShotState(const v1::Shot& shot, const physics::Vec2& position);
+
+/// Simulation parameters from the request's options (defaults where unset).
+physics::SimParams SimParamsFrom(const v1::SimulationOptions& options);
+
+/// Index of the CUE ball in a table state, or -1.
+int CueIndex(const v1::TableState& table);
 
 void ToProto(const physics::Vec2& v, v1::Vec2* out);
 void ToProto(const physics::Vec3& v, v1::Vec3* out);

@@ -40,4 +40,10 @@ grpc::Status ShotPlannerService::Collide(grpc::ServerContext* /*context*/,
   return Guarded([&] { return server::Collide(*request, response); });
 }
 
+grpc::Status ShotPlannerService::Simulate(grpc::ServerContext* /*context*/,
+                                          const v1::SimulateRequest* request,
+                                          v1::SimulateResponse* response) {
+  return Guarded([&] { return server::Simulate(*request, response); });
+}
+
 }  // namespace snooker::server

@@ -15,6 +15,8 @@ class ShotPlannerService final : public v1::ShotPlanner::Service {
  public:
   grpc::Status Collide(grpc::ServerContext* context, const v1::CollideRequest* request,
                        v1::CollideResponse* response) override;
+  grpc::Status Simulate(grpc::ServerContext* context, const v1::SimulateRequest* request,
+                        v1::SimulateResponse* response) override;
 };
 
 }  // namespace snooker::server

@@ -5,7 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <vector>
 
+#include "physics/motion.h"
 #include "server/convert.h"
 #include "tests/physics/paper_shots.h"
 
@@ -83,6 +86,115 @@ TEST(ConvertTest, UnsetParametersTakeThePapersValues) {
   EXPECT_EQ(ClothParamsFrom(p).mu_s, 0.21);
   EXPECT_EQ(BallParamsFrom(p).mass, 0.1406);
   EXPECT_EQ(BallParamsFrom(p).radius, 0.02625);
+}
+
+v1::SimulateRequest PotRequest() {
+  // The black 0.35 m out of the top-right pocket on its axis, the cue ball behind.
+  v1::SimulateRequest r;
+  auto add = [&](const char* id, v1::BallKind kind, double x, double y) {
+    v1::Ball* b = r.mutable_table()->add_balls();
+    b->set_id(id);
+    b->set_kind(kind);
+    b->mutable_position()->set_x(x);
+    b->mutable_position()->set_y(y);
+  };
+  const physics::Pocket& p = DefaultTable().pocket(physics::PocketId::kTopRight);
+  const physics::Vec2 black = p.mouth_centre - 0.35 * p.axis, cue = black - 0.4 * p.axis;
+  add("cue", v1::CUE, cue.x(), cue.y());
+  add("black", v1::BLACK, black.x(), black.y());
+  r.mutable_shot()->set_speed(1.5);
+  r.mutable_shot()->set_heading_deg(physics::RadToDeg(std::atan2(p.axis.y(), p.axis.x())));
+  r.mutable_shot()->set_topspin(1.5 / 0.02625);
+  return r;
+}
+
+TEST(SimulateApiTest, PotsTheBlackAndReportsEventsAndFinalBalls) {
+  v1::SimulateResponse resp;
+  const ApiStatus st = Simulate(PotRequest(), &resp);
+  ASSERT_TRUE(st.ok()) << st.message;
+  EXPECT_EQ(resp.status(), "at rest");
+  ASSERT_EQ(resp.final_balls_size(), 2);
+  EXPECT_EQ(resp.final_balls(1).id(), "black");
+  EXPECT_TRUE(resp.final_balls(1).pocketed());
+  EXPECT_EQ(resp.final_balls(1).pocket(), "top-right");
+  bool pot_event = false;
+  for (const v1::Event& e : resp.events()) {
+    pot_event |= e.kind() == v1::POCKET && e.balls(0) == "black" && e.pocket() == "top-right";
+  }
+  EXPECT_TRUE(pot_event);
+  EXPECT_EQ(resp.paths_size(), 0);  // only on request
+}
+
+TEST(SimulateApiTest, PathsOnRequestStartAtTheBallsAndEndAtTheirFinalPositions) {
+  v1::SimulateRequest req = PotRequest();
+  req.mutable_options()->set_include_paths(true);
+  v1::SimulateResponse resp;
+  ASSERT_TRUE(Simulate(req, &resp).ok());
+  ASSERT_EQ(resp.paths_size(), 2);
+  const v1::BallPath& cue = resp.paths(0);
+  ASSERT_GT(cue.points_size(), 10);
+  EXPECT_NEAR(cue.points(0).x(), req.table().balls(0).position().x(), 1e-12);
+  EXPECT_NEAR(cue.points(cue.points_size() - 1).y(), resp.final_balls(0).position().y(), 1e-9);
+  for (int i = 1; i < cue.t_size(); ++i) EXPECT_GE(cue.t(i), cue.t(i - 1));
+}
+
+TEST(SimulateApiTest, BadTablesAreRejectedNamingTheBall) {
+  struct Case {
+    std::function<void(v1::SimulateRequest*)> spoil;
+    const char* must_mention;
+  };
+  const std::vector<Case> cases = {
+      {[](v1::SimulateRequest* r) { r->mutable_table()->mutable_balls(1)->set_id("cue"); },
+       "table.balls[1].id = \"cue\""},
+      {[](v1::SimulateRequest* r) { r->mutable_table()->mutable_balls(1)->set_kind(v1::CUE); },
+       "2 CUE balls"},
+      {[](v1::SimulateRequest* r) { r->mutable_table()->mutable_balls(0)->set_kind(v1::RED); },
+       "0 CUE balls"},
+      {[](v1::SimulateRequest* r) {
+         r->mutable_table()->mutable_balls(1)->clear_kind();
+       },
+       "table.balls[1].kind"},
+      {[](v1::SimulateRequest* r) {
+         *r->mutable_table()->mutable_balls(1)->mutable_position() =
+             r->table().balls(0).position();
+       },
+       "overlaps"},
+      {[](v1::SimulateRequest* r) {
+         r->mutable_table()->mutable_balls(1)->mutable_position()->set_x(-0.5);
+       },
+       "black"},
+      {[](v1::SimulateRequest* r) {
+         r->mutable_table()->mutable_balls(1)->mutable_position()->set_y(NAN);
+       },
+       "table.balls[1].position"},
+      {[](v1::SimulateRequest* r) { r->mutable_shot()->set_speed(-1); }, "shot.speed = -1"},
+      {[](v1::SimulateRequest* r) { r->mutable_shot()->set_topspin(5000); }, "shot.topspin = 5000"},
+      {[](v1::SimulateRequest* r) { r->mutable_table()->clear_balls(); }, "table.balls"},
+      {[](v1::SimulateRequest* r) { r->mutable_options()->set_max_events(0); },
+       "options.max_events = 0"},
+  };
+  for (const Case& c : cases) {
+    v1::SimulateRequest req = PotRequest();
+    c.spoil(&req);
+    v1::SimulateResponse resp;
+    const ApiStatus st = Simulate(req, &resp);
+    EXPECT_EQ(st.code, ApiStatus::Code::kInvalidArgument) << c.must_mention;
+    EXPECT_NE(st.message.find(c.must_mention), std::string::npos)
+        << "'" << st.message << "' should mention '" << c.must_mention << "'";
+  }
+}
+
+TEST(ConvertTest, ShotGivesTheCueBallItsVelocityAndSpin) {
+  v1::Shot shot;
+  shot.set_speed(2.0);
+  shot.set_heading_deg(90);
+  shot.set_topspin(2.0 / 0.02625);  // rolling
+  shot.set_sidespin(7.0);
+  const physics::BallState s = ShotState(shot, physics::Vec2(0.5, 0.5));
+  EXPECT_NEAR(s.v.x(), 0.0, 1e-12);
+  EXPECT_NEAR(s.v.y(), 2.0, 1e-12);
+  EXPECT_NEAR(physics::ClothSlip(s, physics::BallParams{}).norm(), 0.0, 1e-12);  // rolls
+  EXPECT_EQ(s.w.z(), 7.0);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "tests/physics/paper_shots.h"
 
@@ -177,6 +178,85 @@ TEST(CliTest, DemoRunsThePapersFirstShot) {
   const RunResult r = RunCli("demo");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("0.9139"), std::string::npos) << r.out;
+}
+
+// Writes `text` to a fresh file in the test temp folder and returns its path.
+std::string TempFile(const std::string& name, const std::string& text) {
+  const std::string path = testing::TempDir() + std::to_string(getpid()) + "_" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+// The issue's own example formats.
+constexpr const char* kTable =
+    R"({"balls": [{"id": "cue", "kind": "CUE", "position": {"x": 0.9, "y": 0.6}},
+                  {"id": "red-1", "kind": "RED", "position": {"x": 0.9, "y": 1.6}}]})";
+constexpr const char* kShot = R"({"speed": 1.5, "headingDeg": 90, "topspin": 57.1, "sidespin": 0})";
+
+TEST(CliSimulateTest, JsonHasTheContractedFields) {
+  const RunResult r = RunCli("simulate --table " + TempFile("t.json", kTable) + " --shot " +
+                             TempFile("s.json", kShot) + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  Struct json;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &json).ok()) << r.out;
+  const Value& events = Field(json, "events");
+  ASSERT_EQ(events.kind_case(), Value::kListValue);
+  ASSERT_GT(events.list_value().values_size(), 0);
+  const Struct& first = events.list_value().values(0).struct_value();
+  EXPECT_TRUE(std::isfinite(Number(first, "time")));
+  EXPECT_EQ(Field(first, "kind").kind_case(), Value::kStringValue);
+  const Value& finals = Field(json, "finalBalls");
+  ASSERT_EQ(finals.list_value().values_size(), 2);
+  for (const Value& v : finals.list_value().values()) {
+    const Struct& b = v.struct_value();
+    EXPECT_EQ(Field(b, "id").kind_case(), Value::kStringValue);
+    EXPECT_TRUE(std::isfinite(Number(Object(b, "position"), "x")));
+    EXPECT_EQ(Field(b, "pocketed").kind_case(), Value::kBoolValue);
+    EXPECT_EQ(Field(b, "pocket").kind_case(), Value::kStringValue);
+  }
+  // The cue ball rolled into the red, which moved up the table.
+  EXPECT_GT(Number(Object(finals.list_value().values(1).struct_value(), "position"), "y"), 1.6);
+}
+
+TEST(CliSimulateTest, SvgDrawsTheTableAndPaths) {
+  const std::string svg = testing::TempDir() + std::to_string(getpid()) + "_shot.svg";
+  const RunResult r = RunCli("simulate --table " + TempFile("t2.json", kTable) + " --shot " +
+                             TempFile("s2.json", kShot) + " --svg " + svg);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream f(svg);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  EXPECT_EQ(ss.str().rfind("<svg", 0), 0u);
+  EXPECT_NE(ss.str().find("<polyline"), std::string::npos);  // the paths
+  EXPECT_NE(r.out.find("final positions"), std::string::npos);  // the readable report
+}
+
+TEST(CliSimulateTest, BadFilesAndTablesExitNonZeroNamingTheProblem) {
+  struct Case {
+    std::string table, shot, must_mention;
+  };
+  const std::vector<Case> cases = {
+      {"{not json", kShot, "is not a valid TableState JSON"},
+      {R"({"balls": [{"id": "cue", "kind": "CUE", "position": {"x": 0.9, "y": 0.6}},
+                     {"id": "red-1", "kind": "RED", "position": {"x": 0.91, "y": 0.6}}]})",
+       kShot, "overlaps"},
+      {R"({"balls": [{"id": "cue", "kind": "CUE", "position": {"x": 2.5, "y": 0.6}}]})", kShot,
+       "cue"},
+      {R"({"balls": [{"id": "cue", "kind": "PURPLE", "position": {"x": 0.9, "y": 0.6}}]})", kShot,
+       "TableState"},
+      {kTable, R"({"speed": -3, "headingDeg": 90})", "shot.speed = -3"},
+  };
+  int i = 0;
+  for (const Case& c : cases) {
+    const RunResult r = RunCli("simulate --table " + TempFile("bad" + std::to_string(i) + ".json", c.table) +
+                               " --shot " + TempFile("bads" + std::to_string(i) + ".json", c.shot));
+    ++i;
+    EXPECT_EQ(r.exit_code, 2) << c.must_mention << ": " << r.err;
+    EXPECT_NE(r.err.find(c.must_mention), std::string::npos) << r.err;
+  }
+  const RunResult missing = RunCli("simulate --table /nonexistent.json --shot /nonexistent.json");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("cannot read '/nonexistent.json'"), std::string::npos);
 }
 
 }  // namespace

@@ -61,5 +61,37 @@ TEST_F(GrpcServiceTest, BadRequestIsInvalidArgumentNamingTheField) {
   EXPECT_NE(st.error_message().find("speed = nan"), std::string::npos) << st.error_message();
 }
 
+TEST_F(GrpcServiceTest, SimulateAnswersThroughTheStub) {
+  v1::SimulateRequest req;
+  v1::Ball* cue = req.mutable_table()->add_balls();
+  cue->set_id("cue");
+  cue->set_kind(v1::CUE);
+  cue->mutable_position()->set_x(0.9);
+  cue->mutable_position()->set_y(1.0);
+  req.mutable_shot()->set_speed(1.0);
+  req.mutable_shot()->set_heading_deg(90);
+  v1::SimulateResponse resp;
+  grpc::ClientContext ctx;
+  const grpc::Status st = stub_->Simulate(&ctx, req, &resp);
+  ASSERT_TRUE(st.ok()) << st.error_message();
+  EXPECT_EQ(resp.status(), "at rest");
+  ASSERT_EQ(resp.final_balls_size(), 1);
+  EXPECT_GT(resp.final_balls(0).position().y(), 1.0);  // it rolled up the table
+}
+
+TEST_F(GrpcServiceTest, SimulateWithoutCueBallIsInvalidArgument) {
+  v1::SimulateRequest req;
+  v1::Ball* red = req.mutable_table()->add_balls();
+  red->set_id("red-1");
+  red->set_kind(v1::RED);
+  red->mutable_position()->set_x(0.9);
+  red->mutable_position()->set_y(1.0);
+  v1::SimulateResponse resp;
+  grpc::ClientContext ctx;
+  const grpc::Status st = stub_->Simulate(&ctx, req, &resp);
+  EXPECT_EQ(st.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(st.error_message().find("0 CUE balls"), std::string::npos) << st.error_message();
+}
+
 }  // namespace
 }  // namespace snooker::server

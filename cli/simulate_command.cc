@@ -1,0 +1,146 @@
+// snooker simulate: a shot on a table, from JSON files in Protobuf's JSON form (the
+// table and shot messages of proto/snooker/v1/table.proto). Builds the same
+// SimulateRequest the gRPC service takes and calls the same operation.
+#include <google/protobuf/util/json_util.h>
+
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "cli/svg.h"
+#include "server/api.h"
+
+namespace snooker::cli {
+namespace {
+
+constexpr const char* kHelp = R"(usage: snooker simulate --table T.json --shot S.json [--json] [--svg out.svg]
+                        [--tolerance X] [--max-events N]
+
+Simulates a shot on a full-size snooker table until every ball is at rest or
+pocketed, and prints the events and where every ball ended.
+
+Frame: x across the table from 0 (the left cushion nose, seen from the baulk end) to
+1.778 m, y along it from 0 (the baulk cushion nose) to 3.569 m, z up; positions are
+ball centres in metres.
+
+  --table T.json   the balls: {"balls": [{"id": "cue", "kind": "CUE",
+                   "position": {"x": 0.9, "y": 0.6}}, ...]}; kinds CUE, RED, YELLOW,
+                   GREEN, BROWN, BLUE, PINK, BLACK; exactly one CUE
+  --shot S.json    the cue ball right after the cue strikes it:
+                   {"speed": 1.5, "headingDeg": 90, "topspin": 57.1, "sidespin": 0}
+                   speed m/s; headingDeg degrees counter-clockwise from +x;
+                   topspin rad/s about z x heading (positive follow, negative draw;
+                   rolling = speed / 0.02625); sidespin rad/s, the z component of the
+                   spin: positive is counter-clockwise seen from above, what a tip
+                   striking right of centre imparts (as the robot looks along the shot)
+  --json           print the result as JSON: {"status", "durationS", "events": [{"time"
+                   s, "kind", "balls", "cushion", "pocket", "motion"}], "finalBalls":
+                   [{"id", "kind", "position", "pocketed", "pocket"}]}
+  --svg out.svg    also draw the table with each ball's path
+  --tolerance X    impact integrators' local error tolerance, 1e-15 to 0.1
+                   (default 1e-10)
+  --max-events N   cap on events (default 5000)
+  --help           this text
+)";
+
+bool ReadJson(const std::string& path, google::protobuf::Message* msg, std::ostream& err) {
+  std::ifstream f(path);
+  if (!f) {
+    err << "snooker simulate: cannot read '" << path << "'\n";
+    return false;
+  }
+  std::stringstream ss;
+  ss << f.rdbuf();
+  const auto st = google::protobuf::util::JsonStringToMessage(ss.str(), msg);
+  if (!st.ok()) {
+    err << "snooker simulate: '" << path << "' is not a valid " << msg->GetDescriptor()->name()
+        << " JSON: " << st.message() << "\n";
+    return false;
+  }
+  return true;
+}
+
+void PrintReadable(const v1::SimulateResponse& r, std::ostream& out) {
+  out << "status: " << r.status() << ", " << std::fixed << std::setprecision(3) << r.duration_s()
+      << " s, " << r.events_size() << " events\n\n";
+  for (const v1::Event& e : r.events()) {
+    out << std::setw(9) << std::setprecision(4) << e.time() << " s  " << std::left << std::setw(14)
+        << v1::EventKind_Name(e.kind()) << std::right;
+    for (int i = 0; i < e.balls_size(); ++i) out << (i ? " & " : "") << e.balls(i);
+    if (!e.cushion().empty()) out << "  cushion " << e.cushion();
+    if (!e.pocket().empty()) out << "  pocket " << e.pocket();
+    out << "  -> " << e.motion() << "\n";
+  }
+  out << "\nfinal positions (m):\n";
+  for (const v1::FinalBall& b : r.final_balls()) {
+    out << "  " << std::left << std::setw(10) << b.id() << std::right;
+    if (b.pocketed()) {
+      out << "pocketed in " << b.pocket() << "\n";
+    } else {
+      out << std::setprecision(4) << "(" << b.position().x() << ", " << b.position().y() << ")\n";
+    }
+  }
+}
+
+}  // namespace
+
+int RunSimulate(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
+  Args args(argv, {"table", "shot", "svg", "tolerance", "max-events"}, {"json", "help"});
+  if (args.error().empty() && args.Switch("help")) {
+    out << kHelp;
+    return kExitOk;
+  }
+  const auto table_path = args.Text("table", std::nullopt);
+  const auto shot_path = args.Text("shot", std::nullopt);
+  v1::SimulateRequest req;
+  if (args.Has("tolerance")) {
+    if (const auto t = args.Number("tolerance", std::nullopt)) req.mutable_options()->set_tolerance(*t);
+  }
+  if (args.Has("max-events")) {
+    if (const auto n = args.Integer("max-events", std::nullopt, 1, 1'000'000)) {
+      req.mutable_options()->set_max_events(static_cast<int>(*n));
+    }
+  }
+  if (!args.error().empty()) {
+    err << "snooker simulate: " << args.error() << "\n(see snooker simulate --help)\n";
+    return kExitUsage;
+  }
+  if (!ReadJson(*table_path, req.mutable_table(), err) ||
+      !ReadJson(*shot_path, req.mutable_shot(), err)) {
+    return kExitUsage;
+  }
+  const auto svg_path = args.Text("svg", "");
+  req.mutable_options()->set_include_paths(!svg_path->empty());
+  v1::SimulateResponse resp;
+  const server::ApiStatus status = server::Simulate(req, &resp);
+  if (!status.ok()) {
+    err << "snooker simulate: " << status.message << "\n";
+    return status.code == server::ApiStatus::Code::kInvalidArgument ? kExitUsage : kExitFailure;
+  }
+  if (!svg_path->empty()) {
+    std::ofstream f(*svg_path);
+    f << ShotSvg(server::DefaultTable(), req.table(), resp, physics::BallParams{}.radius);
+    if (!f) {
+      err << "snooker simulate: cannot write '" << *svg_path << "'\n";
+      return kExitFailure;
+    }
+  }
+  if (args.Switch("json")) {
+    resp.clear_paths();  // the paths go into the SVG; JSON carries events and finals
+    google::protobuf::util::JsonPrintOptions opt;
+    opt.always_print_primitive_fields = true;
+    std::string json;
+    if (!google::protobuf::util::MessageToJsonString(resp, &json, opt).ok()) {
+      err << "snooker simulate: cannot print the result as JSON\n";
+      return kExitFailure;
+    }
+    out << json << "\n";
+  } else {
+    PrintReadable(resp, out);
+  }
+  return kExitOk;
+}
+
+}  // namespace snooker::cli
