@@ -174,10 +174,28 @@ TEST(CliTest, UnknownCommandIsAUsageError) {
   EXPECT_NE(r.err.find("unknown command 'collied'"), std::string::npos);
 }
 
-TEST(CliTest, DemoRunsThePapersFirstShot) {
+// The demo starts the service and, as a gRPC client, reproduces the paper's first
+// shot and pots the black on a built-in table.
+TEST(CliTest, DemoUsesTheServiceOnBuiltInExamples) {
   const RunResult r = RunCli("demo");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("0.9139"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("started on 127.0.0.1:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("cue ball   0.914 m/s at 31.92"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("black   pocketed (top-left)"), std::string::npos) << r.out;
+}
+
+TEST(CliTest, ServeRunsUntilSigtermAndShutsDownCleanly) {
+  const RunResult r = RunCli(
+      "serve --address 127.0.0.1:0 & pid=$!; sleep 1; kill -TERM $pid; wait $pid; echo rc=$?");
+  EXPECT_NE(r.out.find("serving snooker.v1.ShotPlanner on port"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("shutting down"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("rc=0"), std::string::npos) << r.out;
+}
+
+TEST(CliTest, ServeOnABadAddressFails) {
+  const RunResult r = RunCli("serve --address not-an-address:99999");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("cannot listen on not-an-address:99999"), std::string::npos) << r.err;
 }
 
 // Writes `text` to a fresh file in the test temp folder and returns its path.
