@@ -16,6 +16,16 @@ constexpr double kOverlapTolerance = 1e-9;
 
 bool Moving(MotionState s) { return s == MotionState::kSliding || s == MotionState::kRolling; }
 
+// A lower bound on the distance from `q` to the path p(t) = c + b t + a t^2 over
+// [0, w]: the path stays within |a| w^2 / 4 of its chord from p(0) to p(w).
+double PathDistanceBound(const PositionPoly& p, double w, const Vec2& q) {
+  const Vec2 p0 = p.c, p1 = p.At(w);
+  const Vec2 d = p1 - p0;
+  const double len2 = d.squaredNorm();
+  const double u = len2 > 0 ? std::clamp((q - p0).dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (q - (p0 + u * d)).norm() - p.a.norm() * w * w / 4;
+}
+
 }  // namespace
 
 const char* ToString(EventKind k) {
@@ -48,6 +58,9 @@ Simulator::Simulator(const TableModel& table, const SimParams& params)
   params_.cushion.contact_height = table.spec().cushion_height;
   contact_distance_ = table.cushion_contact_distance();
   events_.reserve(256);
+  for (auto& row : pair_) {
+    for (double& t : row) t = kInf;
+  }
 }
 
 BallState Simulator::AfterImpact(const BallState& s) const {
@@ -93,7 +106,7 @@ void Simulator::RecomputeOwn(int i) {
     return;
   }
   if (s.moving) {
-    const double window = std::min(s.horizon, params_.max_time) - s.t;
+    double window = std::min(s.horizon, params_.max_time) - s.t;
     const double reach = Reach(i, window);
     auto consider = [&](double dt, EventKind kind, int where) {
       if (kind == s.ignore_kind && where == s.ignore_index) return;
@@ -106,13 +119,23 @@ void Simulator::RecomputeOwn(int i) {
       const Vec2 d = seg.p1 - seg.p0;
       const double u = std::clamp((s.s.r - seg.p0).dot(d) / d.squaredNorm(), 0.0, 1.0);
       if ((s.s.r - (seg.p0 + u * d)).norm() - contact_distance_ > reach) continue;
+      // Cull exactly: the gap to the segment's line, f(t) = g0 + g1 t + g2 t^2, must
+      // reach 0 within the window (its minimum is at an end or at the vertex).
+      const double g0 = seg.normal.dot(s.poly.c - seg.p0) - contact_distance_;
+      const double g1 = seg.normal.dot(s.poly.b), g2 = seg.normal.dot(s.poly.a);
+      double lowest = std::min(g0, g0 + window * (g1 + window * g2));
+      if (g2 > 0 && -g1 > 0 && -g1 < 2 * g2 * window) lowest = g0 - g1 * g1 / (4 * g2);
+      if (lowest > kContactTolerance) continue;
       consider(DetectBallCushion(s.poly, seg, contact_distance_, window),
                seg.kind == SegmentKind::kCushion ? EventKind::kCushion : EventKind::kJawWall, k);
     }
+    // Nothing behind the first straight contact can happen first: search the rounded
+    // shapes (quartics) only up to it, and only those near the path.
+    window = std::min(window, own.time - s.t);
     const auto jaws = table_.jaws();
     for (int k = 0; k < static_cast<int>(jaws.size()); ++k) {
       const JawCircle& jaw = jaws[static_cast<size_t>(k)];
-      if ((s.s.r - jaw.centre).norm() - jaw.radius - contact_distance_ > reach) continue;
+      if (PathDistanceBound(s.poly, window, jaw.centre) > jaw.radius + contact_distance_) continue;
       // The knuckle meets the ball at the nose height too: centre distance
       // r_jaw + R cos(theta), which DetectBallJaw computes from this "radius".
       consider(DetectBallJaw(s.poly, jaw, contact_distance_, window), EventKind::kKnuckle, k);
@@ -120,7 +143,7 @@ void Simulator::RecomputeOwn(int i) {
     const auto pockets = table_.pockets();
     for (int k = 0; k < static_cast<int>(pockets.size()); ++k) {
       const Pocket& p = pockets[static_cast<size_t>(k)];
-      if ((s.s.r - p.capture_centre).norm() - p.capture_radius > reach) continue;
+      if (PathDistanceBound(s.poly, window, p.capture_centre) > p.capture_radius) continue;
       consider(DetectBallPocket(s.poly, p, window), EventKind::kPocket, k);
     }
   }
@@ -140,24 +163,25 @@ void Simulator::RecomputePair(int i, int j) {
     return;  // they just grazed; wait until one of them changes
   }
   const double t = std::max(a.t, b.t);
-  const double horizon = std::min({a.horizon, b.horizon, params_.max_time});
+  // Nothing after either ball's next own event matters: its motion changes there and
+  // its pairs are recomputed (own_ is always current when pairs are computed).
+  const double horizon = std::min({a.horizon, b.horizon, own_[i].time, own_[j].time,
+                                   params_.max_time});
   const double window = horizon - t;
   if (!(window >= 0)) return;
   const BallState sa = StateAt(i, t), sb = StateAt(j, t);
-  const double gap = (sa.r - sb.r).norm() - 2 * params_.ball.radius;
-  const double reach_a = a.moving ? Vec2(sa.v.x(), sa.v.y()).norm() * window +
-                                        a.poly.a.norm() * window * window
-                                  : 0.0;
-  const double reach_b = b.moving ? Vec2(sb.v.x(), sb.v.y()).norm() * window +
-                                        b.poly.a.norm() * window * window
-                                  : 0.0;
-  if (gap > reach_a + reach_b) {
+  const PositionPoly pa = a.t == t ? a.poly : PositionPolynomial(sa, params_.ball, params_.cloth);
+  const PositionPoly pb = b.t == t ? b.poly : PositionPolynomial(sb, params_.ball, params_.cloth);
+  // Cull on the relative path b - a, which must come within 2R of the origin.
+  PositionPoly rel;
+  rel.c = pb.c - pa.c;
+  rel.b = pb.b - pa.b;
+  rel.a = pb.a - pa.a;
+  if (PathDistanceBound(rel, window, Vec2::Zero()) > 2 * params_.ball.radius) {
     ++pair_culls_;
     return;
   }
   ++pair_checks_;
-  const PositionPoly pa = a.t == t ? a.poly : PositionPolynomial(sa, params_.ball, params_.cloth);
-  const PositionPoly pb = b.t == t ? b.poly : PositionPolynomial(sb, params_.ball, params_.cloth);
   const double dt = DetectBallBall(pa, pb, params_.ball.radius, window);
   if (std::isfinite(dt)) out = t + dt;
 }
@@ -210,8 +234,8 @@ SimStatus Simulator::Run(std::span<const BallState> balls, const StopRule& stop,
     const BallState& b = balls[static_cast<size_t>(i)];
     SetState(i, b.s == MotionState::kPocketed ? b : Settle(b, params_.ball), 0.0);
   }
+  for (int i = 0; i < n_; ++i) RecomputeOwn(i);  // pair windows need every own event
   for (int i = 0; i < n_; ++i) {
-    RecomputeOwn(i);
     for (int j = i + 1; j < n_; ++j) RecomputePair(i, j);
   }
 

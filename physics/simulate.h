@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -148,9 +149,9 @@ class Simulator {
     int ignore_index = -1;
   };
   struct Own {  // a ball's next own event
-    double time;
-    EventKind kind;
-    int where;
+    double time = std::numeric_limits<double>::infinity();
+    EventKind kind = EventKind::kTransition;
+    int where = -1;
   };
 
   BallState StateAt(int i, double t) const;
@@ -172,7 +173,8 @@ class Simulator {
   bool record_ = true;
   Slot slots_[kMaxBalls];
   Own own_[kMaxBalls];
-  double pair_[kMaxBalls][kMaxBalls];  // upper triangle: next contact time of (i < j)
+  // Upper triangle: next contact time of (i < j); +inf when none.
+  double pair_[kMaxBalls][kMaxBalls];
   std::vector<SimEvent> events_;
   std::vector<BallState> final_;
   std::vector<int> pocket_of_;
