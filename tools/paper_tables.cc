@@ -62,7 +62,7 @@ int main() {
       "`PaperTablesTest.*`). Against the measurements the model errs as the paper says "
       "its model does (`PaperTablesTest.ErrorAgainstMeasurementMatchesThePapersOwn`, "
       "within 1 percentage point). The paper's fixed-step scheme with N = 10000 differs "
-      "from ours by at most %.5f m/s and %.4f deg on these shots (first order in 1/N).\n",
+      "from ours by at most %.1e m/s and %.1e deg on these shots (first order in 1/N).\n",
       worst_speed, worst_angle, fixed_speed, fixed_angle);
   return 0;
 }
