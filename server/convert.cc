@@ -1,5 +1,6 @@
 #include "server/convert.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -203,7 +204,11 @@ physics::ImpulseSolverOptions SolverOptionsFrom(const v1::ImpulseSolverOptions& 
   if (o.integrator() == v1::IMPULSE_INTEGRATOR_FIXED_STEP) {
     s.integrator = physics::ImpulseIntegrator::kFixedStep;
   }
-  if (o.has_steps()) s.steps = o.steps();
+  if (o.has_steps()) {
+    s.steps = o.steps();
+    // The scheme takes about N/2 steps (N for a wall): keep the cap above that.
+    s.max_steps = std::max(s.max_steps, 4 * s.steps);
+  }
   if (o.has_tolerance()) s.tolerance = o.tolerance();
   return s;
 }

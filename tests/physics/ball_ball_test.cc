@@ -361,6 +361,33 @@ TEST(AdaptiveTest, DefaultToleranceIsAccurateOnRandomShots) {
   RecordProperty("worst_spin_error_radps", std::to_string(worst_w));
 }
 
+// Marlow's slip-dependent friction is evaluated along the impact. A full-ball hit
+// with sidespin only keeps the slip at A along X with nothing else acting on it:
+// ds/dP_I = -7 mu(s) / M, and with mu = a + b exp(-c s) this integrates to
+// G(s0) - G(s_f) = 7 P_f / M, G(s) = (s + ln(a + b exp(-c s)) / c) / a, where the
+// normal impulse is P_f = (1 + e) M V0 / 2 (two free balls). The constant law gives
+// s0 - s_f = 7 mu P_f / M instead.
+TEST(AdaptiveTest, MarlowFrictionFollowsTheSlipSpeedAlongTheImpact) {
+  constexpr double a = 9.951e-3, b = 0.108, c = 1.088;  // Marlow (paper 2.4.2)
+  const BallParams ball;
+  const double v0 = 1.0, side = 60.0;  // slip R * 60 = 1.575 m/s: it never sticks
+  const ImpactState in = PaperIncidentState(v0, 0.0, side, 0.0);
+  const double p_final = (1 + 0.89) * ball.mass * v0 / 2;
+  auto slip = [&](const ImpactState& s) {
+    return std::abs(s.c.v.x() - ball.radius * s.c.w.z() - s.o.v.x() - ball.radius * s.o.w.z());
+  };
+  const BallBallParams marlow{.mu_bb = 0.05, .e = 0.89, .friction_law = BallBallFrictionLaw::kMarlow};
+  const ImpactResult r = ResolveImpact(in, ball, marlow, 0.21, Adaptive(1e-12));
+  ASSERT_EQ(r.status, ImpactStatus::kOk);
+  EXPECT_NEAR(r.impulse_final, p_final, 1e-12);
+  auto g = [&](double s) { return (s + std::log(a + b * std::exp(-c * s)) / c) / a; };
+  EXPECT_NEAR(g(slip(in)) - g(slip(r.out)), 7 * p_final / ball.mass, 1e-8);
+  // And the constant law, for contrast.
+  const ImpactResult k = ResolveImpact(in, ball, {}, 0.21, Adaptive(1e-12));
+  EXPECT_NEAR(slip(in) - slip(k.out), 7 * 0.05 * p_final / ball.mass, 1e-9);
+  EXPECT_GT(std::abs(slip(r.out) - slip(k.out)), 0.01);  // the laws really differ
+}
+
 TEST(AdaptiveTest, ToleranceOutOfRangeIsRejected) {
   const ImpactState in = PaperIncidentState(1.0, 0.0, 0.0, 0.2);
   for (double tol : {0.0, 1e-20, 0.5, std::nan("")}) {

@@ -69,6 +69,17 @@ TEST(CollideTest, FixedStepSchemeIsSelectable) {
   EXPECT_EQ(resp.rhs_evaluations(), resp.impulse_steps());
 }
 
+// The default step cap (1e5) must not stop a fine fixed-step run (about N/2 steps).
+TEST(CollideTest, FineFixedStepRunIsNotCapped) {
+  v1::CollideRequest req = PaperShotRequest(physics::kPaperShots[0]);
+  req.mutable_solver()->set_integrator(v1::IMPULSE_INTEGRATOR_FIXED_STEP);
+  req.mutable_solver()->set_steps(1'000'000);
+  v1::CollideResponse resp;
+  const ApiStatus st = Collide(req, &resp);
+  ASSERT_TRUE(st.ok()) << st.message;
+  EXPECT_GT(resp.impulse_steps(), 400'000);
+}
+
 TEST(CollideTest, BadRequestIsInvalidArgumentNamingTheField) {
   v1::CollideRequest req;
   req.set_speed(1.0);
