@@ -50,16 +50,6 @@ ImpactState PaperIncidentState(double speed, double topspin, double sidespin, do
   return st;                                           // O at rest, eq. 13c
 }
 
-const char* ToString(ImpactStatus status) {
-  switch (status) {
-    case ImpactStatus::kOk: return "ok";
-    case ImpactStatus::kNotApproaching: return "not approaching";
-    case ImpactStatus::kInvalidInput: return "invalid input";
-    case ImpactStatus::kStepLimit: return "step limit reached";
-  }
-  return "unknown";
-}
-
 double KineticEnergy(const ImpactState& s, const BallParams& ball) {
   const double m = ball.mass;
   const double i = ball.Inertia();

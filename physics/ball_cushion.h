@@ -27,7 +27,8 @@
 //    ends at W = (1 - e_e^2) W_c.
 //
 // Two integrators of the impulse ODE (independent variable P_I), as for ball-ball
-// (ball_ball.h): kFixedStep, the paper's explicit Euler with N steps of
+// (ball_ball.h; shared types in impulse_solver.h): kFixedStep, the paper's explicit
+// Euler with N steps of
 // dP_I = (1 + e_e) M v_n / N (v_n the initial normal speed; the impact then takes
 // about N / cos^2 th steps without friction, 1.19 N at the default height) and the
 // two phase ends located inside the last step; kAdaptive, Dormand-Prince 5(4) with
@@ -41,7 +42,7 @@
 #include <array>
 #include <string>
 
-#include "physics/ball_ball.h"  // ImpactStatus, ImpulseSolverOptions, ImpulseWork, ContactTransitions
+#include "physics/impulse_solver.h"
 #include "physics/params.h"
 #include "physics/types.h"
 
