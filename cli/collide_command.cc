@@ -1,13 +1,12 @@
 // snooker collide: one ball-ball collision (Mathavan et al. 2014) from the command
 // line. Builds the same CollideRequest the gRPC service takes and calls the same
 // operation (server/api.h), so both paths are one.
-#include <google/protobuf/util/json_util.h>
-
 #include <iomanip>
 #include <map>
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/json.h"
 #include "server/api.h"
 #include "server/convert.h"
 
@@ -185,14 +184,7 @@ int RunCollide(const std::vector<std::string>& argv, std::ostream& out, std::ost
     return status.code == server::ApiStatus::Code::kInvalidArgument ? kExitUsage : kExitFailure;
   }
   if (args.Switch("json")) {
-    google::protobuf::util::JsonPrintOptions opt;
-    opt.always_print_primitive_fields = true;
-    std::string json;
-    if (!google::protobuf::util::MessageToJsonString(resp, &json, opt).ok()) {
-      err << "snooker collide: cannot print the result as JSON\n";
-      return kExitFailure;
-    }
-    out << json << "\n";
+    if (!PrintJson(resp, "snooker collide", out, err)) return kExitFailure;
   } else {
     PrintTable(req, resp, out);
   }

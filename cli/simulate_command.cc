@@ -9,6 +9,7 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/json.h"
 #include "cli/svg.h"
 #include "server/api.h"
 
@@ -129,14 +130,7 @@ int RunSimulate(const std::vector<std::string>& argv, std::ostream& out, std::os
   }
   if (args.Switch("json")) {
     resp.clear_paths();  // the paths go into the SVG; JSON carries events and finals
-    google::protobuf::util::JsonPrintOptions opt;
-    opt.always_print_primitive_fields = true;
-    std::string json;
-    if (!google::protobuf::util::MessageToJsonString(resp, &json, opt).ok()) {
-      err << "snooker simulate: cannot print the result as JSON\n";
-      return kExitFailure;
-    }
-    out << json << "\n";
+    if (!PrintJson(resp, "snooker simulate", out, err)) return kExitFailure;
   } else {
     PrintReadable(resp, out);
   }

@@ -34,6 +34,7 @@
 
 #include "physics/ball_ball_detail.h"
 #include "physics/ball_ball_impulse.h"
+#include "physics/ode_dp54.h"
 
 namespace snooker::physics::detail {
 
@@ -44,30 +45,6 @@ using impulse::State;
 
 namespace {
 
-// Dormand-Prince 5(4) tableau.
-constexpr double kA21 = 1.0 / 5;
-constexpr double kA31 = 3.0 / 40, kA32 = 9.0 / 40;
-constexpr double kA41 = 44.0 / 45, kA42 = -56.0 / 15, kA43 = 32.0 / 9;
-constexpr double kA51 = 19372.0 / 6561, kA52 = -25360.0 / 2187, kA53 = 64448.0 / 6561,
-                 kA54 = -212.0 / 729;
-constexpr double kA61 = 9017.0 / 3168, kA62 = -355.0 / 33, kA63 = 46732.0 / 5247,
-                 kA64 = 49.0 / 176, kA65 = -5103.0 / 18656;
-constexpr double kB1 = 35.0 / 384, kB3 = 500.0 / 1113, kB4 = 125.0 / 192,
-                 kB5 = -2187.0 / 6784, kB6 = 11.0 / 84;
-// Dense output of order 4 (Hairer, Norsett & Wanner, II.6; the DOPRI5 code).
-constexpr double kD1 = -12715105075.0 / 11282082432.0, kD3 = 87487479700.0 / 32700410799.0,
-                 kD4 = -10690763975.0 / 1880347072.0, kD5 = 701980252875.0 / 199316789632.0,
-                 kD6 = -1453857185.0 / 822651844.0, kD7 = 69997945.0 / 29380423.0;
-// Error coefficients: 5th-order minus embedded 4th-order weights.
-constexpr double kE1 = 71.0 / 57600, kE3 = -71.0 / 16695, kE4 = 71.0 / 1920,
-                 kE5 = -17253.0 / 339200, kE6 = 22.0 / 525, kE7 = -1.0 / 40;
-
-// Step size controller: Hairer's PI variant for DOPRI5 (Solving ODEs I, IV.2),
-// h_new = h * safety * err^-(1/5 - 0.75 beta) * err_prev^beta.
-constexpr double kSafety = 0.9;
-constexpr double kBeta = 0.04;
-constexpr double kMinShrink = 0.2;
-constexpr double kMaxGrow = 5.0;
 // A shrinking slip whose predicted zero is closer than this many steps is followed
 // in tau = -ln|u|: that close, its direction varies too fast for steps in P_I.
 constexpr double kLogClockReach = 8.0;
@@ -112,14 +89,9 @@ enum Guard {
   kGuards
 };
 
-struct StepOut {
-  Y y1;
-  Y k7;            // derivative at y1 (FSAL)
-  Y err;
-  std::array<Y, 4> dense;  // r2..r5 of the dense output: y0 + t (r2 + (1-t)(r3 + t(r4 + (1-t) r5)))
+struct StepOut : ode::Dp54Result<Y> {  // y1, k7 (FSAL), err, dense output, valid
   Forces forces1;  // forces at y1
   std::array<double, kContacts> min_dot;  // min over stages of u . (start direction)
-  bool valid = true;  // false if the tau clock broke down inside the step
 };
 
 inline State Head(const Y& y) { return y.head<13>(); }
@@ -190,9 +162,7 @@ class AdaptiveSolver {
   static bool GuardNeedsForces(int g) { return g == kConeD || g == kConeB; }
   Forces ForcesAt(const State& x) const { return impulse::ComputeForces(x, mode_, model_); }
   // The state at fraction t of the step `s` from y_ (dense output, order 4).
-  Y Dense(const StepOut& s, double t) const {
-    return y_ + t * (s.dense[0] + (1 - t) * (s.dense[1] + t * (s.dense[2] + (1 - t) * s.dense[3])));
-  }
+  Y Dense(const StepOut& s, double t) const { return ode::Dp54DenseAt(y_, s, t); }
   double GuardAt(int g, const Y& y) const {
     return GuardValue(g, y, GuardNeedsForces(g) ? ForcesAt(Head(y)) : f1_);
   }
@@ -282,7 +252,6 @@ bool AdaptiveSolver::F(const Y& y, Y* dy, Forces* f) {
 
 void AdaptiveSolver::TakeStep(const Y& y0, const Y& k1, double h, StepOut* out) {
   ++attempts_;
-  Y k2, k3, k4, k5, k6, y;
   std::array<Vec2, kContacts> u0dir;
   std::array<bool, kContacts> watch;
   for (int c = 0; c < kContacts; ++c) {
@@ -290,36 +259,14 @@ void AdaptiveSolver::TakeStep(const Y& y0, const Y& k1, double h, StepOut* out) 
     u0dir[c] = SlipDirection(c, Head(y0), f1_);
     out->min_dot[c] = 1;
   }
-  auto check = [&](const Y& s) {
+  // The last derivative evaluated is at y1: keep its forces for the guards.
+  auto rhs = [&](const Y& y, Y* dy) { return F(y, dy, &out->forces1); };
+  auto observe = [&](const Y& y) {  // every stage: has a watched slip reversed?
     for (int c = 0; c < kContacts; ++c) {
-      if (watch[c]) out->min_dot[c] = std::min(out->min_dot[c], Slip(c, Head(s)).dot(u0dir[c]));
+      if (watch[c]) out->min_dot[c] = std::min(out->min_dot[c], Slip(c, Head(y)).dot(u0dir[c]));
     }
   };
-  bool ok = true;
-  y = y0 + h * kA21 * k1;
-  check(y);
-  ok &= F(y, &k2);
-  y = y0 + h * (kA31 * k1 + kA32 * k2);
-  check(y);
-  ok &= F(y, &k3);
-  y = y0 + h * (kA41 * k1 + kA42 * k2 + kA43 * k3);
-  check(y);
-  ok &= F(y, &k4);
-  y = y0 + h * (kA51 * k1 + kA52 * k2 + kA53 * k3 + kA54 * k4);
-  check(y);
-  ok &= F(y, &k5);
-  y = y0 + h * (kA61 * k1 + kA62 * k2 + kA63 * k3 + kA64 * k4 + kA65 * k5);
-  check(y);
-  ok &= F(y, &k6);
-  out->y1 = y0 + h * (kB1 * k1 + kB3 * k3 + kB4 * k4 + kB5 * k5 + kB6 * k6);
-  check(out->y1);
-  ok &= F(out->y1, &out->k7, &out->forces1);
-  out->err = h * (kE1 * k1 + kE3 * k3 + kE4 * k4 + kE5 * k5 + kE6 * k6 + kE7 * out->k7);
-  out->dense[0] = out->y1 - y0;
-  out->dense[1] = h * k1 - out->dense[0];
-  out->dense[2] = out->dense[0] - h * out->k7 - out->dense[1];
-  out->dense[3] = h * (kD1 * k1 + kD3 * k3 + kD4 * k4 + kD5 * k5 + kD6 * k6 + kD7 * out->k7);
-  out->valid = ok && out->y1.allFinite();
+  ode::Dp54Step(y0, k1, h, rhs, observe, out);
 }
 
 bool AdaptiveSolver::GuardActive(int g) const {
@@ -369,25 +316,13 @@ int AdaptiveSolver::LocateEvent(const StepOut& s, double t0, double* t_event) co
       continue;
     }
     if (!(glo > 0) || ghi > 0) continue;
-    // Illinois on the dense output, bracket [lo, hi] with g(lo) > 0 >= g(hi).
-    double lo = t0, hi = 1;
-    int side = 0;
-    // A location error dt moves the state by about h |y'| dt, within the step's
-    // own error: the bracket needs to close to 1e-3 of the tolerance only.
-    for (int it = 0; it < kMaxEventIterations && hi - lo > event_resolution_; ++it) {
-      double t = (lo * ghi - hi * glo) / (ghi - glo);
-      if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
-      const double gt = GuardAt(g, Dense(s, t));
-      if (gt > 0) {
-        lo = t, glo = gt;
-        if (side == 1) ghi *= 0.5;
-        side = 1;
-      } else {
-        hi = t, ghi = gt;
-        if (side == -1) glo *= 0.5;
-        side = -1;
-      }
-    }
+    // Illinois on the dense output, bracket [t0, 1] with g(t0) > 0 >= g(1). A
+    // location error dt moves the state by about h |y'| dt, within the step's own
+    // error: the bracket needs to close to 1e-3 of the tolerance only.
+    const double guess = (t0 * ghi - glo) / (ghi - glo);  // regula falsi's first point
+    const double hi = ode::IllinoisRoot([&](double t) { return GuardAt(g, Dense(s, t)); }, t0,
+                                        glo, 1.0, ghi, guess, event_resolution_, 0.0,
+                                        kMaxEventIterations);
     if (hi < first_t) first_t = hi, first = g;
   }
   *t_event = first_t;
@@ -540,7 +475,7 @@ ImpactResult AdaptiveSolver::Run() {
   double h_log = 1.0;                  // step in tau
   StepOut s;
   bool finished = false;
-  double err_prev = 1e-4;
+  ode::PiStepControl control;
   while (attempts_ < opt_.max_steps) {
     if (compressed_ && !(GuardValue(kRestitutionEnd, y_, f1_) > 0)) {  // safety net
       finished = true;
@@ -591,8 +526,7 @@ ImpactResult AdaptiveSolver::Run() {
       continue;
     }
     const double err = std::max(ErrorNorm(s.err), 1e-10);
-    const double pi = std::pow(err, -(0.2 - 0.75 * kBeta));
-    double shrink = err > 1 ? std::max(kMinShrink, kSafety * pi) : 1.0;
+    double shrink = err > 1 ? control.Rejected(err) : 1.0;
     bool reversed = false;
     for (int c = 0; c < kContacts; ++c) {
       // A reversal beyond the noise level of a slip (half the zero threshold).
@@ -609,9 +543,9 @@ ImpactResult AdaptiveSolver::Run() {
         h_log = 1.0;
         SetClock(landing);
       } else if (log_clock) {
-        h_log = h * (std::isfinite(shrink) ? shrink : kMinShrink);
+        h_log = h * shrink;
       } else {
-        h_impulse = h * (std::isfinite(shrink) ? shrink : kMinShrink);
+        h_impulse = h * shrink;
       }
       continue;
     }
@@ -634,8 +568,7 @@ ImpactResult AdaptiveSolver::Run() {
       k1_ = s.k7;
       f1_ = s.forces1;
     }
-    const double grow = std::clamp(kSafety * pi * std::pow(err_prev, kBeta), kMinShrink, kMaxGrow);
-    err_prev = std::max(err, 1e-4);
+    const double grow = control.Accepted(err);
     if (log_clock) {
       h_log = h * grow;
     } else {

@@ -3,15 +3,15 @@
 // root finder and Hairer's PI step-size controller. Internal to physics/.
 //
 // Header-only templates over a fixed-size Eigen vector: no allocation, no exception,
-// no virtual call, every loop capped. Written for the ball-cushion integrator
-// (ball_cushion_adaptive.cc); the ball-ball integrator (ball_ball_adaptive.cc) keeps
-// its own copy of the same tableau, step and controller and could use this instead.
+// no virtual call, every loop capped. Used by both impact integrators
+// (ball_ball_adaptive.cc, ball_cushion_adaptive.cc).
 //
 // Reference: Hairer, Norsett & Wanner, Solving ODEs I: II.5 (tableau, FSAL, local
 // extrapolation), II.6 (dense output), IV.2 (the PI controller for DOPRI5).
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace snooker::physics::ode {
@@ -30,6 +30,12 @@ inline constexpr double kB1 = 35.0 / 384, kB3 = 500.0 / 1113, kB4 = 125.0 / 192,
 // 5th-order minus embedded 4th-order weights.
 inline constexpr double kE1 = 71.0 / 57600, kE3 = -71.0 / 16695, kE4 = 71.0 / 1920,
                         kE5 = -17253.0 / 339200, kE6 = 22.0 / 525, kE7 = -1.0 / 40;
+// Dense output of order 4 (II.6; the DOPRI5 code).
+inline constexpr double kD1 = -12715105075.0 / 11282082432.0,
+                        kD3 = 87487479700.0 / 32700410799.0,
+                        kD4 = -10690763975.0 / 1880347072.0,
+                        kD5 = 701980252875.0 / 199316789632.0,
+                        kD6 = -1453857185.0 / 822651844.0, kD7 = 69997945.0 / 29380423.0;
 }  // namespace dp54
 
 /// Result of one Dormand-Prince step.
@@ -38,8 +44,17 @@ struct Dp54Result {
   Y y1;               ///< 5th-order solution at the end of the step
   Y k7;               ///< derivative at y1 (the next step's first stage, FSAL)
   Y err;              ///< 5th- minus embedded 4th-order solution: local error estimate
+  /// Coefficients r2..r5 of the 4th-order dense output (Dp54DenseAt).
+  std::array<Y, 4> dense;
   bool valid = true;  ///< false if a derivative was undefined or y1 is not finite
 };
+
+/// The state at the fraction t in [0, 1] of a step from `y0` (DOPRI5's continuous
+/// extension, order 4: as accurate as the step's own error estimate).
+template <class Y>
+Y Dp54DenseAt(const Y& y0, const Dp54Result<Y>& s, double t) {
+  return y0 + t * (s.dense[0] + (1 - t) * (s.dense[1] + t * (s.dense[2] + (1 - t) * s.dense[3])));
+}
 
 /// One step of length `h` from `y0`, whose derivative is `k1`.
 /// `rhs(const Y& y, Y* dy) -> bool` evaluates the derivative and returns false where
@@ -70,6 +85,10 @@ void Dp54Step(const Y& y0, const Y& k1, double h, Rhs&& rhs, Observe&& observe,
   observe(out->y1);
   ok &= rhs(out->y1, &out->k7);
   out->err = h * (kE1 * k1 + kE3 * k3 + kE4 * k4 + kE5 * k5 + kE6 * k6 + kE7 * out->k7);
+  out->dense[0] = out->y1 - y0;
+  out->dense[1] = h * k1 - out->dense[0];
+  out->dense[2] = out->dense[0] - h * out->k7 - out->dense[1];
+  out->dense[3] = h * (kD1 * k1 + kD3 * k3 + kD4 * k4 + kD5 * k5 + kD6 * k6 + kD7 * out->k7);
   out->valid = ok && out->y1.allFinite();
 }
 
