@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <array>
 #include <random>
 #include <utility>
@@ -357,8 +359,14 @@ TEST(AdaptiveTest, DefaultToleranceIsAccurateOnRandomShots) {
   EXPECT_LE(worst_ref, kConvergedTol);
   EXPECT_LE(worst_v, kVelocityTol);
   EXPECT_LE(worst_w, kSpinTol);
-  RecordProperty("worst_velocity_error_mps", std::to_string(worst_v));
-  RecordProperty("worst_spin_error_radps", std::to_string(worst_w));
+  auto sci = [](double x) {
+    std::ostringstream o;
+    o << std::scientific << std::setprecision(2) << x;
+    return o.str();
+  };
+  RecordProperty("worst_velocity_error_mps", sci(worst_v));
+  RecordProperty("worst_spin_error_radps", sci(worst_w));
+  RecordProperty("reference_spread_mps", sci(worst_ref));
 }
 
 // Marlow's slip-dependent friction is evaluated along the impact. A full-ball hit
