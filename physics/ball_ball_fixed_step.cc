@@ -16,7 +16,6 @@
 
 namespace snooker::physics::detail {
 
-using impulse::Law;
 using impulse::Mode;
 using impulse::Model;
 using impulse::State;

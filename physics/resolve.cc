@@ -1,6 +1,5 @@
 #include "physics/resolve.h"
 
-#include <cmath>
 
 #include "physics/motion.h"
 
@@ -59,11 +58,6 @@ CushionResolution ResolveBallCushionOnTable(const BallState& s, const Vec2& norm
   out.ball.w = q.transpose() * r.out.w;
   out.ball = Settle(out.ball, ball);
   return out;
-}
-
-double CushionContactDistance(const BallParams& ball, const CushionParams& cushion) {
-  const double s = CushionSinTheta(ball, cushion);
-  return ball.radius * std::sqrt(std::max(0.0, 1.0 - s * s));
 }
 
 }  // namespace snooker::physics

@@ -48,9 +48,4 @@ CushionResolution ResolveBallCushionOnTable(const BallState& s, const Vec2& norm
                                             const BallParams& ball, const CushionParams& cushion,
                                             const ImpulseSolverOptions& options);
 
-/// Horizontal distance from a ball's centre to the cushion nose line at contact: the
-/// nose at height h touches the ball where sin(theta) = (h - R) / R, R cos(theta)
-/// from its centre. m.
-double CushionContactDistance(const BallParams& ball, const CushionParams& cushion);
-
 }  // namespace snooker::physics
