@@ -1,4 +1,4 @@
-// Speed against error of the ball-ball solver (physics/ball_ball.h): the paper's
+// Speed against error of the ball-ball solver (physics/impact/ball_ball.h): the paper's
 // fixed-step scheme at N = 10 ... 1e6 and the adaptive integrator at tolerances
 // 1e-3 ... 1e-12, over the shot set of bench/collision_shots.h.
 //
@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "bench/collision_shots.h"
-#include "physics/ball_ball.h"
-#include "physics/slip_phase.h"
+#include "physics/impact/ball_ball.h"
+#include "physics/motion/slip_phase.h"
 
 namespace snooker::physics {
 namespace {

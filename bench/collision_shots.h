@@ -5,8 +5,8 @@
 #include <array>
 #include <cmath>
 
-#include "physics/ball_ball.h"
-#include "tests/physics/paper_shots.h"
+#include "physics/impact/ball_ball.h"
+#include "tests/physics/impact/paper_shots.h"
 
 namespace snooker::physics {
 

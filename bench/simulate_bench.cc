@@ -1,4 +1,4 @@
-// Speed of the table simulation (physics/simulate.h), Google Benchmark.
+// Speed of the table simulation (physics/sim/simulate.h), Google Benchmark.
 //  * BM_TwoBallPot/0 and /1: the same straight pot (cue ball and red moving) on an
 //    empty table and on a full table of 22 balls; their ratio is what the idle balls
 //    cost. Wall-clock times on a shared machine are noisy: scripts/simulation-

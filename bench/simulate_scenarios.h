@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "physics/simulate.h"
+#include "physics/sim/simulate.h"
 
 namespace snooker::physics::bench {
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "physics/table.h"
+#include "physics/table/table.h"
 #include "snooker/v1/simulate.pb.h"
 #include "snooker/v1/table.pb.h"
 

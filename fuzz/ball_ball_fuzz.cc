@@ -1,4 +1,4 @@
-// libFuzzer target for the ball-ball solver (physics/ball_ball.h). Decodes any
+// libFuzzer target for the ball-ball solver (physics/impact/ball_ball.h). Decodes any
 // bytes into an impact (both balls' velocities and spins, friction, restitution,
 // integrator and its setting) and checks what must hold for every input:
 //  * the solver returns (within its step cap) one of its statuses;
@@ -13,7 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "physics/ball_ball.h"
+#include "physics/impact/ball_ball.h"
 
 namespace {
 

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "physics/ball_ball.h"
-#include "physics/simulate.h"
-#include "physics/slip_phase.h"
+#include "physics/impact/ball_ball.h"
+#include "physics/sim/simulate.h"
+#include "physics/motion/slip_phase.h"
 #include "server/convert.h"
 
 namespace snooker::server {

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "server/api_status.h"
-#include "physics/table.h"
+#include "physics/table/table.h"
 #include "snooker/v1/collide.pb.h"
 #include "snooker/v1/simulate.pb.h"
 
@@ -13,7 +13,7 @@ namespace snooker::server {
 /// One ball-ball collision (Mathavan et al. 2014) and the slip phases after it.
 ApiStatus Collide(const v1::CollideRequest& request, v1::CollideResponse* response);
 
-/// The built-in full-size table (physics/table.h defaults), shared and immutable.
+/// The built-in full-size table (physics/table/table.h defaults), shared and immutable.
 const physics::TableModel& DefaultTable();
 
 /// A shot on a table, simulated until every ball is at rest or pocketed.

@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
-#include "physics/ball_ball.h"
-#include "physics/ball_state.h"
-#include "physics/params.h"
-#include "physics/simulate.h"
-#include "physics/table.h"
+#include "physics/impact/ball_ball.h"
+#include "physics/core/ball_state.h"
+#include "physics/core/params.h"
+#include "physics/sim/simulate.h"
+#include "physics/table/table.h"
 #include "snooker/v1/collide.pb.h"
 #include "snooker/v1/simulate.pb.h"
 #include "snooker/v1/table.pb.h"

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "physics/ball_ball.h"
-#include "physics/slip_phase.h"
-#include "tests/physics/paper_shots.h"
+#include "physics/impact/ball_ball.h"
+#include "physics/motion/slip_phase.h"
+#include "tests/physics/impact/paper_shots.h"
 
 int main() {
   using namespace snooker::physics;
@@ -22,7 +22,7 @@ int main() {
       "/ predicted, angles (predicted - measured) / measured, in percent. Table 1 row "
       "4's predicted cue v_S is printed 0.128 (read 1.28) and Table 2 row 3's cue "
       "error -0.90 %% (its own columns give -1.93 %%): physics-notes section 2 and "
-      "tests/physics/paper_shots.h.\n\n");
+      "tests/physics/impact/paper_shots.h.\n\n");
   std::printf(
       "| V0 (m/s) | cut (deg) | ball | measured v_S | paper v_S | our v_S | paper error "
       "%% | our error %% | measured exit (deg) | paper exit | our exit | paper error %% | "

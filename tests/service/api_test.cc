@@ -8,9 +8,9 @@
 #include <functional>
 #include <vector>
 
-#include "physics/motion.h"
+#include "physics/motion/motion.h"
 #include "server/convert.h"
-#include "tests/physics/paper_shots.h"
+#include "tests/physics/impact/paper_shots.h"
 
 namespace snooker::server {
 namespace {

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "tests/physics/paper_shots.h"
+#include "tests/physics/impact/paper_shots.h"
 
 namespace snooker {
 namespace {

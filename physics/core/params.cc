@@ -1,0 +1,46 @@
+#include "physics/core/params.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace snooker::physics {
+namespace {
+
+// Appends "name = value (must be ...)" when `ok` is false.
+void Check(std::ostringstream& out, bool ok, const char* name, double value, const char* rule) {
+  if (ok) return;
+  if (out.tellp() > 0) out << "; ";
+  out << name << " = " << value << " (must be " << rule << ")";
+}
+
+bool Finite(double x) { return std::isfinite(x); }
+
+}  // namespace
+
+std::string ValidateBallParams(const BallParams& p) {
+  std::ostringstream out;
+  Check(out, Finite(p.mass) && p.mass > 0, "mass", p.mass, "a finite number > 0 kg");
+  Check(out, Finite(p.radius) && p.radius > 0, "radius", p.radius, "a finite number > 0 m");
+  return out.str();
+}
+
+std::string ValidateClothParams(const ClothParams& p) {
+  std::ostringstream out;
+  Check(out, Finite(p.mu_s) && p.mu_s >= 0 && p.mu_s <= 1, "mu_s", p.mu_s, "in [0, 1]");
+  Check(out, Finite(p.mu_r) && p.mu_r >= 0 && p.mu_r <= 1, "mu_r", p.mu_r, "in [0, 1]");
+  Check(out, Finite(p.spin_decel) && p.spin_decel >= 0, "spin_decel", p.spin_decel,
+        "a finite number >= 0 rad/s^2");
+  Check(out, Finite(p.g) && p.g > 0, "g", p.g, "a finite number > 0 m/s^2");
+  return out.str();
+}
+
+std::string ValidateBallBallParams(const BallBallParams& p) {
+  std::ostringstream out;
+  // mu_bb <= 1 together with mu_s <= 1 keeps the normal relative velocity strictly
+  // decreasing in P_I during the impact, which bounds the impulse and the step count.
+  Check(out, Finite(p.mu_bb) && p.mu_bb >= 0 && p.mu_bb <= 1, "mu_bb", p.mu_bb, "in [0, 1]");
+  Check(out, Finite(p.e) && p.e >= 0 && p.e <= 1, "e", p.e, "in [0, 1]");
+  return out.str();
+}
+
+}  // namespace snooker::physics

@@ -1,0 +1,115 @@
+#include "physics/impact/ball_ball.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "physics/impact/ball_ball_detail.h"
+#include "physics/impact/ball_ball_impulse.h"
+
+namespace snooker::physics {
+namespace {
+
+bool AllFinite(const ImpactState& s) {
+  return s.c.v.allFinite() && s.c.w.allFinite() && s.o.v.allFinite() && s.o.w.allFinite();
+}
+
+bool OptionsValid(const ImpulseSolverOptions& o) {
+  if (o.max_steps <= 0) return false;
+  if (o.integrator == ImpulseIntegrator::kFixedStep) return o.steps > 0;
+  return std::isfinite(o.tolerance) && o.tolerance >= 1e-15 && o.tolerance <= 1e-1;
+}
+
+// The same rules as ValidateBallParams / ValidateBallBallParams, without building
+// messages: this runs on every call.
+bool InUnit(double x) { return std::isfinite(x) && x >= 0 && x <= 1; }
+bool ParamsValid(const BallParams& ball, const BallBallParams& contact, double mu_s) {
+  return std::isfinite(ball.mass) && ball.mass > 0 && std::isfinite(ball.radius) &&
+         ball.radius > 0 && InUnit(contact.mu_bb) && InUnit(contact.e) && InUnit(mu_s);
+}
+
+void PutVec(std::ostringstream& out, const char* name, const Vec3& v) {
+  if (v.allFinite()) return;
+  if (out.tellp() > 0) out << "; ";
+  out << name << " = (" << v.x() << ", " << v.y() << ", " << v.z()
+      << ") (every component must be a finite number)";
+}
+
+}  // namespace
+
+double SpeedScale(const ImpactState& s, double radius) {
+  return std::max({s.c.v.norm(), s.o.v.norm(), radius * s.c.w.norm(), radius * s.o.w.norm()});
+}
+
+ImpactState PaperIncidentState(double speed, double topspin, double sidespin, double cut) {
+  const double s = std::sin(cut);
+  const double c = std::cos(cut);
+  ImpactState st;
+  st.c.v = Vec3(speed * s, speed * c, 0.0);           // eq. 13a
+  st.c.w = Vec3(-topspin * c, topspin * s, sidespin);  // eq. 13b
+  return st;                                           // O at rest, eq. 13c
+}
+
+double KineticEnergy(const ImpactState& s, const BallParams& ball) {
+  const double m = ball.mass;
+  const double i = ball.Inertia();
+  return 0.5 * m * (s.c.v.squaredNorm() + s.o.v.squaredNorm()) +
+         0.5 * i * (s.c.w.squaredNorm() + s.o.w.squaredNorm());
+}
+
+std::string ValidateImpact(const ImpactState& in, const BallParams& ball,
+                           const BallBallParams& contact, double mu_s,
+                           const ImpulseSolverOptions& options) {
+  std::ostringstream out;
+  auto add = [&out](const std::string& msg) {
+    if (msg.empty()) return;
+    if (out.tellp() > 0) out << "; ";
+    out << msg;
+  };
+  add(ValidateBallParams(ball));
+  add(ValidateBallBallParams(contact));
+  if (!(std::isfinite(mu_s) && mu_s >= 0 && mu_s <= 1)) {
+    std::ostringstream m;
+    m << "mu_s = " << mu_s << " (must be in [0, 1])";
+    add(m.str());
+  }
+  PutVec(out, "C velocity", in.c.v);
+  PutVec(out, "C angular velocity", in.c.w);
+  PutVec(out, "O velocity", in.o.v);
+  PutVec(out, "O angular velocity", in.o.w);
+  if (options.max_steps <= 0) {
+    add("max_steps = " + std::to_string(options.max_steps) + " (must be > 0)");
+  }
+  if (options.integrator == ImpulseIntegrator::kFixedStep && options.steps <= 0) {
+    add("steps = " + std::to_string(options.steps) + " (must be > 0)");
+  }
+  if (options.integrator == ImpulseIntegrator::kAdaptive &&
+      !(std::isfinite(options.tolerance) && options.tolerance >= 1e-15 &&
+        options.tolerance <= 1e-1)) {
+    std::ostringstream m;
+    m << "tolerance = " << options.tolerance << " (must be in [1e-15, 0.1])";
+    add(m.str());
+  }
+  return out.str();
+}
+
+ImpactResult ResolveImpact(const ImpactState& in, const BallParams& ball,
+                           const BallBallParams& contact, double mu_s,
+                           const ImpulseSolverOptions& options) {
+  ImpactResult r;
+  r.out = in;
+  if (!AllFinite(in) || !OptionsValid(options) || !ParamsValid(ball, contact, mu_s)) {
+    r.status = ImpactStatus::kInvalidInput;
+    return r;
+  }
+  if (!(in.c.v.y() - in.o.v.y() > kMinApproach * SpeedScale(in, ball.radius))) {  // eq. 5c
+    r.status = ImpactStatus::kNotApproaching;
+    return r;
+  }
+  const impulse::Model model(ball, contact, mu_s);
+  return options.integrator == ImpulseIntegrator::kFixedStep
+             ? detail::SolveFixedStep(in, model, options)
+             : detail::SolveAdaptive(in, model, options);
+}
+
+}  // namespace snooker::physics

@@ -1,0 +1,57 @@
+// Types shared by the impulse-based impact solvers (ball-ball: physics/impact/ball_ball.h,
+// ball-cushion: physics/impact/ball_cushion.h): which integrator and how fine, the status
+// of a solve, and the work it took.
+#pragma once
+
+#include <cstdint>
+
+namespace snooker::physics {
+
+enum class ImpulseIntegrator : std::uint8_t {
+  kFixedStep,  ///< The paper's eq. 14 scheme: explicit Euler with N steps.
+  kAdaptive,   ///< Dormand-Prince 5(4), step control, located events, stick law.
+};
+
+struct ImpulseSolverOptions {
+  ImpulseIntegrator integrator = ImpulseIntegrator::kAdaptive;
+  /// kFixedStep: N of eq. 14, the step being dP_I = (1 + e) M ydot_A(0) / N.
+  std::int32_t steps = 1000;
+  /// kAdaptive: local error per step, relative to the speed scale of the input
+  /// (the largest of |v| and R|w| over both balls). Dimensionless.
+  double tolerance = 1e-10;
+  /// Cap on steps (accepted plus rejected) for either integrator. When reached the
+  /// solver stops with kStepLimit and returns the state it had reached.
+  std::int32_t max_steps = 100'000;
+};
+
+enum class ImpactStatus : std::uint8_t {
+  kOk,
+  /// The bodies are not approaching (for the ball-ball solver: ydot_A <=
+  /// kMinApproach * SpeedScale(); a cut of exactly 90 deg leaves ~1e-16 of approach
+  /// from rounding). No impact; the output equals the input (a documented no-op).
+  kNotApproaching,
+  /// NaN or infinite input, or parameters / options out of range: the output
+  /// equals the input. The solver's Validate function names the bad value.
+  kInvalidInput,
+  /// The step cap was reached before the end of restitution.
+  kStepLimit,
+};
+
+const char* ToString(ImpactStatus status);
+
+/// How often a contact changed its regime during the impact (adaptive integrator).
+struct ContactTransitions {
+  std::uint16_t stick = 0;     ///< slip reached zero and the friction cone held it
+  std::uint16_t unstick = 0;   ///< a stuck contact left its friction cone
+  std::uint16_t reverse = 0;   ///< slip reached zero and went on in a new direction
+};
+
+/// Work done by the integrator.
+struct ImpulseWork {
+  std::int32_t steps = 0;           ///< accepted steps
+  std::int32_t rejected_steps = 0;  ///< steps rejected by error control or event search
+  std::int32_t rhs_evals = 0;       ///< right-hand-side evaluations
+  std::int32_t events = 0;          ///< located mode switches and phase ends
+};
+
+}  // namespace snooker::physics

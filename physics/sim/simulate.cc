@@ -1,0 +1,381 @@
+#include "physics/sim/simulate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "physics/events/detect.h"
+#include "physics/sim/resolve.h"
+
+namespace snooker::physics {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// Balls given closer than 2R by more than this are rejected as overlapping. m.
+constexpr double kOverlapTolerance = 1e-9;
+
+bool Moving(MotionState s) { return s == MotionState::kSliding || s == MotionState::kRolling; }
+
+// A lower bound on the distance from `q` to the path p(t) = c + b t + a t^2 over
+// [0, w]: the path stays within |a| w^2 / 4 of its chord from p(0) to p(w).
+double PathDistanceBound(const PositionPoly& p, double w, const Vec2& q) {
+  const Vec2 p0 = p.c, p1 = p.At(w);
+  const Vec2 d = p1 - p0;
+  const double len2 = d.squaredNorm();
+  const double u = len2 > 0 ? std::clamp((q - p0).dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (q - (p0 + u * d)).norm() - p.a.norm() * w * w / 4;
+}
+
+}  // namespace
+
+const char* ToString(EventKind k) {
+  switch (k) {
+    case EventKind::kBallBall: return "ball-ball";
+    case EventKind::kCushion: return "cushion";
+    case EventKind::kJawWall: return "jaw-wall";
+    case EventKind::kKnuckle: return "knuckle";
+    case EventKind::kPocket: return "pocket";
+    case EventKind::kTransition: return "transition";
+  }
+  return "unknown";
+}
+
+const char* ToString(SimStatus s) {
+  switch (s) {
+    case SimStatus::kAtRest: return "at rest";
+    case SimStatus::kStopped: return "stopped";
+    case SimStatus::kEventLimit: return "event limit reached";
+    case SimStatus::kTimeLimit: return "time limit reached";
+    case SimStatus::kInvalidInput: return "invalid input";
+    case SimStatus::kSolverFailure: return "impact solver failure";
+  }
+  return "unknown";
+}
+
+Simulator::Simulator(const TableModel& table, const SimParams& params)
+    : table_(table), params_(params) {
+  // One source for the cushion's contact geometry: the table's nose height.
+  params_.cushion.contact_height = table.spec().cushion_height;
+  contact_distance_ = table.cushion_contact_distance();
+  events_.reserve(256);
+  for (auto& row : pair_) {
+    for (double& t : row) t = kInf;
+  }
+}
+
+BallState Simulator::AfterImpact(const BallState& s) const {
+  const double v = Vec2(s.v.x(), s.v.y()).norm();
+  if (v >= params_.rest_speed || ClothSlip(s, params_.ball).norm() >= params_.rest_speed) return s;
+  BallState rest = s;
+  rest.v.setZero();
+  rest.w.x() = rest.w.y() = 0;
+  return Settle(rest, params_.ball);
+}
+
+BallState Simulator::StateAt(int i, double t) const {
+  const Slot& s = slots_[i];
+  if (!s.moving || t <= s.t) return s.s;
+  return Evolve(s.s, t - s.t, params_.ball, params_.cloth);
+}
+
+double Simulator::Reach(int i, double dt) const {
+  const Slot& s = slots_[i];
+  if (!s.moving || !(dt > 0)) return 0;
+  if (!std::isfinite(dt)) return kInf;
+  return s.poly.b.norm() * dt + s.poly.a.norm() * dt * dt;
+}
+
+void Simulator::SetState(int i, const BallState& state, double t) {
+  Slot& s = slots_[i];
+  s.s = state;
+  s.t = t;
+  s.moving = Moving(state.s);
+  s.horizon = state.s == MotionState::kPocketed
+                  ? kInf
+                  : t + TransitionTime(state, params_.ball, params_.cloth);
+  s.poly = PositionPolynomial(state, params_.ball, params_.cloth);
+  s.ignore_index = -1;
+  if (record_) paths_[static_cast<size_t>(i)].push_back({t, state});
+}
+
+void Simulator::RecomputeOwn(int i) {
+  Slot& s = slots_[i];
+  Own own{s.horizon, EventKind::kTransition, -1};
+  if (s.s.s == MotionState::kPocketed) {
+    own_[i] = {kInf, EventKind::kTransition, -1};
+    return;
+  }
+  if (s.moving) {
+    double window = std::min(s.horizon, params_.max_time) - s.t;
+    const double reach = Reach(i, window);
+    auto consider = [&](double dt, EventKind kind, int where) {
+      if (kind == s.ignore_kind && where == s.ignore_index) return;
+      if (s.t + dt < own.time) own = {s.t + dt, kind, where};
+    };
+    const auto segments = table_.segments();
+    for (int k = 0; k < static_cast<int>(segments.size()); ++k) {
+      const CushionSegment& seg = segments[static_cast<size_t>(k)];
+      // Cull: distance from the centre to the segment against the reach.
+      const Vec2 d = seg.p1 - seg.p0;
+      const double u = std::clamp((s.s.r - seg.p0).dot(d) / d.squaredNorm(), 0.0, 1.0);
+      if ((s.s.r - (seg.p0 + u * d)).norm() - contact_distance_ > reach) continue;
+      // Cull exactly: the gap to the segment's line, f(t) = g0 + g1 t + g2 t^2, must
+      // reach 0 within the window (its minimum is at an end or at the vertex).
+      const double g0 = seg.normal.dot(s.poly.c - seg.p0) - contact_distance_;
+      const double g1 = seg.normal.dot(s.poly.b), g2 = seg.normal.dot(s.poly.a);
+      double lowest = std::min(g0, g0 + window * (g1 + window * g2));
+      if (g2 > 0 && -g1 > 0 && -g1 < 2 * g2 * window) lowest = g0 - g1 * g1 / (4 * g2);
+      if (lowest > kContactTolerance) continue;
+      consider(DetectBallCushion(s.poly, seg, contact_distance_, window),
+               seg.kind == SegmentKind::kCushion ? EventKind::kCushion : EventKind::kJawWall, k);
+    }
+    // Nothing behind the first straight contact can happen first: search the rounded
+    // shapes (quartics) only up to it, and only those near the path.
+    window = std::min(window, own.time - s.t);
+    const auto jaws = table_.jaws();
+    for (int k = 0; k < static_cast<int>(jaws.size()); ++k) {
+      const JawCircle& jaw = jaws[static_cast<size_t>(k)];
+      if (PathDistanceBound(s.poly, window, jaw.centre) > jaw.radius + contact_distance_) continue;
+      // The knuckle meets the ball at the nose height too: centre distance
+      // r_jaw + R cos(theta), which DetectBallJaw computes from this "radius".
+      consider(DetectBallJaw(s.poly, jaw, contact_distance_, window), EventKind::kKnuckle, k);
+    }
+    const auto pockets = table_.pockets();
+    for (int k = 0; k < static_cast<int>(pockets.size()); ++k) {
+      const Pocket& p = pockets[static_cast<size_t>(k)];
+      if (PathDistanceBound(s.poly, window, p.capture_centre) > p.capture_radius) continue;
+      consider(DetectBallPocket(s.poly, p, window), EventKind::kPocket, k);
+    }
+  }
+  own_[i] = own;
+}
+
+void Simulator::RecomputePair(int i, int j) {
+  if (i > j) std::swap(i, j);
+  double& out = pair_[i][j];
+  out = kInf;
+  const Slot& a = slots_[i];
+  const Slot& b = slots_[j];
+  if (a.s.s == MotionState::kPocketed || b.s.s == MotionState::kPocketed) return;
+  if (!a.moving && !b.moving) return;
+  if (a.ignore_kind == EventKind::kBallBall && a.ignore_index == j &&
+      b.ignore_kind == EventKind::kBallBall && b.ignore_index == i) {
+    return;  // they just grazed; wait until one of them changes
+  }
+  const double t = std::max(a.t, b.t);
+  // Nothing after either ball's next own event matters: its motion changes there and
+  // its pairs are recomputed (own_ is always current when pairs are computed).
+  const double horizon = std::min({a.horizon, b.horizon, own_[i].time, own_[j].time,
+                                   params_.max_time});
+  const double window = horizon - t;
+  if (!(window >= 0)) return;
+  const BallState sa = StateAt(i, t), sb = StateAt(j, t);
+  const PositionPoly pa = a.t == t ? a.poly : PositionPolynomial(sa, params_.ball, params_.cloth);
+  const PositionPoly pb = b.t == t ? b.poly : PositionPolynomial(sb, params_.ball, params_.cloth);
+  // Cull on the relative path b - a, which must come within 2R of the origin.
+  PositionPoly rel;
+  rel.c = pb.c - pa.c;
+  rel.b = pb.b - pa.b;
+  rel.a = pb.a - pa.a;
+  if (PathDistanceBound(rel, window, Vec2::Zero()) > 2 * params_.ball.radius) {
+    ++pair_culls_;
+    return;
+  }
+  ++pair_checks_;
+  const double dt = DetectBallBall(pa, pb, params_.ball.radius, window);
+  if (std::isfinite(dt)) out = t + dt;
+}
+
+bool Simulator::Decided(int i) const {
+  if (slots_[i].moving) return false;  // at rest, spinning in place, or pocketed...
+  for (int j = 0; j < n_; ++j) {       // ... and no moving ball is about to hit it
+    if (j != i && std::isfinite(pair_[std::min(i, j)][std::max(i, j)])) return false;
+  }
+  return true;
+}
+
+double Simulator::TotalKineticEnergy() const {
+  double e = 0;
+  for (int i = 0; i < n_; ++i) e += KineticEnergy(StateAt(i, time_), params_.ball);
+  return e;
+}
+
+void Simulator::Record(const SimEvent& e) {
+  if (!record_) return;
+  SimEvent r = e;
+  r.kinetic_energy = TotalKineticEnergy();
+  events_.push_back(r);
+}
+
+SimStatus Simulator::Run(std::span<const BallState> balls, const StopRule& stop, bool record) {
+  record_ = record;
+  n_ = static_cast<int>(balls.size());
+  time_ = 0;
+  event_count_ = 0;
+  events_.clear();
+  impact_work_ = {};
+  pair_checks_ = pair_culls_ = 0;
+  final_.assign(balls.begin(), balls.end());
+  pocket_of_.assign(balls.size(), -1);
+  paths_.resize(balls.size());
+  for (auto& p : paths_) p.clear();
+  if (n_ > kMaxBalls) return SimStatus::kInvalidInput;
+  for (int i = 0; i < n_; ++i) {
+    const BallState& b = balls[static_cast<size_t>(i)];
+    if (!(b.r.allFinite() && b.v.allFinite() && b.w.allFinite())) return SimStatus::kInvalidInput;
+    for (int j = 0; j < i; ++j) {
+      if ((b.r - balls[static_cast<size_t>(j)].r).norm() <
+          2 * params_.ball.radius - kOverlapTolerance) {
+        return SimStatus::kInvalidInput;
+      }
+    }
+  }
+  for (int i = 0; i < n_; ++i) {
+    const BallState& b = balls[static_cast<size_t>(i)];
+    SetState(i, b.s == MotionState::kPocketed ? b : Settle(b, params_.ball), 0.0);
+  }
+  for (int i = 0; i < n_; ++i) RecomputeOwn(i);  // pair windows need every own event
+  for (int i = 0; i < n_; ++i) {
+    for (int j = i + 1; j < n_; ++j) RecomputePair(i, j);
+  }
+
+  auto changed = [&](int i) {
+    RecomputeOwn(i);
+    for (int j = 0; j < n_; ++j) {
+      if (j != i) RecomputePair(i, j);
+    }
+  };
+  SimStatus status = SimStatus::kAtRest;
+  while (true) {
+    if (!stop.Empty()) {
+      bool all = true;
+      for (std::int16_t b : stop.balls) {
+        if (b >= 0 && b < n_ && !Decided(b)) all = false;
+      }
+      if (all) {
+        status = SimStatus::kStopped;
+        break;
+      }
+    }
+    // The earliest event; ties go to pairs (lower indices first), then own events.
+    double te = kInf;
+    int bi = -1, bj = -1;
+    for (int i = 0; i < n_; ++i) {
+      for (int j = i + 1; j < n_; ++j) {
+        if (pair_[i][j] < te) te = pair_[i][j], bi = i, bj = j;
+      }
+    }
+    for (int i = 0; i < n_; ++i) {
+      if (own_[i].time < te) te = own_[i].time, bi = i, bj = -1;
+    }
+    if (!std::isfinite(te)) break;  // kAtRest
+    if (te > params_.max_time) {
+      time_ = params_.max_time;
+      status = SimStatus::kTimeLimit;
+      break;
+    }
+    if (event_count_ >= params_.max_events) {
+      status = SimStatus::kEventLimit;
+      break;
+    }
+    ++event_count_;
+    time_ = te;
+
+    SimEvent ev;
+    ev.time = te;
+    ev.ball = static_cast<std::int16_t>(bi);
+    if (bj >= 0) {  // ball-ball
+      ev.kind = EventKind::kBallBall;
+      ev.other = static_cast<std::int16_t>(bj);
+      const BallBallResolution r =
+          ResolveBallBallOnTable(StateAt(bi, te), StateAt(bj, te), params_.ball,
+                                 params_.ball_ball, params_.cloth, params_.ball_ball_solver);
+      impact_work_.steps += r.work.steps;
+      impact_work_.rhs_evals += r.work.rhs_evals;
+      if (r.status == ImpactStatus::kOk) {
+        SetState(bi, AfterImpact(r.a), te);
+        SetState(bj, AfterImpact(r.b), te);
+        changed(bi);
+        changed(bj);
+      } else if (r.status == ImpactStatus::kNotApproaching) {  // a graze
+        slots_[bi].ignore_kind = slots_[bj].ignore_kind = EventKind::kBallBall;
+        slots_[bi].ignore_index = bj;
+        slots_[bj].ignore_index = bi;
+        RecomputePair(bi, bj);
+      } else {
+        status = SimStatus::kSolverFailure;
+        break;
+      }
+      ev.state_after = slots_[bi].s.s;
+      Record(ev);
+      continue;
+    }
+    const Own own = own_[bi];
+    ev.kind = own.kind;
+    ev.where = static_cast<std::int16_t>(own.where);
+    const BallState s = StateAt(bi, te);
+    switch (own.kind) {
+      case EventKind::kTransition: {
+        // Evolve by the transition's own duration: te - t can come out a rounding
+        // short of it, which would leave a vanishing slide and repeat the event.
+        const BallState& from = slots_[bi].s;
+        SetState(bi, Evolve(from, TransitionTime(from, params_.ball, params_.cloth), params_.ball,
+                            params_.cloth),
+                 te);
+        changed(bi);
+        break;
+      }
+      case EventKind::kPocket: {
+        BallState p = s;
+        p.v.setZero();
+        p.w.setZero();
+        p.s = MotionState::kPocketed;
+        pocket_of_[static_cast<size_t>(bi)] = own.where;
+        SetState(bi, p, te);
+        changed(bi);
+        break;
+      }
+      case EventKind::kCushion:
+      case EventKind::kJawWall:
+      case EventKind::kKnuckle: {
+        Vec2 normal;
+        if (own.kind == EventKind::kKnuckle) {
+          normal = (s.r - table_.jaws()[static_cast<size_t>(own.where)].centre).normalized();
+        } else {
+          normal = table_.segments()[static_cast<size_t>(own.where)].normal;
+        }
+        const CushionResolution r = ResolveBallCushionOnTable(s, normal, params_.ball,
+                                                              params_.cushion, params_.cushion_solver);
+        impact_work_.steps += r.work.steps;
+        impact_work_.rhs_evals += r.work.rhs_evals;
+        if (r.status == ImpactStatus::kOk) {
+          SetState(bi, AfterImpact(r.ball), te);
+          changed(bi);
+        } else if (r.status == ImpactStatus::kNotApproaching) {  // a graze
+          slots_[bi].ignore_kind = own.kind;
+          slots_[bi].ignore_index = own.where;
+          RecomputeOwn(bi);
+        } else {
+          status = SimStatus::kSolverFailure;
+        }
+        break;
+      }
+      case EventKind::kBallBall: break;  // handled above
+    }
+    if (status == SimStatus::kSolverFailure) break;
+    ev.state_after = slots_[bi].s.s;
+    Record(ev);
+  }
+  for (int i = 0; i < n_; ++i) final_[static_cast<size_t>(i)] = StateAt(i, time_);
+  return status;
+}
+
+Vec2 Simulator::PositionAt(int i, double t) const {
+  const auto& knots = paths_[static_cast<size_t>(i)];
+  if (knots.empty()) return final_[static_cast<size_t>(i)].r;
+  size_t k = 0;
+  while (k + 1 < knots.size() && knots[k + 1].t <= t) ++k;
+  return EvolveThrough(knots[k].state, t - knots[k].t, params_.ball, params_.cloth).r;
+}
+
+}  // namespace snooker::physics

@@ -1,0 +1,186 @@
+// Event-driven simulation of a whole snooker table (detect -> evolve -> resolve ->
+// record, as pooltool's event-based simulate). Table frame: X across, Y along, Z up.
+//
+// Why it looks like this:
+//  * Between events every ball moves in closed form (physics/motion/motion.h), so the
+//    simulation jumps from event to event. Event times are polynomial roots
+//    (physics/events/detect.h): no tunnelling, no overlap, no time step.
+//  * Lazy state: each ball keeps its state at the time it last changed; nothing
+//    evolves a ball at rest that nothing reaches.
+//  * Event cache: each ball's next own event (motion transition, cushion nose, jaw
+//    wall, knuckle, pocket) and each pair's next contact are kept; after an event
+//    only the balls it changed are recomputed. A pair is checked only if the two can
+//    reach each other before either changes (a distance bound before any quartic),
+//    so two moving balls on a full table cost about what they cost on an empty one.
+//  * Early stop: the caller's StopRule ends the run once what it asks is decided.
+//  * Every run is capped in events and in simulated time and returns a status.
+// Deterministic: ties are broken by a fixed order (time, then kind, then indices).
+// Run() allocates only while its buffers grow; reuse a Simulator for many runs.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include "physics/impact/ball_ball.h"
+#include "physics/impact/ball_cushion.h"
+#include "physics/core/ball_state.h"
+#include "physics/motion/motion.h"
+#include "physics/core/params.h"
+#include "physics/table/table.h"
+
+namespace snooker::physics {
+
+struct SimParams {
+  BallParams ball;
+  ClothParams cloth;
+  BallBallParams ball_ball;
+  /// Cushion model (Mathavan et al. 2010) with the restitution curve fitted to the
+  /// measured rebounds of Mathavan et al. (2009) (MeasuredReboundCurve): the paper's
+  /// constant e_e = 0.98 rebounds up to 0.4 m/s too fast at 3.5 m/s. Its
+  /// contact_height is replaced by the table's cushion_height (TableSpec), the one
+  /// source of the nose geometry.
+  CushionParams cushion = [] {
+    CushionParams c;
+    c.restitution_curve = MeasuredReboundCurve();
+    return c;
+  }();
+  ImpulseSolverOptions ball_ball_solver;
+  ImpulseSolverOptions cushion_solver;
+  /// After an impact, a ball whose centre and contact point both move slower than
+  /// this is set at rest (its Z spin kept). m/s. Without it a slow ball pushing a
+  /// resting one makes an endless cascade of ever smaller collisions (inelastic
+  /// collapse). A rolling ball at 1e-4 m/s would travel v^2 / (2 mu_r g) ~ 4e-8 m
+  /// more: far below anything measurable. 0 disables it.
+  double rest_speed = 1e-4;
+  /// Cap on resolved events in one run.
+  std::int32_t max_events = 5000;
+  /// Cap on simulated time, s.
+  double max_time = 600.0;
+};
+
+enum class EventKind : std::uint8_t {
+  kBallBall,    ///< two balls collide
+  kCushion,     ///< a ball hits a straight cushion nose
+  kJawWall,     ///< a ball hits a straight jaw wall inside a pocket mouth
+  kKnuckle,     ///< a ball hits the rounded end of a jaw
+  kPocket,      ///< a ball drops into a pocket
+  kTransition,  ///< a ball's motion changes (sliding -> rolling -> spinning -> rest)
+};
+const char* ToString(EventKind k);
+
+struct SimEvent {
+  double time = 0;  ///< s from the start of the run
+  EventKind kind = EventKind::kTransition;
+  std::int16_t ball = -1;   ///< the ball (for kBallBall, the lower index)
+  std::int16_t other = -1;  ///< kBallBall: the other ball
+  /// kCushion, kJawWall: index into TableModel::segments(); kKnuckle: into jaws();
+  /// kPocket: into pockets(); otherwise -1.
+  std::int16_t where = -1;
+  MotionState state_after = MotionState::kStationary;  ///< of `ball`
+  double kinetic_energy = 0;  ///< of all balls just after the event, J
+};
+
+enum class SimStatus : std::uint8_t {
+  kAtRest,        ///< every ball is at rest or pocketed
+  kStopped,       ///< the StopRule was met
+  kEventLimit,    ///< max_events reached
+  kTimeLimit,     ///< max_time reached with balls still moving
+  kInvalidInput,  ///< a ball state is not finite or balls overlap; nothing was run
+  kSolverFailure, ///< an impact solver failed (its step cap); the run stopped there
+};
+const char* ToString(SimStatus s);
+
+/// Ends a run early once what the caller asks is decided: every listed ball is
+/// pocketed, or at rest (stationary or spinning) with no contact predicted for it
+/// in the moving balls' current motion phases (a ball that a later bounce brings
+/// back is not foreseen). Empty: run until all balls are at rest.
+struct StopRule {
+  std::int16_t balls[4] = {-1, -1, -1, -1};
+  bool Empty() const { return balls[0] < 0; }
+};
+
+/// A point of a ball's path: its state from time t until the next knot.
+struct PathKnot {
+  double t = 0;
+  BallState state;
+};
+
+class Simulator {
+ public:
+  Simulator(const TableModel& table, const SimParams& params);
+
+  /// Simulates from `balls` at t = 0 (at most kMaxBalls). With `record` the events
+  /// and every ball's path knots are kept for events() and path().
+  SimStatus Run(std::span<const BallState> balls, const StopRule& stop = {},
+                bool record = true);
+
+  static constexpr int kMaxBalls = 32;
+
+  double end_time() const { return time_; }
+  std::int32_t event_count() const { return event_count_; }
+  /// Recorded events (Run with record = true).
+  std::span<const SimEvent> events() const { return events_; }
+  /// Every ball's state at end_time() (pocketed balls: where they dropped).
+  std::span<const BallState> final_balls() const { return final_; }
+  /// Index into TableModel::pockets() of the pocket ball i fell into, or -1.
+  int pocket_of(int i) const { return pocket_of_[static_cast<size_t>(i)]; }
+  /// Ball i's path knots (Run with record = true), first at t = 0.
+  std::span<const PathKnot> path(int i) const { return paths_[static_cast<size_t>(i)]; }
+  /// Position of ball i at time t in [0, end_time()] from the recorded path. m.
+  Vec2 PositionAt(int i, double t) const;
+  /// Work of the impact solvers during the last run.
+  const ImpulseWork& impact_work() const { return impact_work_; }
+  /// Pair contact checks that reached the quartic solver / were culled by distance.
+  std::int64_t pair_checks() const { return pair_checks_; }
+  std::int64_t pair_culls() const { return pair_culls_; }
+
+ private:
+  struct Slot {
+    BallState s;      // state at time t
+    double t = 0;     // when s was last set
+    double horizon;   // absolute time of the next motion transition (or +inf)
+    PositionPoly poly;  // from time t
+    bool moving = false;
+    // A contact that just resolved as "not approaching" is ignored until this ball
+    // changes again (it grazes the contact; re-detecting it would repeat at once).
+    EventKind ignore_kind = EventKind::kTransition;
+    int ignore_index = -1;
+  };
+  struct Own {  // a ball's next own event
+    double time = std::numeric_limits<double>::infinity();
+    EventKind kind = EventKind::kTransition;
+    int where = -1;
+  };
+
+  BallState StateAt(int i, double t) const;
+  BallState AfterImpact(const BallState& s) const;  // applies rest_speed
+  void SetState(int i, const BallState& s, double t);  // and mark for recompute
+  void RecomputeOwn(int i);
+  void RecomputePair(int i, int j);
+  double Reach(int i, double dt) const;  // bound on ball i's travel in dt seconds
+  bool Decided(int i) const;
+  void Record(const SimEvent& e);
+  double TotalKineticEnergy() const;
+
+  const TableModel& table_;
+  SimParams params_;
+  double contact_distance_ = 0;  // ball centre to cushion nose at contact, m
+  int n_ = 0;
+  double time_ = 0;
+  std::int32_t event_count_ = 0;
+  bool record_ = true;
+  Slot slots_[kMaxBalls];
+  Own own_[kMaxBalls];
+  // Upper triangle: next contact time of (i < j); +inf when none.
+  double pair_[kMaxBalls][kMaxBalls];
+  std::vector<SimEvent> events_;
+  std::vector<BallState> final_;
+  std::vector<int> pocket_of_;
+  std::vector<std::vector<PathKnot>> paths_;
+  ImpulseWork impact_work_;
+  std::int64_t pair_checks_ = 0, pair_culls_ = 0;
+};
+
+}  // namespace snooker::physics
