@@ -8,14 +8,18 @@
 // contact checks that reached the quartic solver and that the bounds culled.
 #include <benchmark/benchmark.h>
 
-#include "bench/simulate_scenarios.h"
+#include "tests/support/scenarios.h"
 
 namespace snooker::physics::bench {
 namespace {
 
+using scenarios::BreakOff;
+using scenarios::TwoBallPot;
+
 void Run(benchmark::State& state, const std::vector<BallState>& balls) {
-  Simulator sim(Table(), SimParams{});
-  for (auto _ : state) benchmark::DoNotOptimize(sim.Run(balls, {}, /*record=*/false));
+  Simulator sim(DefaultTable(), SimParams{});
+  const RunOptions lean = RunOptions::Lean();
+  for (auto _ : state) benchmark::DoNotOptimize(sim.Run(balls, lean));
   state.counters["balls"] = static_cast<double>(balls.size());
   state.counters["events"] = sim.event_count();
   state.counters["impact_rhs"] = sim.impact_work().rhs_evals;

@@ -28,7 +28,7 @@ v1::SimulateRequest DemoShot() {
     b->mutable_position()->set_x(x);
     b->mutable_position()->set_y(y);
   };
-  const physics::TableModel& table = server::DefaultTable();
+  const physics::TableModel& table = physics::DefaultTable();
   const physics::Vec2 black = table.spot(physics::Colour::kBlack);
   add("cue", v1::CUE, black.x() + 0.45, black.y() - 0.30);
   add("black", v1::BLACK, black.x(), black.y());
@@ -117,7 +117,7 @@ int RunDemo(const std::vector<std::string>& argv, std::ostream& out, std::ostrea
     }
   }
   if (!svg_path->empty()) {
-    std::ofstream(*svg_path) << ShotSvg(server::DefaultTable(), sim.table(), s,
+    std::ofstream(*svg_path) << ShotSvg(physics::DefaultTable(), sim.table(), s,
                                         physics::BallParams{}.radius);
     out << "  drawn in " << *svg_path << "\n";
   }

@@ -122,7 +122,7 @@ int RunSimulate(const std::vector<std::string>& argv, std::ostream& out, std::os
   }
   if (!svg_path->empty()) {
     std::ofstream f(*svg_path);
-    f << ShotSvg(server::DefaultTable(), req.table(), resp, physics::BallParams{}.radius);
+    f << ShotSvg(physics::DefaultTable(), req.table(), resp, physics::BallParams{}.radius);
     if (!f) {
       err << "snooker simulate: cannot write '" << *svg_path << "'\n";
       return kExitFailure;

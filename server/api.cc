@@ -63,11 +63,6 @@ ApiStatus Collide(const v1::CollideRequest& request, v1::CollideResponse* respon
   return ApiStatus::Ok();
 }
 
-const physics::TableModel& DefaultTable() {
-  static const physics::TableModel table;
-  return table;
-}
-
 namespace {
 
 v1::EventKind EventKindToProto(physics::EventKind k) {
@@ -85,7 +80,7 @@ v1::EventKind EventKindToProto(physics::EventKind k) {
 }  // namespace
 
 ApiStatus Simulate(const v1::SimulateRequest& request, v1::SimulateResponse* response) {
-  const physics::TableModel& table = DefaultTable();
+  const physics::TableModel& table = physics::DefaultTable();
   const std::vector<FieldError> errors = ValidateSimulateRequest(request, table);
   if (!errors.empty()) return ApiStatus::Invalid(Describe(errors));
   const v1::TableState& state = request.table();

@@ -13,9 +13,6 @@ namespace snooker::server {
 /// One ball-ball collision (Mathavan et al. 2014) and the slip phases after it.
 ApiStatus Collide(const v1::CollideRequest& request, v1::CollideResponse* response);
 
-/// The built-in full-size table (physics/table/table.h defaults), shared and immutable.
-const physics::TableModel& DefaultTable();
-
 /// A shot on a table, simulated until every ball is at rest or pocketed.
 ApiStatus Simulate(const v1::SimulateRequest& request, v1::SimulateResponse* response);
 

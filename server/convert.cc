@@ -140,15 +140,8 @@ int CueIndex(const v1::TableState& table) {
   return -1;
 }
 
-physics::BallState ShotState(const v1::Shot& shot, const physics::Vec2& position) {
-  const double h = physics::DegToRad(shot.heading_deg());
-  const physics::Vec2 dir(std::cos(h), std::sin(h));
-  physics::BallState s;
-  s.r = position;
-  s.v = physics::Vec3(shot.speed() * dir.x(), shot.speed() * dir.y(), 0.0);
-  // z x heading = (-sin h, cos h, 0): positive topspin rolls the ball forwards.
-  s.w = physics::Vec3(-shot.topspin() * dir.y(), shot.topspin() * dir.x(), shot.sidespin());
-  return s;
+physics::Shot ShotFrom(const v1::Shot& shot) {
+  return {shot.speed(), physics::DegToRad(shot.heading_deg()), shot.topspin(), shot.sidespin()};
 }
 
 std::vector<physics::BallState> BallStatesFrom(const v1::TableState& table, const v1::Shot& shot) {
@@ -156,7 +149,7 @@ std::vector<physics::BallState> BallStatesFrom(const v1::TableState& table, cons
   for (const v1::Ball& b : table.balls()) {
     const physics::Vec2 r(b.position().x(), b.position().y());
     if (b.kind() == v1::CUE) {
-      balls.push_back(ShotState(shot, r));
+      balls.push_back(physics::StruckBall(ShotFrom(shot), r));
     } else {
       physics::BallState s;
       s.r = r;

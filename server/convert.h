@@ -8,6 +8,7 @@
 
 #include "physics/impact/ball_ball.h"
 #include "physics/core/ball_state.h"
+#include "physics/core/shot.h"
 #include "physics/core/params.h"
 #include "physics/sim/simulate.h"
 #include "physics/table/table.h"
@@ -45,8 +46,8 @@ std::vector<FieldError> ValidateSimulateRequest(const v1::SimulateRequest& reque
 /// gets the shot: v = speed (cos h, sin h), w = topspin (z x heading) + sidespin z.
 std::vector<physics::BallState> BallStatesFrom(const v1::TableState& table, const v1::Shot& shot);
 
-/// The cue ball's velocity and spin right after the cue strikes it.
-physics::BallState ShotState(const v1::Shot& shot, const physics::Vec2& position);
+/// The shot in library units (heading in rad).
+physics::Shot ShotFrom(const v1::Shot& shot);
 
 /// Simulation parameters from the request's options (defaults where unset).
 physics::SimParams SimParamsFrom(const v1::SimulationOptions& options);

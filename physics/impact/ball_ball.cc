@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "physics/core/limits.h"
 #include "physics/impact/ball_ball_detail.h"
 #include "physics/impact/ball_ball_impulse.h"
 
@@ -17,7 +18,7 @@ bool AllFinite(const ImpactState& s) {
 bool OptionsValid(const ImpulseSolverOptions& o) {
   if (o.max_steps <= 0) return false;
   if (o.integrator == ImpulseIntegrator::kFixedStep) return o.steps > 0;
-  return std::isfinite(o.tolerance) && o.tolerance >= 1e-15 && o.tolerance <= 1e-1;
+  return limits::kTolerance.Contains(o.tolerance);
 }
 
 // The same rules as ValidateBallParams / ValidateBallBallParams, without building
@@ -84,10 +85,10 @@ std::string ValidateImpact(const ImpactState& in, const BallParams& ball,
     add("steps = " + std::to_string(options.steps) + " (must be > 0)");
   }
   if (options.integrator == ImpulseIntegrator::kAdaptive &&
-      !(std::isfinite(options.tolerance) && options.tolerance >= 1e-15 &&
-        options.tolerance <= 1e-1)) {
+      !limits::kTolerance.Contains(options.tolerance)) {
     std::ostringstream m;
-    m << "tolerance = " << options.tolerance << " (must be in [1e-15, 0.1])";
+    m << "tolerance = " << options.tolerance << " (must be in [" << limits::kTolerance.lo << ", "
+      << limits::kTolerance.hi << "])";
     add(m.str());
   }
   return out.str();

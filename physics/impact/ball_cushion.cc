@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "physics/core/limits.h"
 #include "physics/impact/ball_cushion_impulse.h"
 
 namespace snooker::physics {
@@ -42,7 +43,7 @@ OptionChecks CheckOptions(const ImpulseSolverOptions& o) {
   k.max_steps = o.max_steps > 0;
   k.steps = o.integrator != ImpulseIntegrator::kFixedStep || o.steps > 0;
   k.tolerance = o.integrator != ImpulseIntegrator::kAdaptive ||
-                (std::isfinite(o.tolerance) && o.tolerance >= 1e-15 && o.tolerance <= 1e-1);
+                (limits::kTolerance.Contains(o.tolerance));
   return k;
 }
 
@@ -167,7 +168,8 @@ std::string ValidateCushionImpact(const BallMotion& in, const BallParams& ball,
   if (!k.steps) Add(out, "steps = " + std::to_string(options.steps) + " (must be > 0)");
   if (!k.tolerance) {
     std::ostringstream m;
-    m << "tolerance = " << options.tolerance << " (must be in [1e-15, 0.1])";
+    m << "tolerance = " << options.tolerance << " (must be in [" << limits::kTolerance.lo << ", "
+      << limits::kTolerance.hi << "])";
     Add(out, m.str());
   }
   return out.str();

@@ -42,12 +42,14 @@ const char* ToString(EventKind k) {
 
 const char* ToString(SimStatus s) {
   switch (s) {
+    case SimStatus::kRunning: return "running";
     case SimStatus::kAtRest: return "at rest";
-    case SimStatus::kStopped: return "stopped";
     case SimStatus::kEventLimit: return "event limit reached";
     case SimStatus::kTimeLimit: return "time limit reached";
     case SimStatus::kInvalidInput: return "invalid input";
     case SimStatus::kSolverFailure: return "impact solver failure";
+    case SimStatus::kInterrupted: return "interrupted";
+    case SimStatus::kEventOrder: return "event before the current time (a bug)";
   }
   return "unknown";
 }
@@ -95,7 +97,7 @@ void Simulator::SetState(int i, const BallState& state, double t) {
                   : t + TransitionTime(state, params_.ball, params_.cloth);
   s.poly = PositionPolynomial(state, params_.ball, params_.cloth);
   s.ignore_index = -1;
-  if (record_) paths_[static_cast<size_t>(i)].push_back({t, state});
+  if (options_.record_paths) paths_[static_cast<size_t>(i)].push_back({t, state});
 }
 
 void Simulator::RecomputeOwn(int i) {
@@ -201,32 +203,50 @@ double Simulator::TotalKineticEnergy() const {
 }
 
 void Simulator::Record(const SimEvent& e) {
-  if (!record_) return;
+  last_event_ = e;
+  if (!options_.record_events) return;
   SimEvent r = e;
   r.kinetic_energy = TotalKineticEnergy();
   events_.push_back(r);
 }
 
-SimStatus Simulator::Run(std::span<const BallState> balls, const StopRule& stop, bool record) {
-  record_ = record;
+void Simulator::Changed(int i) {
+  RecomputeOwn(i);
+  for (int j = 0; j < n_; ++j) {
+    if (j != i) RecomputePair(i, j);
+  }
+}
+
+SimStatus Simulator::Run(std::span<const BallState> balls, const RunOptions& options) {
+  SimStatus status = Start(balls, options);
+  while (status == SimStatus::kRunning) status = Step();
+  return status;
+}
+
+SimStatus Simulator::Start(std::span<const BallState> balls, const RunOptions& options) {
+  options_ = options;
   n_ = static_cast<int>(balls.size());
   time_ = 0;
   event_count_ = 0;
   events_.clear();
+  last_event_ = {};
   impact_work_ = {};
   pair_checks_ = pair_culls_ = 0;
   final_.assign(balls.begin(), balls.end());
   pocket_of_.assign(balls.size(), -1);
   paths_.resize(balls.size());
   for (auto& p : paths_) p.clear();
-  if (n_ > kMaxBalls) return SimStatus::kInvalidInput;
+  status_ = SimStatus::kRunning;
+  if (n_ > kMaxBalls) return Finish(SimStatus::kInvalidInput);
   for (int i = 0; i < n_; ++i) {
     const BallState& b = balls[static_cast<size_t>(i)];
-    if (!(b.r.allFinite() && b.v.allFinite() && b.w.allFinite())) return SimStatus::kInvalidInput;
+    if (!(b.r.allFinite() && b.v.allFinite() && b.w.allFinite())) {
+      return Finish(SimStatus::kInvalidInput);
+    }
     for (int j = 0; j < i; ++j) {
       if ((b.r - balls[static_cast<size_t>(j)].r).norm() <
           2 * params_.ball.radius - kOverlapTolerance) {
-        return SimStatus::kInvalidInput;
+        return Finish(SimStatus::kInvalidInput);
       }
     }
   }
@@ -238,136 +258,142 @@ SimStatus Simulator::Run(std::span<const BallState> balls, const StopRule& stop,
   for (int i = 0; i < n_; ++i) {
     for (int j = i + 1; j < n_; ++j) RecomputePair(i, j);
   }
+  return status_;
+}
 
-  auto changed = [&](int i) {
-    RecomputeOwn(i);
-    for (int j = 0; j < n_; ++j) {
-      if (j != i) RecomputePair(i, j);
+SimStatus Simulator::Finish(SimStatus status) {
+  status_ = status;
+  if (status != SimStatus::kInvalidInput) {
+    for (int i = 0; i < n_; ++i) final_[static_cast<size_t>(i)] = StateAt(i, time_);
+  }
+  return status;
+}
+
+SimStatus Simulator::Step() {
+  if (status_ != SimStatus::kRunning) return status_;
+  const Interrupt& stop = options_.interrupt;
+  if (stop.check_every > 0 && event_count_ % stop.check_every == 0 && event_count_ > 0) {
+    if ((stop.cancelled != nullptr && stop.cancelled->load(std::memory_order_relaxed)) ||
+        (stop.deadline != std::chrono::steady_clock::time_point::max() &&
+         std::chrono::steady_clock::now() >= stop.deadline)) {
+      return Finish(SimStatus::kInterrupted);
     }
-  };
-  SimStatus status = SimStatus::kAtRest;
-  while (true) {
-    if (!stop.Empty()) {
-      bool all = true;
-      for (std::int16_t b : stop.balls) {
-        if (b >= 0 && b < n_ && !Decided(b)) all = false;
-      }
-      if (all) {
-        status = SimStatus::kStopped;
-        break;
-      }
+  }
+  // Next event: the earliest; ties go to pairs (lower indices first), then own events.
+  double te = kInf;
+  int bi = -1, bj = -1;
+  for (int i = 0; i < n_; ++i) {
+    for (int j = i + 1; j < n_; ++j) {
+      if (pair_[i][j] < te) te = pair_[i][j], bi = i, bj = j;
     }
-    // The earliest event; ties go to pairs (lower indices first), then own events.
-    double te = kInf;
-    int bi = -1, bj = -1;
-    for (int i = 0; i < n_; ++i) {
-      for (int j = i + 1; j < n_; ++j) {
-        if (pair_[i][j] < te) te = pair_[i][j], bi = i, bj = j;
-      }
-    }
-    for (int i = 0; i < n_; ++i) {
-      if (own_[i].time < te) te = own_[i].time, bi = i, bj = -1;
-    }
-    if (!std::isfinite(te)) break;  // kAtRest
-    if (te > params_.max_time) {
-      time_ = params_.max_time;
-      status = SimStatus::kTimeLimit;
+  }
+  for (int i = 0; i < n_; ++i) {
+    if (own_[i].time < te) te = own_[i].time, bi = i, bj = -1;
+  }
+  if (!std::isfinite(te)) return Finish(SimStatus::kAtRest);
+  if (te > params_.max_time) {
+    time_ = params_.max_time;
+    return Finish(SimStatus::kTimeLimit);
+  }
+  if (event_count_ >= params_.max_events) return Finish(SimStatus::kEventLimit);
+  if (te < time_) return Finish(SimStatus::kEventOrder);
+  ++event_count_;
+  // Evolve: nothing to do, each ball is evaluated lazily at te (StateAt).
+  time_ = te;
+  // Resolve and record.
+  const SimStatus status = bj >= 0 ? ResolvePair(bi, bj, te) : ResolveOwn(bi, te);
+  if (status != SimStatus::kRunning) return Finish(status);
+  return SimStatus::kRunning;
+}
+
+SimStatus Simulator::ResolvePair(int bi, int bj, double te) {
+  SimEvent ev;
+  ev.time = te;
+  ev.kind = EventKind::kBallBall;
+  ev.ball = static_cast<std::int16_t>(bi);
+  ev.other = static_cast<std::int16_t>(bj);
+  const BallBallResolution r =
+      ResolveBallBallOnTable(StateAt(bi, te), StateAt(bj, te), params_.ball, params_.ball_ball,
+                             params_.cloth, params_.ball_ball_solver);
+  impact_work_.steps += r.work.steps;
+  impact_work_.rhs_evals += r.work.rhs_evals;
+  if (r.status == ImpactStatus::kOk) {
+    SetState(bi, AfterImpact(r.a), te);
+    SetState(bj, AfterImpact(r.b), te);
+    Changed(bi);
+    Changed(bj);
+  } else if (r.status == ImpactStatus::kNotApproaching) {  // a graze
+    slots_[bi].ignore_kind = slots_[bj].ignore_kind = EventKind::kBallBall;
+    slots_[bi].ignore_index = bj;
+    slots_[bj].ignore_index = bi;
+    RecomputePair(bi, bj);
+  } else {
+    return SimStatus::kSolverFailure;
+  }
+  ev.state_after = slots_[bi].s.s;
+  Record(ev);
+  return SimStatus::kRunning;
+}
+
+SimStatus Simulator::ResolveOwn(int bi, double te) {
+  const Own own = own_[bi];
+  SimEvent ev;
+  ev.time = te;
+  ev.ball = static_cast<std::int16_t>(bi);
+  ev.kind = own.kind;
+  ev.where = static_cast<std::int16_t>(own.where);
+  const BallState s = StateAt(bi, te);
+  switch (own.kind) {
+    case EventKind::kTransition: {
+      // Evolve by the transition's own duration: te - t can come out a rounding
+      // short of it, which would leave a vanishing slide and repeat the event.
+      const BallState& from = slots_[bi].s;
+      SetState(bi, Evolve(from, TransitionTime(from, params_.ball, params_.cloth), params_.ball,
+                          params_.cloth),
+               te);
+      Changed(bi);
       break;
     }
-    if (event_count_ >= params_.max_events) {
-      status = SimStatus::kEventLimit;
+    case EventKind::kPocket: {
+      BallState p = s;
+      p.v.setZero();
+      p.w.setZero();
+      p.s = MotionState::kPocketed;
+      pocket_of_[static_cast<size_t>(bi)] = own.where;
+      SetState(bi, p, te);
+      Changed(bi);
       break;
     }
-    ++event_count_;
-    time_ = te;
-
-    SimEvent ev;
-    ev.time = te;
-    ev.ball = static_cast<std::int16_t>(bi);
-    if (bj >= 0) {  // ball-ball
-      ev.kind = EventKind::kBallBall;
-      ev.other = static_cast<std::int16_t>(bj);
-      const BallBallResolution r =
-          ResolveBallBallOnTable(StateAt(bi, te), StateAt(bj, te), params_.ball,
-                                 params_.ball_ball, params_.cloth, params_.ball_ball_solver);
+    case EventKind::kCushion:
+    case EventKind::kJawWall:
+    case EventKind::kKnuckle: {
+      Vec2 normal;
+      if (own.kind == EventKind::kKnuckle) {
+        normal = (s.r - table_.jaws()[static_cast<size_t>(own.where)].centre).normalized();
+      } else {
+        normal = table_.segments()[static_cast<size_t>(own.where)].normal;
+      }
+      const CushionResolution r = ResolveBallCushionOnTable(s, normal, params_.ball,
+                                                            params_.cushion, params_.cushion_solver);
       impact_work_.steps += r.work.steps;
       impact_work_.rhs_evals += r.work.rhs_evals;
       if (r.status == ImpactStatus::kOk) {
-        SetState(bi, AfterImpact(r.a), te);
-        SetState(bj, AfterImpact(r.b), te);
-        changed(bi);
-        changed(bj);
+        SetState(bi, AfterImpact(r.ball), te);
+        Changed(bi);
       } else if (r.status == ImpactStatus::kNotApproaching) {  // a graze
-        slots_[bi].ignore_kind = slots_[bj].ignore_kind = EventKind::kBallBall;
-        slots_[bi].ignore_index = bj;
-        slots_[bj].ignore_index = bi;
-        RecomputePair(bi, bj);
+        slots_[bi].ignore_kind = own.kind;
+        slots_[bi].ignore_index = own.where;
+        RecomputeOwn(bi);
       } else {
-        status = SimStatus::kSolverFailure;
-        break;
+        return SimStatus::kSolverFailure;
       }
-      ev.state_after = slots_[bi].s.s;
-      Record(ev);
-      continue;
+      break;
     }
-    const Own own = own_[bi];
-    ev.kind = own.kind;
-    ev.where = static_cast<std::int16_t>(own.where);
-    const BallState s = StateAt(bi, te);
-    switch (own.kind) {
-      case EventKind::kTransition: {
-        // Evolve by the transition's own duration: te - t can come out a rounding
-        // short of it, which would leave a vanishing slide and repeat the event.
-        const BallState& from = slots_[bi].s;
-        SetState(bi, Evolve(from, TransitionTime(from, params_.ball, params_.cloth), params_.ball,
-                            params_.cloth),
-                 te);
-        changed(bi);
-        break;
-      }
-      case EventKind::kPocket: {
-        BallState p = s;
-        p.v.setZero();
-        p.w.setZero();
-        p.s = MotionState::kPocketed;
-        pocket_of_[static_cast<size_t>(bi)] = own.where;
-        SetState(bi, p, te);
-        changed(bi);
-        break;
-      }
-      case EventKind::kCushion:
-      case EventKind::kJawWall:
-      case EventKind::kKnuckle: {
-        Vec2 normal;
-        if (own.kind == EventKind::kKnuckle) {
-          normal = (s.r - table_.jaws()[static_cast<size_t>(own.where)].centre).normalized();
-        } else {
-          normal = table_.segments()[static_cast<size_t>(own.where)].normal;
-        }
-        const CushionResolution r = ResolveBallCushionOnTable(s, normal, params_.ball,
-                                                              params_.cushion, params_.cushion_solver);
-        impact_work_.steps += r.work.steps;
-        impact_work_.rhs_evals += r.work.rhs_evals;
-        if (r.status == ImpactStatus::kOk) {
-          SetState(bi, AfterImpact(r.ball), te);
-          changed(bi);
-        } else if (r.status == ImpactStatus::kNotApproaching) {  // a graze
-          slots_[bi].ignore_kind = own.kind;
-          slots_[bi].ignore_index = own.where;
-          RecomputeOwn(bi);
-        } else {
-          status = SimStatus::kSolverFailure;
-        }
-        break;
-      }
-      case EventKind::kBallBall: break;  // handled above
-    }
-    if (status == SimStatus::kSolverFailure) break;
-    ev.state_after = slots_[bi].s.s;
-    Record(ev);
+    case EventKind::kBallBall: break;  // ResolvePair
   }
-  for (int i = 0; i < n_; ++i) final_[static_cast<size_t>(i)] = StateAt(i, time_);
-  return status;
+  ev.state_after = slots_[bi].s.s;
+  Record(ev);
+  return SimStatus::kRunning;
 }
 
 Vec2 Simulator::PositionAt(int i, double t) const {

@@ -12,12 +12,15 @@
 //    only the balls it changed are recomputed. A pair is checked only if the two can
 //    reach each other before either changes (a distance bound before any quartic),
 //    so two moving balls on a full table cost about what they cost on an empty one.
-//  * Early stop: the caller's StopRule ends the run once what it asks is decided.
+//  * Early stop: a caller that needs only part of the outcome drives Step() itself
+//    and ends the run once that is decided (Decided(), last_event()).
 //  * Every run is capped in events and in simulated time and returns a status.
 // Deterministic: ties are broken by a fixed order (time, then kind, then indices).
 // Run() allocates only while its buffers grow; reuse a Simulator for many runs.
 #pragma once
 
+#include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -26,6 +29,7 @@
 #include "physics/impact/ball_ball.h"
 #include "physics/impact/ball_cushion.h"
 #include "physics/core/ball_state.h"
+#include "physics/core/limits.h"
 #include "physics/motion/motion.h"
 #include "physics/core/params.h"
 #include "physics/table/table.h"
@@ -83,22 +87,43 @@ struct SimEvent {
 };
 
 enum class SimStatus : std::uint8_t {
+  kRunning,       ///< Step(): an event was processed and the run goes on
   kAtRest,        ///< every ball is at rest or pocketed
-  kStopped,       ///< the StopRule was met
   kEventLimit,    ///< max_events reached
   kTimeLimit,     ///< max_time reached with balls still moving
   kInvalidInput,  ///< a ball state is not finite or balls overlap; nothing was run
   kSolverFailure, ///< an impact solver failed (its step cap); the run stopped there
+  kInterrupted,   ///< RunOptions' deadline passed or its cancel flag was set
+  /// A broken invariant of the event loop (an event scheduled before the current
+  /// time): a bug, reported rather than hidden behind the event cap.
+  kEventOrder,
 };
 const char* ToString(SimStatus s);
 
-/// Ends a run early once what the caller asks is decided: every listed ball is
-/// pocketed, or at rest (stationary or spinning) with no contact predicted for it
-/// in the moving balls' current motion phases (a ball that a later bounce brings
-/// back is not foreseen). Empty: run until all balls are at rest.
-struct StopRule {
-  std::int16_t balls[4] = {-1, -1, -1, -1};
-  bool Empty() const { return balls[0] < 0; }
+/// Ends a long run from outside: checked every `check_every` events (a clock read
+/// costs about 20 ns, an event about a microsecond).
+struct Interrupt {
+  /// Stop with kInterrupted once the steady clock passes this.
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+  /// Stop with kInterrupted once this is true (set from another thread). Optional.
+  const std::atomic<bool>* cancelled = nullptr;
+  std::int32_t check_every = 16;
+};
+
+struct RunOptions {
+  /// Keep every event for events().
+  bool record_events = true;
+  /// Keep every ball's path knots for path() and PositionAt().
+  bool record_paths = true;
+  Interrupt interrupt;
+
+  /// Neither events nor paths: the cheapest run, for a search that needs only the
+  /// outcome (final_balls(), pocket_of()).
+  static RunOptions Lean() {
+    RunOptions o;
+    o.record_events = o.record_paths = false;
+    return o;
+  }
 };
 
 /// A point of a ball's path: its state from time t until the next knot.
@@ -111,22 +136,40 @@ class Simulator {
  public:
   Simulator(const TableModel& table, const SimParams& params);
 
-  /// Simulates from `balls` at t = 0 (at most kMaxBalls). With `record` the events
-  /// and every ball's path knots are kept for events() and path().
-  SimStatus Run(std::span<const BallState> balls, const StopRule& stop = {},
-                bool record = true);
+  /// Simulates from `balls` at t = 0 (at most kMaxBalls) until every ball is at rest
+  /// or pocketed, a cap is reached or the run is interrupted: Start, then Step until
+  /// it returns anything but kRunning.
+  SimStatus Run(std::span<const BallState> balls, const RunOptions& options = {});
 
-  static constexpr int kMaxBalls = 32;
+  /// Sets up a run from `balls` at t = 0: kRunning, or kInvalidInput (too many
+  /// balls, a state that is not finite, two balls overlapping). A caller that ends a
+  /// run as soon as its outcome is decided (a planner) drives Step itself.
+  SimStatus Start(std::span<const BallState> balls, const RunOptions& options = {});
+  /// Processes the next event (detect, evolve, resolve, record) and returns kRunning,
+  /// or ends the run and returns its final status; after the end it returns that
+  /// status again. final_balls() is current after every Step.
+  SimStatus Step();
+  /// The event Step last processed.
+  const SimEvent& last_event() const { return last_event_; }
+  /// True when ball i is pocketed, or at rest (stationary or spinning) with no
+  /// contact predicted for it in the moving balls' current motion phases (a ball
+  /// that a later bounce brings back is not foreseen).
+  bool Decided(int i) const;
+
+  static constexpr int kMaxBalls = limits::kMaxBalls;
+
+  int ball_count() const { return n_; }
 
   double end_time() const { return time_; }
   std::int32_t event_count() const { return event_count_; }
-  /// Recorded events (Run with record = true).
+  /// Recorded events (RunOptions::record_events).
   std::span<const SimEvent> events() const { return events_; }
-  /// Every ball's state at end_time() (pocketed balls: where they dropped).
+  /// Every ball's state at end_time() (pocketed balls: where they dropped); during
+  /// a run driven by Step, at the time of the last event.
   std::span<const BallState> final_balls() const { return final_; }
   /// Index into TableModel::pockets() of the pocket ball i fell into, or -1.
   int pocket_of(int i) const { return pocket_of_[static_cast<size_t>(i)]; }
-  /// Ball i's path knots (Run with record = true), first at t = 0.
+  /// Ball i's path knots (RunOptions::record_paths), first at t = 0.
   std::span<const PathKnot> path(int i) const { return paths_[static_cast<size_t>(i)]; }
   /// Position of ball i at time t in [0, end_time()] from the recorded path. m.
   Vec2 PositionAt(int i, double t) const;
@@ -160,7 +203,10 @@ class Simulator {
   void RecomputeOwn(int i);
   void RecomputePair(int i, int j);
   double Reach(int i, double dt) const;  // bound on ball i's travel in dt seconds
-  bool Decided(int i) const;
+  SimStatus Finish(SimStatus status);  // sets final_ and the end status
+  SimStatus ResolvePair(int i, int j, double t);
+  SimStatus ResolveOwn(int i, double t);
+  void Changed(int i);  // recompute ball i's own event and its pairs
   void Record(const SimEvent& e);
   double TotalKineticEnergy() const;
 
@@ -170,7 +216,9 @@ class Simulator {
   int n_ = 0;
   double time_ = 0;
   std::int32_t event_count_ = 0;
-  bool record_ = true;
+  RunOptions options_;
+  SimStatus status_ = SimStatus::kAtRest;
+  SimEvent last_event_;
   Slot slots_[kMaxBalls];
   Own own_[kMaxBalls];
   // Upper triangle: next contact time of (i < j); +inf when none.

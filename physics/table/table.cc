@@ -235,6 +235,11 @@ TableModel::TableModel(const TableSpec& spec, const BallParams& ball)
   }
 }
 
+const TableModel& DefaultTable() {
+  static const TableModel table;
+  return table;
+}
+
 double TableModel::cushion_contact_distance() const {
   const double lift = spec_.cushion_height - radius_;
   return std::sqrt(std::max(0.0, radius_ * radius_ - lift * lift));

@@ -230,4 +230,8 @@ class TableModel {
   std::array<Vec2, kRedCount> reds_{};
 };
 
+/// The built-in full-size table (TableSpec and BallParams defaults), built once,
+/// shared and immutable.
+const TableModel& DefaultTable();
+
 }  // namespace snooker::physics

@@ -109,7 +109,7 @@ v1::SimulateRequest PotRequest() {
     b->mutable_position()->set_x(x);
     b->mutable_position()->set_y(y);
   };
-  const physics::Pocket& p = DefaultTable().pocket(physics::PocketId::kTopRight);
+  const physics::Pocket& p = physics::DefaultTable().pocket(physics::PocketId::kTopRight);
   const physics::Vec2 black = p.mouth_centre - 0.35 * p.axis, cue = black - 0.4 * p.axis;
   add("cue", v1::CUE, cue.x(), cue.y());
   add("black", v1::BLACK, black.x(), black.y());
@@ -201,7 +201,7 @@ TEST(ConvertTest, ShotGivesTheCueBallItsVelocityAndSpin) {
   shot.set_heading_deg(90);
   shot.set_topspin(2.0 / 0.02625);  // rolling
   shot.set_sidespin(7.0);
-  const physics::BallState s = ShotState(shot, physics::Vec2(0.5, 0.5));
+  const physics::BallState s = physics::StruckBall(ShotFrom(shot), physics::Vec2(0.5, 0.5));
   EXPECT_NEAR(s.v.x(), 0.0, 1e-12);
   EXPECT_NEAR(s.v.y(), 2.0, 1e-12);
   EXPECT_NEAR(physics::ClothSlip(s, physics::BallParams{}).norm(), 0.0, 1e-12);  // rolls

@@ -2,8 +2,12 @@
 // shots that must miss, invariants over many seeded random shots, determinism.
 #include "physics/sim/simulate.h"
 
+#include "tests/support/scenarios.h"
+
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -14,21 +18,10 @@
 namespace snooker::physics {
 namespace {
 
-constexpr double kR = 0.02625;  // m
-
-BallState Rolling(const Vec2& r, const Vec2& dir, double speed) {
-  BallState s;
-  s.r = r;
-  s.v = Vec3(speed * dir.x(), speed * dir.y(), 0);
-  s.w = Vec3(-dir.y(), dir.x(), 0) * (speed / kR);  // v = w x (R z): no slip
-  return s;
-}
-
-BallState AtRest(const Vec2& r) {
-  BallState s;
-  s.r = r;
-  return s;
-}
+using scenarios::AtRest;
+using scenarios::BreakOff;
+using scenarios::kR;
+using scenarios::Rolling;
 
 class SimulateTest : public testing::Test {
  protected:
@@ -156,20 +149,70 @@ TEST_F(SimulateTest, ImpactJumpIsDroppedOnTheCloth) {
   EXPECT_GT(ResolveImpact(in, {}, {}, 0.21, {}).out.c.v.z(), 0.0);
 }
 
-// An early stop once the watched balls are decided costs fewer events than the
-// full run and leaves them where the full run does.
-TEST_F(SimulateTest, StopRuleEndsTheRunOnceTheWatchedBallsAreDecided) {
+// A caller that drives Step and stops once the ball it watches is decided costs
+// fewer events than the full run and sees it end where the full run does.
+TEST_F(SimulateTest, StepLoopEndsOnceTheWatchedBallIsDecided) {
   const Pocket& p = table_.pocket(PocketId::kTopLeft);
   const Vec2 object = p.mouth_centre - 0.35 * p.axis;
   const std::vector<BallState> balls = {Rolling(object - 0.4 * p.axis, p.axis, 3.0),
                                         AtRest(object), AtRest(Vec2(1.5, 0.5))};
   Simulator full(table_, params_), early(table_, params_);
   ASSERT_EQ(full.Run(balls), SimStatus::kAtRest);
-  StopRule stop;
-  stop.balls[0] = 1;  // the object ball: undecided while the cue ball is about to hit it
-  ASSERT_EQ(early.Run(balls, stop), SimStatus::kStopped);
+  ASSERT_EQ(early.Start(balls), SimStatus::kRunning);
+  // The object ball: undecided while the cue ball is about to hit it.
+  ASSERT_FALSE(early.Decided(1));
+  SimStatus st = SimStatus::kRunning;
+  while (st == SimStatus::kRunning && !early.Decided(1)) st = early.Step();
+  ASSERT_EQ(st, SimStatus::kRunning);
   EXPECT_LT(early.event_count(), full.event_count());
   EXPECT_EQ(early.pocket_of(1), full.pocket_of(1));
+  EXPECT_GE(early.pocket_of(1), 0);
+}
+
+// One Simulator reused across many runs gives exactly what a fresh one gives.
+TEST_F(SimulateTest, AReusedSimulatorMatchesAFreshOne) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  Simulator reused(table_, params_);
+  for (int shot = 0; shot < 50; ++shot) {
+    std::vector<BallState> balls = {AtRest(Vec2(0.3 + 1.2 * u(rng), 0.3 + 3.0 * u(rng)))};
+    for (int k = 0; k < 8; ++k) {
+      const Vec2 r(0.1 + 1.5 * u(rng), 0.1 + 3.3 * u(rng));
+      bool clear = true;
+      for (const BallState& b : balls) clear &= (b.r - r).norm() > 2 * kR + 1e-6;
+      if (clear) balls.push_back(AtRest(r));
+    }
+    const double h = 2 * kPi * u(rng), speed = 0.5 + 4 * u(rng);
+    balls[0] = Rolling(balls[0].r, Vec2(std::cos(h), std::sin(h)), speed);
+    balls[0].w.z() = 40 * (u(rng) - 0.5);
+    RunOptions lean;
+    lean.record_events = shot % 2 == 0;
+    lean.record_paths = shot % 3 == 0;
+    Simulator fresh(table_, params_);
+    ASSERT_EQ(reused.Run(balls, lean), fresh.Run(balls, lean)) << "shot " << shot;
+    ASSERT_EQ(reused.event_count(), fresh.event_count()) << "shot " << shot;
+    for (size_t i = 0; i < balls.size(); ++i) {
+      EXPECT_EQ(reused.final_balls()[i].r, fresh.final_balls()[i].r) << "shot " << shot;
+      EXPECT_EQ(reused.pocket_of(static_cast<int>(i)), fresh.pocket_of(static_cast<int>(i)));
+    }
+  }
+}
+
+// A cancel flag or a deadline in the past ends a long run with kInterrupted.
+TEST_F(SimulateTest, InterruptEndsARun) {
+  std::vector<BallState> balls = BreakOff(table_);
+  Simulator sim(table_, params_);
+  std::atomic<bool> cancelled{true};
+  RunOptions cancel;
+  cancel.interrupt.cancelled = &cancelled;
+  EXPECT_EQ(sim.Run(balls, cancel), SimStatus::kInterrupted);
+  EXPECT_LE(sim.event_count(), cancel.interrupt.check_every);
+  RunOptions late;
+  late.interrupt.deadline = std::chrono::steady_clock::now();
+  EXPECT_EQ(sim.Run(balls, late), SimStatus::kInterrupted);
+  EXPECT_LE(sim.event_count(), late.interrupt.check_every);
+  cancelled = false;
+  EXPECT_EQ(sim.Run(balls, cancel), SimStatus::kAtRest);
 }
 
 TEST_F(SimulateTest, OverlappingOrNonFiniteBallsAreRejected) {
@@ -243,18 +286,6 @@ TEST_F(SimulateTest, RandomShotsKeepTheInvariants) {
   RecordProperty("balls_potted", potted);
   RecordProperty("events", events);
   EXPECT_GT(potted, 0);  // the pockets work at all
-}
-
-// The break-off: the cue ball from the D into the full pack of 22 balls.
-std::vector<BallState> BreakOff(const TableModel& table) {
-  std::vector<BallState> balls;
-  const Vec2 cue(table.spot(Colour::kBrown).x() + 0.15, table.spot(Colour::kBrown).y() - 0.1);
-  const Vec2 target = table.reds()[0] + Vec2(0.02, 0.0);
-  balls.push_back(Rolling(cue, (target - cue).normalized(), 7.0));
-  balls[0].w *= 0.5;  // half the rolling topspin
-  for (const Vec2& r : table.reds()) balls.push_back(AtRest(r));
-  for (int c = 0; c < kColourCount; ++c) balls.push_back(AtRest(table.spot(Colour(c))));
-  return balls;
 }
 
 // Hash of the break-off's final state (see BreakOffIsDeterministic).
