@@ -40,6 +40,13 @@ const char* ToString(EventKind k) {
   return "unknown";
 }
 
+bool Interrupt::Due() const {
+  if (cancelled != nullptr && cancelled->load(std::memory_order_relaxed)) return true;
+  if (poll != nullptr && poll(poll_context)) return true;
+  return deadline != std::chrono::steady_clock::time_point::max() &&
+         std::chrono::steady_clock::now() >= deadline;
+}
+
 const char* ToString(SimStatus s) {
   switch (s) {
     case SimStatus::kRunning: return "running";
@@ -272,12 +279,9 @@ SimStatus Simulator::Finish(SimStatus status) {
 SimStatus Simulator::Step() {
   if (status_ != SimStatus::kRunning) return status_;
   const Interrupt& stop = options_.interrupt;
-  if (stop.check_every > 0 && event_count_ % stop.check_every == 0 && event_count_ > 0) {
-    if ((stop.cancelled != nullptr && stop.cancelled->load(std::memory_order_relaxed)) ||
-        (stop.deadline != std::chrono::steady_clock::time_point::max() &&
-         std::chrono::steady_clock::now() >= stop.deadline)) {
-      return Finish(SimStatus::kInterrupted);
-    }
+  if (stop.check_every > 0 && event_count_ > 0 && event_count_ % stop.check_every == 0 &&
+      stop.Due()) {
+    return Finish(SimStatus::kInterrupted);
   }
   // Next event: the earliest; ties go to pairs (lower indices first), then own events.
   double te = kInf;

@@ -107,7 +107,14 @@ struct Interrupt {
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
   /// Stop with kInterrupted once this is true (set from another thread). Optional.
   const std::atomic<bool>* cancelled = nullptr;
+  /// Stop with kInterrupted once poll(poll_context) returns true (for a transport's
+  /// own cancellation test, e.g. grpc::ServerContext::IsCancelled). Optional.
+  bool (*poll)(void* context) = nullptr;
+  void* poll_context = nullptr;
   std::int32_t check_every = 16;
+
+  /// True when the run should stop now (reads the clock).
+  bool Due() const;
 };
 
 struct RunOptions {

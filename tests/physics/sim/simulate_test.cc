@@ -211,6 +211,13 @@ TEST_F(SimulateTest, InterruptEndsARun) {
   late.interrupt.deadline = std::chrono::steady_clock::now();
   EXPECT_EQ(sim.Run(balls, late), SimStatus::kInterrupted);
   EXPECT_LE(sim.event_count(), late.interrupt.check_every);
+  RunOptions polled;
+  int polls = 0;
+  polled.interrupt.poll = [](void* n) { return ++*static_cast<int*>(n) >= 3; };
+  polled.interrupt.poll_context = &polls;
+  EXPECT_EQ(sim.Run(balls, polled), SimStatus::kInterrupted);
+  EXPECT_EQ(polls, 3);
+  EXPECT_EQ(sim.event_count(), 3 * polled.interrupt.check_every);
   cancelled = false;
   EXPECT_EQ(sim.Run(balls, cancel), SimStatus::kAtRest);
 }
