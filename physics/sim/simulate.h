@@ -15,6 +15,30 @@
 //  * Early stop: a caller that needs only part of the outcome drives Step() itself
 //    and ends the run once that is decided (Decided(), last_event()).
 //  * Every run is capped in events and in simulated time and returns a status.
+//  * Time never goes back: every ball whose motion an event touches restarts at the
+//    event's time (even when nothing is resolved), so every search starts at the
+//    current time; Step checks it and ends with kEventOrder (a bug) otherwise.
+//
+// Contacts by design (issue 7). A ball frozen to a cushion, a knuckle, a jaw wall or
+// another ball is an ordinary state. The detectors (physics/events/detect.h) say
+// how each contact stands, and the resolver acts on that, not on luck:
+//  * approaching: an impact, with the paper's model (ball-ball, Mathavan 2014) or
+//    the cushion model (Mathavan 2010);
+//  * pressing (no normal speed, the cloth driving the two together): a resting
+//    contact. Against a boundary the ball loses its normal velocity and the spin
+//    that drives its slip into the boundary (HoldAgainst); two balls lose the spin
+//    that drives them together, and if rolling still presses them, stop together
+//    when slow (resting_pair_speed) or lose their motion along the line of centres
+//    (HoldTogether). A ball pressed twice at one instant is wedged and stops. Each
+//    step only takes energy out.
+//  * an impact after which the cloth would bring the two back within a flight of
+//    resting_contact_excursion is turned into a resting contact (no Zeno bounces);
+//  * a ball-ball impact within cluster_time of an earlier one of either ball is
+//    resolved with every ball touching them as one impulse problem (ResolveCluster:
+//    McNamara and Young's criterion against inelastic collapse; projected
+//    Gauss-Seidel on the contact normals, Newton restitution, plastic where that has
+//    no solution, balls brought to rest held still). docs/resting-contacts.md
+//    measures the choice on break-offs.
 // Deterministic: ties are broken by a fixed order (time, then kind, then indices).
 // Run() allocates only while its buffers grow; reuse a Simulator for many runs.
 #pragma once
@@ -32,6 +56,7 @@
 #include "physics/core/limits.h"
 #include "physics/motion/motion.h"
 #include "physics/core/params.h"
+#include "physics/events/detect.h"
 #include "physics/table/table.h"
 
 namespace snooker::physics {
@@ -58,6 +83,27 @@ struct SimParams {
   /// collapse). A rolling ball at 1e-4 m/s would travel v^2 / (2 mu_r g) ~ 4e-8 m
   /// more: far below anything measurable. 0 disables it.
   double rest_speed = 1e-4;
+  /// A ball that leaves a cushion (or knuckle, or jaw wall, or another ball) after
+  /// an impact while the cloth drives it back, and would rise less than this off it
+  /// before it returns, is held against it instead: a resting contact. m. Without
+  /// it such a ball bounces in ever shorter flights without end (a Zeno sequence);
+  /// 1e-6 m is far below anything measurable.
+  double resting_contact_excursion = 1e-6;
+  /// Two touching balls pressed together by their rolling decelerations, both
+  /// slower than this, are set at rest together (a resting contact). m/s. They
+  /// would have rolled on together at most v^2 / (2 mu_r g): 0.1 mm at 5 mm/s.
+  double resting_pair_speed = 5e-3;
+  /// A ball-ball contact that comes within this time of an earlier impact of
+  /// either ball is resolved with the whole cluster of balls touching them, as one
+  /// impulse problem (McNamara and Young's "TC" criterion, with a simultaneous
+  /// resolution instead of their elastic one). s. Without it three touching balls
+  /// can exchange ever smaller impacts ever faster (inelastic collapse).
+  /// docs/resting-contacts.md shows the measurements behind the default. Negative:
+  /// never (every contact resolved pairwise with the impact model).
+  double cluster_time = 1e-6;
+  /// Newton restitution of the cluster resolution (frictionless, centre velocities
+  /// only). Dimensionless, in [0, 1].
+  double cluster_restitution = 0.89;
   /// Cap on resolved events in one run.
   std::int32_t max_events = 5000;
   /// Cap on simulated time, s.
@@ -83,6 +129,11 @@ struct SimEvent {
   /// kPocket: into pockets(); otherwise -1.
   std::int16_t where = -1;
   MotionState state_after = MotionState::kStationary;  ///< of `ball`
+  /// Contact events: how the contact stood when it was resolved (kApproaching: an
+  /// impact; kPressing: a resting contact; kTouching: nothing left to resolve).
+  ContactStart contact = ContactStart::kApart;
+  /// kBallBall resolved as a cluster: the number of balls resolved together; else 0.
+  std::int16_t cluster_balls = 0;
   double kinetic_energy = 0;  ///< of all balls just after the event, J
 };
 
@@ -193,10 +244,6 @@ class Simulator {
     double horizon;   // absolute time of the next motion transition (or +inf)
     PositionPoly poly;  // from time t
     bool moving = false;
-    // A contact that just resolved as "not approaching" is ignored until this ball
-    // changes again (it grazes the contact; re-detecting it would repeat at once).
-    EventKind ignore_kind = EventKind::kTransition;
-    int ignore_index = -1;
   };
   struct Own {  // a ball's next own event
     double time = std::numeric_limits<double>::infinity();
@@ -206,6 +253,19 @@ class Simulator {
 
   BallState StateAt(int i, double t) const;
   BallState AfterImpact(const BallState& s) const;  // applies rest_speed
+  // Resting contacts (see SimParams::resting_contact_excursion); n is the contact
+  // normal, horizontal, from the boundary to the ball / from a to b.
+  BallState HoldAgainst(const BallState& s, const Vec2& n) const;
+  BallState HoldIfReturning(const BallState& s, const Vec2& n) const;
+  void HoldIfReturning(BallState* a, BallState* b, const Vec2& n, int level_a, int level_b) const;
+  void RemoveApproach(BallState* a, BallState* b, const Vec2& n) const;
+  void HoldTogether(BallState* a, BallState* b, const Vec2& n, int level_a, int level_b) const;
+  BallState Stopped(const BallState& s) const;  // v = 0, horizontal spin 0
+  // How many pressing contacts ball i has had resolved at time t before this one.
+  int PressLevel(int i, double t);
+  // Resolves the touching cluster around the pair at time t; returns its size.
+  int ResolveCluster(int i, int j, double t);
+  static constexpr int kMaxClusterContacts = 4 * kMaxBalls;
   void SetState(int i, const BallState& s, double t);  // and mark for recompute
   void RecomputeOwn(int i);
   void RecomputePair(int i, int j);
@@ -228,6 +288,9 @@ class Simulator {
   SimEvent last_event_;
   Slot slots_[kMaxBalls];
   Own own_[kMaxBalls];
+  double last_impact_[kMaxBalls];  // time of each ball's last ball-ball impact
+  double press_time_[kMaxBalls];   // instant of each ball's last pressing contact
+  int press_count_[kMaxBalls] = {};  // and how many it had then
   // Upper triangle: next contact time of (i < j); +inf when none.
   double pair_[kMaxBalls][kMaxBalls];
   std::vector<SimEvent> events_;

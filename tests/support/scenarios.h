@@ -2,9 +2,12 @@
 // (one source, so a benchmark measures exactly what a test checks).
 #pragma once
 
+#include <cmath>
+#include <random>
 #include <string>
 #include <vector>
 
+#include "physics/core/shot.h"
 #include "physics/sim/simulate.h"
 #include "physics/table/table.h"
 
@@ -54,6 +57,45 @@ inline std::vector<BallState> BreakOff(const TableModel& table = DefaultTable())
   balls[0].w *= 0.5;
   for (const Vec2& r : table.reds()) balls.push_back(AtRest(r));
   for (int c = 0; c < kColourCount; ++c) balls.push_back(AtRest(table.spot(Colour(c))));
+  return balls;
+}
+
+/// The 15 reds in their triangle with `gap` (m) between neighbours (0: touching),
+/// the apex where the table puts it; then the six colours on their spots.
+inline std::vector<BallState> RackWithGap(double gap, const TableModel& table = DefaultTable()) {
+  std::vector<BallState> balls;
+  const Vec2 apex = table.reds()[0];
+  const double across = 2 * kR + gap, along = std::sqrt(3.0) * (kR + gap / 2);
+  for (int row = 0; row < 5; ++row) {
+    for (int k = 0; k <= row; ++k) {
+      balls.push_back(AtRest(apex + Vec2((2 * k - row) * across / 2, row * along)));
+    }
+  }
+  for (int c = 0; c < kColourCount; ++c) balls.push_back(AtRest(table.spot(Colour(c))));
+  return balls;
+}
+
+/// The cue ball at `position` struck with speed (m/s), heading (rad), topspin and
+/// sidespin (rad/s), as the robot plays it (physics/core/shot.h).
+inline BallState Struck(const Vec2& position, double speed, double heading, double topspin,
+                        double sidespin) {
+  return StruckBall({speed, heading, topspin, sidespin}, position);
+}
+
+/// A random break-off into RackWithGap(gap): the cue ball from the baulk line area
+/// at 5-9 m/s towards the apex red (within 3 cm either side), any top and side spin
+/// up to a rolling ball's. Cue ball first. Deterministic in `rng`.
+template <typename Rng>
+std::vector<BallState> RandomBreakOff(double gap, Rng& rng, const TableModel& table = DefaultTable()) {
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<BallState> balls = {AtRest(Vec2::Zero())};
+  for (const BallState& b : RackWithGap(gap, table)) balls.push_back(b);
+  const Vec2 cue(table.spec().width / 2 - 0.15 + 0.3 * u(rng), table.spec().baulk_line - 0.09);
+  const Vec2 target = balls[1].r + Vec2((u(rng) - 0.5) * 0.06, 0);
+  const Vec2 d = target - cue;
+  const double speed = 5 + 4 * u(rng);
+  const double top = (2 * u(rng) - 1) * speed / kR, side = (2 * u(rng) - 1) * speed / kR;
+  balls[0] = Struck(cue, speed, std::atan2(d.y(), d.x()), top, side);
   return balls;
 }
 

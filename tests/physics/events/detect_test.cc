@@ -265,3 +265,66 @@ TEST(DetectTest, TransitionWithinTheLimitOnly) {
 
 }  // namespace
 }  // namespace snooker::physics
+
+namespace snooker::physics {
+namespace {
+
+// How a touching contact starts: the four classes of ClassifyContact.
+TEST(ContactTest, ClassifiesTouchingContacts) {
+  const PositionPoly still = Path({0, 2 * kR});
+  // Apart: more than the contact tolerance away, whatever the motion.
+  EXPECT_EQ(ClassifyContact(BallBallGap(Path({0, -1e-6}, {0, 1}), still, kR).g, 4 * kR),
+            ContactStart::kApart);
+  // Approaching faster than the tolerance.
+  EXPECT_EQ(ClassifyContact(BallBallGap(Path({0, 0}, {0, 1e-6}), still, kR).g, 4 * kR),
+            ContactStart::kApproaching);
+  // No normal speed, decelerating into the other: pressing.
+  EXPECT_EQ(ClassifyContact(BallBallGap(Path({0, 0}, {0, 0}, {0, 0.5}), still, kR).g, 4 * kR),
+            ContactStart::kPressing);
+  // Below the acceleration tolerance, or moving along the tangent: touching.
+  EXPECT_EQ(ClassifyContact(BallBallGap(Path({0, 0}, {0, 0}, {0, 1e-12}), still, kR).g, 4 * kR),
+            ContactStart::kTouching);
+  EXPECT_EQ(ClassifyContact(BallBallGap(Path({0, 0}, {1, 0}), still, kR).g, 4 * kR),
+            ContactStart::kTouching);
+  // Separating.
+  EXPECT_EQ(ClassifyContact(BallBallGap(Path({0, 0}, {0, -1e-3}), still, kR).g, 4 * kR),
+            ContactStart::kTouching);
+}
+
+// A ball rolling along a cushion it touches, its gap zero to rounding, makes no
+// event however long it rolls; one frozen to the cushion and rolling away makes
+// none either.
+TEST(ContactTest, RollingAlongACushionIsNoEvent) {
+  const CushionSegment seg{{0, 0}, {0, 3}, {1, 0}, SegmentKind::kCushion, PocketId::kBaulkLeft, "left"};
+  const double c = 0.02437211521390788;
+  // Heading 90 deg from rounded trigonometry: a normal speed of 6e-17 m/s.
+  const Vec2 dir(std::cos(kPi / 2), std::sin(kPi / 2));
+  const double decel = 0.5 * 0.0128 * 9.81;
+  EXPECT_EQ(DetectBallCushion(Path({c, 0.5}, dir, -decel * dir), seg, c, 8.0), kInf);
+  EXPECT_EQ(DetectBallCushion(Path({c, 0.5}, -dir, decel * dir), seg, c, 8.0), kInf);
+  EXPECT_EQ(DetectBallCushion(Path({c, 0.5}, {0.3, 0.5}), seg, c, 8.0), kInf);
+}
+
+// A pair that parts slowly and is brought back by its decelerations makes contact
+// again (it used to be missed, and the two overlapped).
+TEST(ContactTest, SlowPartingThatTurnsRoundIsFound) {
+  const PositionPoly still = Path({0, 2 * kR});
+  const CushionSegment seg{{0, -1}, {0, 1}, {1, 0}, SegmentKind::kCushion, PocketId::kBaulkLeft, "left"};
+  // Parting at 1e-6 m/s against a pull of 0.1 m/s^2: y(t) = -1e-6 t + 0.05 t^2 never
+  // opens beyond the contact band (5e-12 m), so the contact begins where the two
+  // start to approach faster than twice the speed tolerance.
+  const PositionPoly back = Path({0, 0}, {0, -1e-6}, {0, 0.05});
+  ASSERT_EQ(ClassifyContact(BallBallGap(back, still, kR).g, 4 * kR), ContactStart::kTouching);
+  const double turn = (1e-6 + 2 * kApproachSpeedTolerance) / 0.1;
+  EXPECT_NEAR(DetectBallBall(back, still, kR, 1.0), turn, kTimeTol);
+  EXPECT_NEAR(DetectBallCushion(Path({kR, 0}, {1e-6, 0}, {-0.05, 0}), seg, kR, 1.0), turn, kTimeTol);
+  // Parting at 1e-3 m/s: the gap opens to 5e-6 m and closes again at t = 0.02 s.
+  const PositionPoly far = Path({0, 0}, {0, -1e-3}, {0, 0.05});
+  const double t = DetectBallBall(far, still, kR, 1.0);
+  EXPECT_NEAR(t, 0.02, 1e-9);
+  EXPECT_LE(std::abs(2 * kR - Dist(far, still, t)), kDistTol);
+  EXPECT_NEAR(DetectBallCushion(Path({kR, 0}, {1e-3, 0}, {-0.05, 0}), seg, kR, 1.0), 0.02, 1e-9);
+}
+
+}  // namespace
+}  // namespace snooker::physics
