@@ -202,8 +202,48 @@ RealRoots FindRealRoots(const Poly4& p, double lo, double hi) {
   return r;
 }
 
+namespace {
+
+// FindFirstDownCrossing for p of degree <= 2 (p[3] = p[4] = 0) in closed form: the
+// cushion gaps are quadratics in time, and this is most of the detectors' calls.
+// The roots come from the cancellation-free formula (q = -(b + sign(b) sqrt(D)) / 2,
+// roots q / a and c / q), accurate to a few ulps; a discriminant that rounding made
+// negative at a vertex where |p| is within rounding of zero is a tangency, as in
+// the general solver.
+double FirstDownCrossingQuadratic(const Poly4& p, double lo, double hi) {
+  const double c = p[0], b = p[1], a = p[2];
+  auto in = [&](double r) { return r > lo && r <= hi; };
+  if (a == 0.0) {
+    if (!(b < 0.0)) return kInf;  // constant or rising: no down-crossing
+    const double r = -c / b;
+    return in(r) ? r : kInf;      // p > 0 just before r exactly when r > lo
+  }
+  const double disc = b * b - 4.0 * a * c;
+  if (disc < 0.0) {
+    if (a < 0.0) return kInf;  // negative everywhere
+    const double t = -b / (2.0 * a);
+    const double value = c + t * (b + t * a);
+    const double scale = std::abs(c) + std::abs(b * t) + std::abs(a * t * t);
+    return in(t) && std::abs(value) <= kZeroBandFactor * scale ? t : kInf;
+  }
+  const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+  double r1 = q / a, r2 = q != 0.0 ? c / q : r1;
+  if (r1 > r2) std::swap(r1, r2);
+  // Convex: positive before r1 (a down-crossing at r1, or a tangency when r1 = r2).
+  // Concave: positive only between the roots (a down-crossing at r2, if p is
+  // positive somewhere in (lo, r2)).
+  if (a > 0.0) return in(r1) ? r1 : kInf;
+  return in(r2) && r1 < r2 ? r2 : kInf;
+}
+
+}  // namespace
+
 double FindFirstDownCrossing(const Poly4& p, double lo, double hi) {
   if (!std::isfinite(lo) || !(hi > lo)) return kInf;
+  if (p[3] == 0.0 && p[4] == 0.0 && std::isfinite(p[0]) && std::isfinite(p[1]) &&
+      std::isfinite(p[2]) && !std::isnan(hi)) {
+    return FirstDownCrossingQuadratic(p, lo, hi);
+  }
   const RealRoots r = FindRealRoots(p, lo, hi);
   if (r.status == RootStatus::kInvalidInput || r.status == RootStatus::kIdenticallyZero) {
     return kInf;

@@ -462,6 +462,13 @@ void Simulator::RecomputePair(int i, int j) {
                                    params_.max_time});
   const double window = horizon - t;
   if (!(window >= 0)) return;
+  // Cheapest cull first, before evolving either ball: each stays within its reach of
+  // where it was last set, until the horizon.
+  if ((a.s.r - b.s.r).norm() - Reach(i, horizon - a.t) - Reach(j, horizon - b.t) >
+      2 * params_.ball.radius) {
+    ++pair_culls_;
+    return;
+  }
   const BallState sa = StateAt(i, t), sb = StateAt(j, t);
   const PositionPoly pa = a.t == t ? a.poly : PositionPolynomial(sa, params_.ball, params_.cloth);
   const PositionPoly pb = b.t == t ? b.poly : PositionPolynomial(sb, params_.ball, params_.cloth);

@@ -99,6 +99,63 @@ std::vector<BallState> RandomBreakOff(double gap, Rng& rng, const TableModel& ta
   return balls;
 }
 
+/// A mid-frame table: `reds` reds scattered where they do not touch anything (at
+/// least 1 mm clear of every ball and cushion), the six colours on their spots and
+/// the cue ball anywhere free. Cue ball first, then the reds, then the colours.
+template <typename Rng>
+std::vector<BallState> MidFrameTable(int reds, Rng& rng, const TableModel& table = DefaultTable()) {
+  std::uniform_real_distribution<double> u(0, 1);
+  const double margin = table.cushion_contact_distance() + 1e-3;
+  const double w = table.spec().width, l = table.spec().length;
+  std::vector<BallState> balls;
+  for (int c = 0; c < kColourCount; ++c) balls.push_back(AtRest(table.spot(Colour(c))));
+  auto place = [&] {
+    for (int tries = 0; tries < 10000; ++tries) {
+      const Vec2 r(margin + u(rng) * (w - 2 * margin), margin + u(rng) * (l - 2 * margin));
+      bool clear = true;
+      for (const BallState& b : balls) clear &= (b.r - r).norm() >= 2 * kR + 1e-3;
+      if (clear) return r;
+    }
+    return Vec2(w / 2, l / 4);  // not reached with at most 15 reds
+  };
+  std::vector<BallState> out = {AtRest(place())};
+  balls.push_back(out[0]);
+  for (int i = 0; i < reds; ++i) {
+    out.push_back(AtRest(place()));
+    balls.push_back(out.back());
+  }
+  for (int c = 0; c < kColourCount; ++c) out.push_back(AtRest(table.spot(Colour(c))));
+  return out;
+}
+
+/// The planner workload (issue 9): MidFrameTable with 8 reds and a shot of 0.5-4
+/// m/s aimed at a random object ball's centre (or up to one ball radius either side
+/// of it) with top and side spin up to a rolling ball's either way.
+template <typename Rng>
+std::vector<BallState> PlannerWorkloadShot(Rng& rng, const TableModel& table = DefaultTable()) {
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<BallState> balls = MidFrameTable(8, rng, table);
+  const size_t target = 1 + static_cast<size_t>(u(rng) * static_cast<double>(balls.size() - 1));
+  const Vec2 to = balls[std::min(target, balls.size() - 1)].r - balls[0].r;
+  const double heading = std::atan2(to.y(), to.x()) + (2 * u(rng) - 1) * std::asin(std::min(1.0, kR / to.norm()));
+  const double speed = 0.5 + 3.5 * u(rng);
+  balls[0] = Struck(balls[0].r, speed, heading, (2 * u(rng) - 1) * speed / kR, (2 * u(rng) - 1) * speed / kR);
+  return balls;
+}
+
+/// A positional shot with several cushions: the cue ball alone with the colours on
+/// their spots, struck at 2-4 m/s in any direction with any spin, so it travels
+/// 3-10 m and meets several cushions.
+template <typename Rng>
+std::vector<BallState> CushionsShot(Rng& rng, const TableModel& table = DefaultTable()) {
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<BallState> balls = MidFrameTable(0, rng, table);
+  const double speed = 2 + 2 * u(rng);
+  balls[0] = Struck(balls[0].r, speed, 2 * kPi * u(rng), (2 * u(rng) - 1) * speed / kR,
+                    (2 * u(rng) - 1) * speed / kR);
+  return balls;
+}
+
 /// "pot-empty", "pot-full", "break-off"; empty for an unknown name.
 inline std::vector<BallState> Scenario(const std::string& name) {
   if (name == "pot-empty") return TwoBallPot(false);

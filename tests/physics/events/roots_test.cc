@@ -228,6 +228,46 @@ TEST(RootsTest, FirstDownCrossingCases) {
   EXPECT_EQ(FindFirstDownCrossing(Poly4{1.0, 1.0}, 0.0, NAN), kInf);
 }
 
+// Quadratics (every cushion gap) take a closed-form path in FindFirstDownCrossing;
+// it must agree with the general solver (FindRealRoots, derivative recursion and
+// Newton refinement) on random quadratics over a wide range of scales, tangencies
+// and nearly linear ones included.
+TEST(RootsTest, QuadraticFastPathAgreesWithTheGeneralSolver) {
+  std::mt19937_64 rng(1234);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int crossings = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const double scale = std::pow(10.0, 6 * u(rng));
+    Poly4 p{u(rng), u(rng) * scale, u(rng) * scale * scale, 0, 0};
+    if (trial % 4 == 1) p[0] = p[1] * p[1] / (4 * p[2]);  // a double root
+    if (trial % 4 == 2) p[2] *= 1e-12;                    // nearly linear
+    const double lo = 0.0, hi = 2.0 / scale;
+    const RealRoots r = FindRealRoots(p, lo, hi);
+    double expected = kInf, prev = lo;
+    for (int i = 0; i < r.count; ++i) {
+      if (r.t[i] <= lo) continue;
+      if (EvaluatePoly(p, prev + 0.5 * (r.t[i] - prev)) > 0.0) {
+        expected = r.t[i];
+        break;
+      }
+      prev = r.t[i];
+    }
+    const double found = FindFirstDownCrossing(p, lo, hi);
+    if (expected == kInf) {
+      // Only a tangency within rounding may be found where the general solver saw none.
+      if (found != kInf) {
+        EXPECT_LE(std::abs(EvaluatePoly(p, found)), 1e-12) << "trial " << trial;
+      }
+      continue;
+    }
+    ++crossings;
+    // Simple roots agree to a few ulps; a double root only to sqrt(eps) of its position.
+    const double tol = (trial % 4 == 1 ? 1e-7 : 1e-12) * hi;
+    EXPECT_NEAR(found, expected, tol) << "trial " << trial;
+  }
+  EXPECT_GT(crossings, 2000);
+}
+
 // The first sample at which p <= 0 after a sample at which p > 0, from a fine scan;
 // the crossing must lie in the sample step that ends there (a brief dip between
 // samples may be found earlier, but then p really is ~0 there).
