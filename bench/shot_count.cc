@@ -1,28 +1,43 @@
 // Simulates a fixed list of seeded shots of one workload, for instruction counting
 // under valgrind --tool=callgrind (a repeatable cost on a noisy machine) and for
-// profiling. Usage: shot_count planner|cushions|break-off SHOTS [TOLERANCE]
+// profiling. Usage: shot_count planner|cushions|break-off SHOTS [SETTING] [--counts]
 //   planner:   tests/support/scenarios.h PlannerWorkloadShot (8 reds, colours, 0.5-4 m/s)
 //   cushions:  CushionsShot (the cue ball alone at 2-4 m/s: several cushions)
 //   break-off: RandomBreakOff with the reds 1e-4 m apart
-// TOLERANCE sets both impact integrators' tolerance (default: SimParams's).
+// SETTING: a fidelity tier (reference, default, search; physics/sim/fidelity.h) or a
+// number, both impact integrators' tolerance (default: SimParams's). --counts adds
+// a second, recorded pass that counts the impacts (not for instruction counting).
 #include <cstdio>
 #include <cstdlib>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "physics/sim/fidelity.h"
 #include "tests/support/scenarios.h"
 
 int main(int argc, char** argv) {
   using namespace snooker::physics;
-  if (argc < 3 || argc > 4) {
-    std::fprintf(stderr, "usage: shot_count planner|cushions|break-off SHOTS [TOLERANCE]\n");
+  if (argc < 3 || argc > 5) {
+    std::fprintf(stderr, "usage: shot_count planner|cushions|break-off SHOTS [SETTING] [--counts]\n");
     return 2;
   }
   const std::string workload = argv[1];
   const int shots = std::atoi(argv[2]);
   SimParams params;
-  if (argc == 4) params.ball_ball_solver.tolerance = params.cushion_solver.tolerance = std::atof(argv[3]);
+  bool counts = false;
+  for (int a = 3; a < argc; ++a) {
+    const std::string arg = argv[a];
+    if (arg == "--counts") {
+      counts = true;
+    } else if (arg == "reference" || arg == "default" || arg == "search") {
+      params = FidelityParams(arg == "reference" ? Fidelity::kReference
+                              : arg == "default" ? Fidelity::kDefault
+                                                 : Fidelity::kSearch);
+    } else {
+      params.ball_ball_solver.tolerance = params.cushion_solver.tolerance = std::atof(arg.c_str());
+    }
+  }
   if (shots <= 0 || (workload != "planner" && workload != "cushions" && workload != "break-off")) {
     std::fprintf(stderr, "shot_count: bad workload '%s' or SHOTS '%s'\n", argv[1], argv[2]);
     return 2;
@@ -40,8 +55,9 @@ int main(int argc, char** argv) {
     sim.Run(balls, RunOptions::Lean());
     events += sim.event_count();
   }
-  // One recorded pass for the impact counts.
+  // A recorded pass for the impact counts.
   for (const auto& balls : inputs) {
+    if (!counts) break;
     RunOptions o;
     o.record_paths = false;
     sim.Run(balls, o);

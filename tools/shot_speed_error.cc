@@ -1,0 +1,135 @@
+// Speed against error of whole shots: for each fidelity setting, the time per shot
+// and how far every ball's final position lands from a converged reference, and how
+// many shots change a pocket outcome. Prints JSON for tools/shot_speed_error.py.
+// Usage: shot_speed_error planner|cushions|break-off SHOTS
+// (scripts/shot-speed-error runs it and adds callgrind instruction counts.)
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "physics/sim/fidelity.h"
+#include "tests/support/scenarios.h"
+
+namespace {
+
+using namespace snooker::physics;
+
+struct Outcome {
+  std::vector<Vec2> r;
+  std::vector<int> pocket;
+  int events = 0;
+  SimStatus status = SimStatus::kAtRest;
+};
+
+struct Setting {
+  std::string name;
+  SimParams params;
+};
+
+std::vector<Outcome> RunAll(const SimParams& params, const std::vector<std::vector<BallState>>& shots,
+                            double* seconds) {
+  Simulator sim(DefaultTable(), params);
+  std::vector<Outcome> out;
+  *seconds = 1e300;
+  for (int rep = 0; rep < 3; ++rep) {  // the fastest of three passes: noise only adds time
+    out.clear();
+    const auto t0 = std::chrono::steady_clock::now();
+    for (const auto& balls : shots) {
+      Outcome o;
+      o.status = sim.Run(balls, RunOptions::Lean());
+      o.events = sim.event_count();
+      for (size_t i = 0; i < balls.size(); ++i) {
+        o.r.push_back(sim.final_balls()[i].r);
+        o.pocket.push_back(sim.pocket_of(static_cast<int>(i)));
+      }
+      out.push_back(std::move(o));
+    }
+    *seconds = std::min(*seconds, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 3) {
+    std::fprintf(stderr, "usage: shot_speed_error planner|cushions|break-off SHOTS\n");
+    return 2;
+  }
+  const std::string workload = argv[1];
+  const int n = std::atoi(argv[2]);
+  if (n <= 0 || (workload != "planner" && workload != "cushions" && workload != "break-off")) {
+    std::fprintf(stderr, "shot_speed_error: bad workload '%s' or SHOTS '%s'\n", argv[1], argv[2]);
+    return 2;
+  }
+  std::mt19937_64 rng(2026);  // the shots of bench/shot_count
+  std::vector<std::vector<BallState>> shots;
+  for (int i = 0; i < n; ++i) {
+    if (workload == "planner") shots.push_back(scenarios::PlannerWorkloadShot(rng));
+    if (workload == "cushions") shots.push_back(scenarios::CushionsShot(rng));
+    if (workload == "break-off") shots.push_back(scenarios::RandomBreakOff(1e-4, rng));
+  }
+  auto with_tolerance = [](double tol) {
+    SimParams p;
+    p.ball_ball_solver.tolerance = p.cushion_solver.tolerance = tol;
+    return p;
+  };
+  constexpr double kReference = 1e-13, kCheck = 1e-12;
+  std::vector<Setting> settings;
+  for (Fidelity f : {Fidelity::kReference, Fidelity::kDefault, Fidelity::kSearch}) {
+    settings.push_back({std::string("tier ") + ToString(f), FidelityParams(f)});
+  }
+  for (double tol : {1e-12, 1e-10, 1e-9, 1e-8, 1e-7, 1e-6, 1e-5, 1e-4}) {
+    char name[32];
+    std::snprintf(name, sizeof name, "tolerance %g", tol);
+    settings.push_back({name, with_tolerance(tol)});
+  }
+  double ref_seconds = 0, check_seconds = 0;
+  const std::vector<Outcome> ref = RunAll(with_tolerance(kReference), shots, &ref_seconds);
+  // How converged the reference is: the same shots one decade looser.
+  const std::vector<Outcome> check = RunAll(with_tolerance(kCheck), shots, &check_seconds);
+  auto compare = [&](const std::vector<Outcome>& got, std::vector<double>* errors, int* changed,
+                     int* not_at_rest) {
+    *changed = *not_at_rest = 0;
+    for (size_t s = 0; s < got.size(); ++s) {
+      bool differs = false;
+      *not_at_rest += got[s].status != SimStatus::kAtRest;
+      for (size_t i = 0; i < got[s].r.size(); ++i) {
+        differs |= got[s].pocket[i] != ref[s].pocket[i];
+        if (got[s].pocket[i] < 0 && ref[s].pocket[i] < 0) errors->push_back(1e3 * (got[s].r[i] - ref[s].r[i]).norm());
+      }
+      *changed += differs;
+    }
+    std::sort(errors->begin(), errors->end());
+  };
+  std::printf("{\"workload\": \"%s\", \"shots\": %d, \"reference_tolerance\": %g,\n", workload.c_str(), n, kReference);
+  {
+    std::vector<double> e;
+    int changed = 0, bad = 0;
+    compare(check, &e, &changed, &bad);
+    std::printf(" \"reference_check\": {\"tolerance\": %g, \"err_mm_max\": %.6g, \"pocket_changes\": %d},\n", kCheck,
+                e.empty() ? 0.0 : e.back(), changed);
+  }
+  std::printf(" \"settings\": [\n");
+  for (size_t k = 0; k < settings.size(); ++k) {
+    double seconds = 0;
+    const std::vector<Outcome> got = RunAll(settings[k].params, shots, &seconds);
+    std::vector<double> e;
+    int changed = 0, bad = 0;
+    compare(got, &e, &changed, &bad);
+    long events = 0;
+    for (const Outcome& o : got) events += o.events;
+    const double mean = e.empty() ? 0.0 : [&] { double s = 0; for (double x : e) s += x; return s / static_cast<double>(e.size()); }();
+    std::printf("  {\"name\": \"%s\", \"us_per_shot\": %.3f, \"events_per_shot\": %.2f, \"err_mm_mean\": %.6g, "
+                "\"err_mm_p99\": %.6g, \"err_mm_max\": %.6g, \"pocket_changes\": %d, \"not_at_rest\": %d}%s\n",
+                settings[k].name.c_str(), 1e6 * seconds / n, static_cast<double>(events) / n, mean,
+                e.empty() ? 0.0 : e[e.size() * 99 / 100], e.empty() ? 0.0 : e.back(), changed, bad,
+                k + 1 < settings.size() ? "," : "");
+  }
+  std::printf(" ]}\n");
+  return 0;
+}
