@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <ostream>
 #include <cmath>
 #include <random>
 #include <string>
@@ -235,6 +236,8 @@ struct BreakOffSweep {
   double gap;  // m between neighbouring reds
   const char* name;
 };
+// How gtest (and so ctest's test list) prints the parameter.
+void PrintTo(const BreakOffSweep& s, std::ostream* os) { *os << s.name; }
 
 class BreakOffSweepTest : public testing::TestWithParam<BreakOffSweep> {};
 
