@@ -265,6 +265,10 @@ ApiStatus Simulate(const v1::SimulateRequest& request, v1::SimulateResponse* res
       }
     }
   }
+  if (limits.interrupt.Due()) {  // no answer after the deadline (paths take a while)
+    response->Clear();
+    return Stopped(limits.interrupt, Progress(sim) + ", while the answer was built");
+  }
   if (response->ByteSizeLong() > limits.max_response_bytes) {  // the exact size
     return TooLarge(limits.max_response_bytes,
                     std::to_string(response->ByteSizeLong()) + " bytes", response);

@@ -1,6 +1,7 @@
 #include "server/decode.h"
 
 #include <google/protobuf/descriptor.h>
+#include <google/protobuf/stubs/logging.h>
 #include <google/protobuf/unknown_field_set.h>
 
 #include <string>
@@ -19,7 +20,12 @@ ApiStatus ParseRequest(std::string_view bytes, google::protobuf::Message* messag
                 " bytes"};
   }
   const int size = static_cast<int>(bytes.size());
-  if (message->ParseFromArray(bytes.data(), size)) return ApiStatus::Ok();
+  {
+    // Protobuf logs a line on stderr for each string that is not UTF-8: a client
+    // could fill the server's log with them. The status says it instead.
+    google::protobuf::LogSilencer quiet;
+    if (message->ParseFromArray(bytes.data(), size)) return ApiStatus::Ok();
+  }
   message->Clear();
   // Why: bytes that are wire format but not this message (a nested message that does
   // not parse, a string that is not UTF-8) still parse as a set of unknown fields. (A

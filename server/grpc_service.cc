@@ -72,6 +72,15 @@ Clock::time_point CallDeadline(std::chrono::system_clock::time_point client, Clo
   return std::min(server_bound, Clock::now() + left);
 }
 
+// gRPC cancels a call when the client's deadline passes, with timers of a millisecond
+// grain: a cancellation within a few milliseconds of that deadline is the deadline.
+constexpr auto kTimerGrain = std::chrono::milliseconds(2);
+
+bool ClientDeadlinePassed(std::chrono::system_clock::time_point client) {
+  return client != std::chrono::system_clock::time_point::max() &&
+         std::chrono::system_clock::now() + kTimerGrain >= client;
+}
+
 bool IsCancelled(void* context) {
   return static_cast<grpc::CallbackServerContext*>(context)->IsCancelled();
 }
@@ -97,7 +106,8 @@ struct ShotPlannerService::Call {
   grpc::ServerUnaryReactor* reactor;
   std::string peer;
   Clock::time_point arrival;
-  Clock::time_point deadline;
+  Clock::time_point deadline;  // the client's or the server's, whichever is first
+  std::chrono::system_clock::time_point client_deadline;
   std::size_t request_bytes = 0;
 };
 
@@ -135,7 +145,8 @@ grpc::ServerUnaryReactor* ShotPlannerService::Accept(const Method& method,
   call->reactor = context->DefaultReactor();
   call->peer = context->peer();
   call->arrival = Clock::now();
-  call->deadline = CallDeadline(context->deadline(), call->arrival, options_.max_call);
+  call->client_deadline = context->deadline();
+  call->deadline = CallDeadline(call->client_deadline, call->arrival, options_.max_call);
   call->request_bytes = request->Length();
   grpc::ServerUnaryReactor* reactor = call->reactor;
   if (!pool_.TrySubmit([this, call] { Run(call); })) {
@@ -154,11 +165,12 @@ void ShotPlannerService::Run(const std::shared_ptr<Call>& call) {
   std::size_t response_bytes = 0;
   const auto waited_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
                              Clock::now() - call->arrival).count();
-  if (Clock::now() >= call->deadline) {
+  const bool cancelled = call->context->IsCancelled();
+  if (Clock::now() >= call->deadline || (cancelled && ClientDeadlinePassed(call->client_deadline))) {
     status = {grpc::StatusCode::DEADLINE_EXCEEDED,
               "the call's deadline passed before it started (" + std::to_string(waited_ms) +
                   " ms waiting for a worker)"};
-  } else if (call->context->IsCancelled()) {
+  } else if (cancelled) {
     status = {grpc::StatusCode::CANCELLED,
               "the call was cancelled before it started (" + std::to_string(waited_ms) +
                   " ms waiting for a worker)"};
@@ -172,7 +184,12 @@ void ShotPlannerService::Run(const std::shared_ptr<Call>& call) {
       if (!Flatten(*call->request, &bytes)) {
         status = {grpc::StatusCode::INVALID_ARGUMENT, "cannot read the request's bytes"};
       } else {
-        status = ToGrpcStatus(call->method->run(bytes, limits, call->response));
+        ApiStatus result = call->method->run(bytes, limits, call->response);
+        if (result.code == ApiStatus::Code::kCancelled && ClientDeadlinePassed(call->client_deadline)) {
+          result.code = ApiStatus::Code::kDeadlineExceeded;
+          result.message = "the client's deadline passed: " + result.message;
+        }
+        status = ToGrpcStatus(result);
         if (status.ok()) response_bytes = call->response->Length();
       }
     } catch (const std::bad_alloc&) {

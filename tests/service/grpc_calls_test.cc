@@ -66,6 +66,22 @@ class CallsTest : public testing::Test {
     return Clock::now() - since;
   }
 
+  // Waits (at most 20 s) until the server has received n calls.
+  bool WaitUntilReceived(std::int64_t n) {
+    const auto give_up = Clock::now() + std::chrono::seconds(20);
+    while (server_->counts().received < n && Clock::now() < give_up) {
+      std::this_thread::sleep_for(milliseconds(1));
+    }
+    return server_->counts().received >= n;
+  }
+
+  // One call, so the channel is connected before a batch is timed.
+  void WarmUp() {
+    v1::CollideResponse resp;
+    grpc::ClientContext ctx;
+    ASSERT_TRUE(stub_->Collide(&ctx, req::PaperCollide(), &resp).ok());
+  }
+
   std::ostringstream log_;  // written under the service's lock; read after calls end
   std::unique_ptr<Server> server_;
   std::shared_ptr<grpc::Channel> channel_;
@@ -150,28 +166,64 @@ TEST_F(CallsTest, AOneMegabyteIdIsRefusedWithAShortMessage) {
   EXPECT_LT(st.error_message().size(), 300u);
 }
 
-// Heavy calls with a 100 ms deadline, far more than one worker can do in that time:
-// each is answered DEADLINE_EXCEEDED (by the server too, not only by the client's
-// own timer), and the server is idle again long before the work would have ended.
+// Heavy calls with a 100 ms client deadline, far more than one worker can do in that
+// time: each is answered DEADLINE_EXCEEDED, the server stopped every call it did not
+// finish in time, and it is idle again long before the work would have ended.
 TEST_F(CallsTest, HeavyCallsWithA100msDeadlineAreAnsweredDeadlineExceeded) {
   ServerOptions options;
   options.workers = 1;
   options.max_queued = 10'000;
   StartServer(options);
+  WarmUp();
   const int n = HeavyCallsForTheWork();
   const v1::SimulateRequest heavy = req::Heavy();
   const auto t0 = Clock::now();
   Batch batch(stub_.get(), heavy, n, milliseconds(100));
   const std::vector<int> by_code = batch.Wait();
+  const auto answered_after = Clock::now() - t0;
   const auto idle_after = WaitUntilIdle(t0);
   const int late = by_code[grpc::StatusCode::DEADLINE_EXCEEDED];
   EXPECT_EQ(late + by_code[grpc::StatusCode::OK], n);
   EXPECT_GT(late, n / 2);
-  EXPECT_GT(server_->counts().with(grpc::StatusCode::DEADLINE_EXCEEDED), n / 2);
+  EXPECT_LT(answered_after, kWork / 2);
+  const CallCounts c = server_->counts();
+  // The server answers DEADLINE_EXCEEDED, or CANCELLED when the client's own timer
+  // (its deadline less the time in transit) cancelled the call first.
+  const std::int64_t stopped =
+      c.with(grpc::StatusCode::DEADLINE_EXCEEDED) + c.with(grpc::StatusCode::CANCELLED);
+  EXPECT_EQ(stopped + c.with(grpc::StatusCode::OK), c.received);
+  EXPECT_GT(stopped, c.received / 2);
   EXPECT_LT(idle_after, kWork / 2);
 }
 
-// A call without a deadline still ends at the server's maximum.
+// The same without a client deadline, ended by the server's maximum: every call
+// reaches the server, and its own DEADLINE_EXCEEDED comes back to the client.
+TEST_F(CallsTest, HeavyCallsPastTheServerMaximumAreAnsweredDeadlineExceeded) {
+  ServerOptions options;
+  options.workers = 1;
+  options.max_queued = 10'000;
+  options.max_call = milliseconds(100);
+  StartServer(options);
+  const int n = HeavyCallsForTheWork();
+  const v1::SimulateRequest heavy = req::Heavy();
+  const auto t0 = Clock::now();
+  Batch batch(stub_.get(), heavy, n, std::nullopt);
+  const std::vector<int> by_code = batch.Wait();
+  const auto idle_after = WaitUntilIdle(t0);
+  const int late = by_code[grpc::StatusCode::DEADLINE_EXCEEDED];
+  EXPECT_EQ(late + by_code[grpc::StatusCode::OK], n);
+  EXPECT_GT(late, n / 2);
+  EXPECT_EQ(server_->counts().with(grpc::StatusCode::DEADLINE_EXCEEDED), late);
+  for (size_t i = 0; i < static_cast<size_t>(n); ++i) {
+    if (batch.status(i).error_code() == grpc::StatusCode::DEADLINE_EXCEEDED) {
+      EXPECT_TRUE(Mentions(batch.status(i).error_message(), "the call's deadline passed"))
+          << batch.status(i).error_message();
+    }
+  }
+  EXPECT_LT(idle_after, kWork / 2);
+}
+
+// A call without a deadline still ends at the server's maximum, inside its run.
 TEST_F(CallsTest, TheServerMaximumEndsACallWithoutADeadline) {
   ServerOptions options;
   options.max_call = milliseconds(1);
@@ -183,8 +235,8 @@ TEST_F(CallsTest, TheServerMaximumEndsACallWithoutADeadline) {
   EXPECT_TRUE(Mentions(st.error_message(), "the call's deadline passed")) << st.error_message();
 }
 
-// Cancelled calls stop: the server's counters show them answered CANCELLED and the
-// server idle long before the work would have ended.
+// Cancelled calls stop: with all of them received (kWork queued), the server answers
+// them CANCELLED and is idle long before the work would have ended.
 TEST_F(CallsTest, CancelledCallsStopWorking) {
   ServerOptions options;
   options.workers = 1;
@@ -192,16 +244,16 @@ TEST_F(CallsTest, CancelledCallsStopWorking) {
   StartServer(options);
   const int n = HeavyCallsForTheWork();
   const v1::SimulateRequest heavy = req::Heavy();
-  const auto t0 = Clock::now();
   Batch batch(stub_.get(), heavy, n, std::nullopt);
-  while (server_->counts().running == 0 && Clock::now() - t0 < std::chrono::seconds(10)) {
-    std::this_thread::sleep_for(milliseconds(1));
-  }
+  ASSERT_TRUE(WaitUntilReceived(n));
+  const auto t1 = Clock::now();
   batch.CancelAll();
   const std::vector<int> by_code = batch.Wait();
-  const auto idle_after = WaitUntilIdle(t0);
+  const auto idle_after = WaitUntilIdle(t1);
   EXPECT_GT(by_code[grpc::StatusCode::CANCELLED], n / 2);
-  EXPECT_GT(server_->counts().with(grpc::StatusCode::CANCELLED), n / 2);
+  const CallCounts c = server_->counts();
+  EXPECT_EQ(c.with(grpc::StatusCode::CANCELLED) + c.with(grpc::StatusCode::OK), n);
+  EXPECT_GT(c.with(grpc::StatusCode::CANCELLED), n / 2);
   EXPECT_LT(idle_after, kWork / 2);
 }
 
@@ -249,11 +301,8 @@ TEST_F(CallsTest, ShutdownCancelsWhatIsLeftAfterItsGrace) {
   StartServer(options);
   const int n = HeavyCallsForTheWork();
   const v1::SimulateRequest heavy = req::Heavy();
-  const auto t0 = Clock::now();
   Batch batch(stub_.get(), heavy, n, std::nullopt);
-  while (server_->counts().received < n && Clock::now() - t0 < std::chrono::seconds(10)) {
-    std::this_thread::sleep_for(milliseconds(1));
-  }
+  ASSERT_TRUE(WaitUntilReceived(n));
   const auto t1 = Clock::now();
   server_->Shutdown(milliseconds(100));
   const auto shutdown_took = Clock::now() - t1;
