@@ -135,26 +135,34 @@ grpc::ServerUnaryReactor* ShotPlannerService::Accept(const Method& method,
                                                      grpc::CallbackServerContext* context,
                                                      const grpc::ByteBuffer* request,
                                                      grpc::ByteBuffer* response) {
-  // On a gRPC thread: queue the call and return at once (no blocking here).
+  // On a gRPC thread: queue the call and return at once (no blocking here, and no
+  // exception may leave).
   received_.fetch_add(1);
-  auto call = std::make_shared<Call>();
-  call->method = &method;
-  call->context = context;
-  call->request = request;
-  call->response = response;
-  call->reactor = context->DefaultReactor();
-  call->peer = context->peer();
-  call->arrival = Clock::now();
-  call->client_deadline = context->deadline();
-  call->deadline = CallDeadline(call->client_deadline, call->arrival, options_.max_call);
-  call->request_bytes = request->Length();
-  grpc::ServerUnaryReactor* reactor = call->reactor;
-  if (!pool_.TrySubmit([this, call] { Run(call); })) {
-    Finish(*call,
-           {grpc::StatusCode::RESOURCE_EXHAUSTED,
-            "the server is busy: " + std::to_string(pool_.threads()) + " calls running and " +
-                std::to_string(options_.max_queued) + " waiting; try again later"},
-           0);
+  grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
+  try {
+    auto call = std::make_shared<Call>();
+    call->method = &method;
+    call->context = context;
+    call->request = request;
+    call->response = response;
+    call->reactor = reactor;
+    call->peer = context->peer();
+    call->arrival = Clock::now();
+    call->client_deadline = context->deadline();
+    call->deadline = CallDeadline(call->client_deadline, call->arrival, options_.max_call);
+    call->request_bytes = request->Length();
+    if (!pool_.TrySubmit([this, call] { Run(call); })) {
+      Finish(*call,
+             {grpc::StatusCode::RESOURCE_EXHAUSTED,
+              "the server is busy: " + std::to_string(pool_.threads()) + " calls running and " +
+                  std::to_string(options_.max_queued) + " waiting; try again later"},
+             0);
+    }
+  } catch (const std::exception& e) {  // std::bad_alloc above all
+    by_status_[grpc::StatusCode::RESOURCE_EXHAUSTED].fetch_add(1);
+    finished_.fetch_add(1);
+    reactor->Finish({grpc::StatusCode::RESOURCE_EXHAUSTED,
+                     std::string("the server cannot take the call: ") + e.what()});
   }
   return reactor;
 }
