@@ -1,6 +1,7 @@
 // snooker collide: one ball-ball collision (Mathavan et al. 2014) from the command
 // line. Builds the same CollideRequest the gRPC service takes and calls the same
 // operation (server/api.h), so both paths are one.
+#include <algorithm>
 #include <iomanip>
 #include <map>
 
@@ -9,6 +10,7 @@
 #include "cli/json.h"
 #include "server/api.h"
 #include "server/convert.h"
+#include "server/limits.h"
 
 namespace snooker::cli {
 namespace {
@@ -68,12 +70,16 @@ const std::map<std::string, std::string>& FlagOfField() {
 
 std::string FlagErrors(const std::vector<server::FieldError>& errors) {
   std::string out;
-  for (const server::FieldError& e : errors) {
+  const std::size_t shown =
+      std::min<std::size_t>(errors.size(), server::limits::kMaxReportedProblems);
+  for (std::size_t i = 0; i < shown; ++i) {
+    const server::FieldError& e = errors[i];
     const auto it = FlagOfField().find(e.field);
     if (!out.empty()) out += "; ";
     out += (it != FlagOfField().end() ? it->second : e.field) + " " + e.value + ": " + e.rule;
   }
-  return out;
+  if (errors.size() > shown) out += "; and " + std::to_string(errors.size() - shown) + " more";
+  return server::BoundMessage(std::move(out));
 }
 
 void PrintTable(const v1::CollideRequest& req, const v1::CollideResponse& r, std::ostream& out) {
@@ -134,7 +140,7 @@ int RunCollide(const std::vector<std::string>& argv, std::ostream& out, std::ost
     return kExitUsage;
   }
   if (args.Has("steps")) {
-    const auto steps = args.Integer("steps", std::nullopt, 1, 100'000'000);
+    const auto steps = args.Integer("steps", std::nullopt, 1, physics::limits::kMaxFixedSteps);
     if (steps) {
       req.mutable_solver()->set_integrator(v1::IMPULSE_INTEGRATOR_FIXED_STEP);
       req.mutable_solver()->set_steps(static_cast<int>(*steps));

@@ -1,5 +1,7 @@
 // The `snooker` command.
+#include <exception>
 #include <iostream>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -19,9 +21,7 @@ commands:
 'snooker <command> --help' explains a command's options.
 )";
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int Run(int argc, char** argv) {
   using namespace snooker::cli;
   if (argc < 2) {
     std::cerr << kUsage;
@@ -39,4 +39,20 @@ int main(int argc, char** argv) {
   }
   std::cerr << "snooker: unknown command '" << command << "'\n\n" << kUsage;
   return kExitUsage;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // An allocation failure (or any other escaped exception) is reported, never an abort.
+  try {
+    return Run(argc, argv);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "snooker: out of memory" << std::endl;
+  } catch (const std::exception& e) {
+    std::cerr << "snooker: internal error: " << e.what() << std::endl;
+  } catch (...) {
+    std::cerr << "snooker: internal error" << std::endl;
+  }
+  return snooker::cli::kExitFailure;
 }

@@ -5,13 +5,16 @@
 
 #include <fstream>
 #include <iomanip>
+#include <new>
 #include <sstream>
 
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/json.h"
+#include "cli/read_file.h"
 #include "cli/svg.h"
 #include "server/api.h"
+#include "server/convert.h"
 
 namespace snooker::cli {
 namespace {
@@ -46,21 +49,27 @@ ball centres in metres.
   --help           this text
 )";
 
-bool ReadJson(const std::string& path, google::protobuf::Message* msg, std::ostream& err) {
-  std::ifstream f(path);
-  if (!f) {
-    err << "snooker simulate: cannot read '" << path << "'\n";
-    return false;
+// Reads a JSON file into `msg`: kExitOk, kExitUsage (the file or its content is bad,
+// said on `err`) or kExitFailure (out of memory).
+int ReadJson(const std::string& path, google::protobuf::Message* msg, std::ostream& err) {
+  std::string text, why;
+  if (!ReadInputFile(path, &text, &why)) {
+    err << "snooker simulate: cannot read '" << path << "': " << why << "\n";
+    return why == kOutOfMemory ? kExitFailure : kExitUsage;
   }
-  std::stringstream ss;
-  ss << f.rdbuf();
-  const auto st = google::protobuf::util::JsonStringToMessage(ss.str(), msg);
-  if (!st.ok()) {
-    err << "snooker simulate: '" << path << "' is not a valid " << msg->GetDescriptor()->name()
-        << " JSON: " << st.message() << "\n";
-    return false;
+  try {
+    const auto st = google::protobuf::util::JsonStringToMessage(text, msg);
+    if (!st.ok()) {
+      err << "snooker simulate: '" << path << "' is not a valid " << msg->GetDescriptor()->name()
+          << " JSON: " << server::BoundMessage(std::string(st.message())) << "\n";
+      return kExitUsage;
+    }
+  } catch (const std::bad_alloc&) {
+    err << "snooker simulate: out of memory reading '" << path << "' (" << text.size()
+        << " bytes)\n";
+    return kExitFailure;
   }
-  return true;
+  return kExitOk;
 }
 
 void PrintReadable(const v1::SimulateResponse& r, std::ostream& out) {
@@ -100,7 +109,7 @@ int RunSimulate(const std::vector<std::string>& argv, std::ostream& out, std::os
     if (const auto t = args.Number("tolerance", std::nullopt)) req.mutable_options()->set_tolerance(*t);
   }
   if (args.Has("max-events")) {
-    if (const auto n = args.Integer("max-events", std::nullopt, 1, 1'000'000)) {
+    if (const auto n = args.Integer("max-events", std::nullopt, 1, physics::limits::kMaxEvents)) {
       req.mutable_options()->set_max_events(static_cast<int>(*n));
     }
   }
@@ -108,10 +117,8 @@ int RunSimulate(const std::vector<std::string>& argv, std::ostream& out, std::os
     err << "snooker simulate: " << args.error() << "\n(see snooker simulate --help)\n";
     return kExitUsage;
   }
-  if (!ReadJson(*table_path, req.mutable_table(), err) ||
-      !ReadJson(*shot_path, req.mutable_shot(), err)) {
-    return kExitUsage;
-  }
+  if (const int rc = ReadJson(*table_path, req.mutable_table(), err); rc != kExitOk) return rc;
+  if (const int rc = ReadJson(*shot_path, req.mutable_shot(), err); rc != kExitOk) return rc;
   const auto svg_path = args.Text("svg", "");
   req.mutable_options()->set_include_paths(!svg_path->empty());
   v1::SimulateResponse resp;

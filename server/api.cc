@@ -1,15 +1,63 @@
 #include "server/api.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <sstream>
 
 #include "physics/impact/ball_ball.h"
-#include "physics/sim/simulate.h"
 #include "physics/motion/slip_phase.h"
 #include "server/convert.h"
 
 namespace snooker::server {
+
+const char* ToString(ApiStatus::Code code) {
+  switch (code) {
+    case ApiStatus::Code::kOk: return "OK";
+    case ApiStatus::Code::kInvalidArgument: return "INVALID_ARGUMENT";
+    case ApiStatus::Code::kResourceExhausted: return "RESOURCE_EXHAUSTED";
+    case ApiStatus::Code::kDeadlineExceeded: return "DEADLINE_EXCEEDED";
+    case ApiStatus::Code::kCancelled: return "CANCELLED";
+    case ApiStatus::Code::kInternal: return "INTERNAL";
+  }
+  return "UNKNOWN";
+}
+
 namespace {
+
+std::string Num(double x, int digits = 6) {
+  std::ostringstream s;
+  s.precision(digits);
+  s << x;
+  return s.str();
+}
+
+// The status of a call that `interrupt` stopped: DEADLINE_EXCEEDED once its deadline
+// has passed (whatever else happened), otherwise CANCELLED. `progress` says how far
+// the work got ("after 32 events ...").
+ApiStatus Stopped(const physics::Interrupt& interrupt, const std::string& progress) {
+  const bool late = interrupt.deadline != std::chrono::steady_clock::time_point::max() &&
+                    std::chrono::steady_clock::now() >= interrupt.deadline;
+  if (late) return {ApiStatus::Code::kDeadlineExceeded, "the call's deadline passed " + progress};
+  return {ApiStatus::Code::kCancelled, "the call was cancelled " + progress};
+}
+
+// Running estimate of a message's size on the wire against a budget. Each added
+// sub-message costs its own size plus its tag and length (at most 6 bytes).
+class ByteBudget {
+ public:
+  explicit ByteBudget(std::size_t limit) : limit_(limit) {}
+  bool Add(std::size_t bytes) {
+    used_ += bytes + 6;
+    return used_ <= limit_;
+  }
+  std::size_t limit() const { return limit_; }
+
+ private:
+  std::size_t limit_;
+  std::size_t used_ = 0;
+};
 
 void FillBall(const physics::BallMotion& m, const physics::Vec2& incoming,
               const physics::BallParams& ball, const physics::ClothParams& cloth,
@@ -27,7 +75,8 @@ void FillBall(const physics::BallMotion& m, const physics::Vec2& incoming,
 
 }  // namespace
 
-ApiStatus Collide(const v1::CollideRequest& request, v1::CollideResponse* response) {
+ApiStatus Collide(const v1::CollideRequest& request, v1::CollideResponse* response,
+                  const CallLimits& limits) {
   const std::vector<FieldError> errors = ValidateCollideRequest(request);
   if (!errors.empty()) return ApiStatus::Invalid(Describe(errors));
 
@@ -42,14 +91,27 @@ ApiStatus Collide(const v1::CollideRequest& request, v1::CollideResponse* respon
   const physics::ImpactResult r = physics::ResolveImpact(in, ball, contact, cloth.mu_s, options);
   switch (r.status) {
     case physics::ImpactStatus::kOk: break;
-    case physics::ImpactStatus::kInvalidInput:
+    case physics::ImpactStatus::kInvalidInput: {
+      const std::string why = physics::ValidateImpact(in, ball, contact, cloth.mu_s, options);
+      return ApiStatus::Invalid(BoundMessage(
+          "invalid input: " + (why.empty() ? std::string("rejected by the impact solver") : why)));
+    }
     case physics::ImpactStatus::kNotApproaching:
-      return ApiStatus::Invalid(std::string(physics::ToString(r.status)) + ": " +
-                                physics::ValidateImpact(in, ball, contact, cloth.mu_s, options));
+      // Validated input approaches unless the approach is negligible against the
+      // speed scale (a cut within a hair of 90 deg, or spin far above the speed).
+      return ApiStatus::Invalid(
+          "not approaching: speed = " + FormatNumber(request.speed()) + " m/s at cut_angle_deg = " +
+          FormatNumber(request.cut_angle_deg()) + " gives an approach speed of " +
+          Num(request.speed() * std::cos(cut)) +
+          " m/s along the line of centres, too small against the speed and spin to resolve "
+          "an impact (the balls graze)");
     case physics::ImpactStatus::kStepLimit:
       return {ApiStatus::Code::kResourceExhausted,
-              "the impulse integrator reached its step cap of " +
-                  std::to_string(options.max_steps) + " steps"};
+              "the impulse integrator reached its step cap of " + std::to_string(options.max_steps) +
+                  " steps (" + std::to_string(r.work.steps) + " accepted)"};
+  }
+  if (limits.interrupt.Due()) {
+    return Stopped(limits.interrupt, "while the collision was resolved");
   }
   const physics::Vec2 incoming(std::sin(cut), std::cos(cut));  // cue ball's direction
   FillBall(r.out.c, incoming, ball, cloth, response->mutable_cue());
@@ -77,22 +139,54 @@ v1::EventKind EventKindToProto(physics::EventKind k) {
   return v1::EVENT_KIND_UNSPECIFIED;
 }
 
+std::string Progress(const physics::Simulator& sim) {
+  return "after " + std::to_string(sim.event_count()) + " events (" + Num(sim.end_time()) +
+         " s of the shot simulated)";
+}
+
+ApiStatus TooLarge(std::size_t limit, const std::string& what, v1::SimulateResponse* response) {
+  response->Clear();
+  return {ApiStatus::Code::kResourceExhausted,
+          "the response would be larger than " + std::to_string(limit) + " bytes (" + what +
+              "); ask for fewer events (options.max_events), shorter ball ids, or fewer path "
+              "points (a larger options.path_sample_s, or no paths)"};
+}
+
 }  // namespace
 
-ApiStatus Simulate(const v1::SimulateRequest& request, v1::SimulateResponse* response) {
+ApiStatus Simulate(const v1::SimulateRequest& request, v1::SimulateResponse* response,
+                   const CallLimits& limits) {
   const physics::TableModel& table = physics::DefaultTable();
   const std::vector<FieldError> errors = ValidateSimulateRequest(request, table);
   if (!errors.empty()) return ApiStatus::Invalid(Describe(errors));
   const v1::TableState& state = request.table();
+  const bool paths = request.options().include_paths();
   const std::vector<physics::BallState> balls = BallStatesFrom(state, request.shot());
   physics::Simulator sim(table, SimParamsFrom(request.options()));
-  const physics::SimStatus status = sim.Run(balls);
-  if (status == physics::SimStatus::kInvalidInput) {
-    return {ApiStatus::Code::kInternal, "simulation rejected a validated table"};
+  physics::RunOptions run;
+  run.record_events = true;
+  run.record_paths = paths;
+  run.interrupt = limits.interrupt;
+  const physics::SimStatus status = sim.Run(balls, run);
+  switch (status) {
+    case physics::SimStatus::kAtRest:
+    case physics::SimStatus::kEventLimit:
+    case physics::SimStatus::kTimeLimit: break;
+    case physics::SimStatus::kInterrupted: return Stopped(limits.interrupt, Progress(sim));
+    case physics::SimStatus::kSolverFailure:
+      return {ApiStatus::Code::kResourceExhausted,
+              "an impact solver reached its step cap " + Progress(sim) +
+                  "; a looser options.tolerance needs fewer steps"};
+    case physics::SimStatus::kInvalidInput:
+      return {ApiStatus::Code::kInternal, "the simulator rejected a validated table (a bug)"};
+    case physics::SimStatus::kEventOrder:
+    case physics::SimStatus::kRunning:
+      return {ApiStatus::Code::kInternal,
+              std::string("the simulation stopped on a broken invariant: ") +
+                  physics::ToString(status) + ", " + Progress(sim)};
   }
-  if (status == physics::SimStatus::kSolverFailure) {
-    return {ApiStatus::Code::kResourceExhausted, "an impact solver reached its step cap"};
-  }
+
+  ByteBudget budget(limits.max_response_bytes);
   response->set_status(physics::ToString(status));
   response->set_duration_s(sim.end_time());
   auto id = [&](int i) -> const std::string& { return state.balls(i).id(); };
@@ -119,6 +213,9 @@ ApiStatus Simulate(const v1::SimulateRequest& request, v1::SimulateResponse* res
         break;
       default: break;
     }
+    if (!budget.Add(out->ByteSizeLong())) {
+      return TooLarge(budget.limit(), std::to_string(sim.events().size()) + " events", response);
+    }
   }
   for (int i = 0; i < state.balls_size(); ++i) {
     v1::FinalBall* out = response->add_final_balls();
@@ -128,27 +225,53 @@ ApiStatus Simulate(const v1::SimulateRequest& request, v1::SimulateResponse* res
     const int pocket = sim.pocket_of(i);
     out->set_pocketed(pocket >= 0);
     if (pocket >= 0) out->set_pocket(physics::ToString(table.pockets()[static_cast<size_t>(pocket)].id));
+    budget.Add(out->ByteSizeLong());
   }
-  if (request.options().include_paths()) {
-    constexpr double kMaxPointsPerPath = 20000;  // bounds the response size
+  if (paths) {
+    // Samples every dt between the knots (each knot is a point too); dt grows so that
+    // the samples of all balls stay within limits::kMaxPathPoints.
     const double asked =
         request.options().has_path_sample_s() ? request.options().path_sample_s() : 0.02;
-    const double dt = std::max(asked, sim.end_time() / kMaxPointsPerPath);
+    const double n = static_cast<double>(state.balls_size());
+    const double dt =
+        std::max(asked, sim.end_time() * n / static_cast<double>(limits::kMaxPathPoints));
+    constexpr std::size_t kPointBytes = 2 * 9 + 2 + 8;  // x, y with tags and length; t
+    std::int64_t points = 0;
     for (int i = 0; i < state.balls_size(); ++i) {
       v1::BallPath* path = response->add_paths();
       path->set_id(id(i));
+      bool fits = budget.Add(path->ByteSizeLong());
       auto add = [&](double t) {
         path->add_t(t);
         ToProto(sim.PositionAt(i, t), path->add_points());
+        ++points;
+        fits = fits && budget.Add(kPointBytes);
       };
       const auto knots = sim.path(i);
       const double end = sim.pocket_of(i) >= 0 ? knots.back().t : sim.end_time();
-      for (size_t k = 0; k < knots.size(); ++k) {  // every knot, samples in between
+      for (size_t k = 0; k < knots.size() && fits; ++k) {  // every knot, samples in between
+        const double t0 = knots[k].t;
         const double t1 = k + 1 < knots.size() ? knots[k + 1].t : end;
-        for (double t = knots[k].t; t < t1; t += dt) add(t);
+        // Counted in integers: t += dt could stall once dt is below t's last place.
+        const auto m = t1 > t0 ? static_cast<std::int64_t>(std::ceil((t1 - t0) / dt)) : 0;
+        for (std::int64_t j = 0; j < m && fits; ++j) add(t0 + static_cast<double>(j) * dt);
       }
       add(end);
+      if (!fits) {
+        return TooLarge(budget.limit(),
+                        std::to_string(sim.events().size()) + " events and more than " +
+                            std::to_string(points) + " path points",
+                        response);
+      }
     }
+  }
+  if (limits.interrupt.Due()) {  // no answer after the deadline (paths take a while)
+    response->Clear();
+    return Stopped(limits.interrupt, Progress(sim) + ", while the answer was built");
+  }
+  if (response->ByteSizeLong() > limits.max_response_bytes) {  // the exact size
+    return TooLarge(limits.max_response_bytes,
+                    std::to_string(response->ByteSizeLong()) + " bytes", response);
   }
   return ApiStatus::Ok();
 }

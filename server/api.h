@@ -1,19 +1,43 @@
 // The service's operations, independent of the transport: the gRPC adapter
 // (grpc_service.h) and the command line both call these. Each validates its
 // request, converts it (convert.h), makes one library call and converts back.
+//
+// Every call's work is bounded: by the request's validated ranges (server/limits.h,
+// physics/core/limits.h), by the size of its answer (CallLimits::max_response_bytes)
+// and by CallLimits::interrupt, a wall-time deadline and a cancellation test checked
+// inside long simulations.
 #pragma once
 
-#include "server/api_status.h"
+#include <cstddef>
+
+#include "physics/sim/simulate.h"
 #include "physics/table/table.h"
+#include "server/api_status.h"
+#include "server/limits.h"
 #include "snooker/v1/collide.pb.h"
 #include "snooker/v1/simulate.pb.h"
 
 namespace snooker::server {
 
-/// One ball-ball collision (Mathavan et al. 2014) and the slip phases after it.
-ApiStatus Collide(const v1::CollideRequest& request, v1::CollideResponse* response);
+/// What bounds one call besides its request.
+struct CallLimits {
+  /// Deadline and cancellation (physics::Interrupt), checked every few events of a
+  /// simulation and once after a collision: a call stopped by it answers
+  /// DEADLINE_EXCEEDED once the deadline has passed, otherwise CANCELLED.
+  physics::Interrupt interrupt;
+  /// A response that would be larger is refused with RESOURCE_EXHAUSTED.
+  std::size_t max_response_bytes = limits::kMaxResponseBytes;
+};
 
-/// A shot on a table, simulated until every ball is at rest or pocketed.
-ApiStatus Simulate(const v1::SimulateRequest& request, v1::SimulateResponse* response);
+/// One ball-ball collision (Mathavan et al. 2014) and the slip phases after it.
+/// Its work is bounded by the step cap (at most 4 x limits::kMaxFixedSteps steps);
+/// the interrupt is checked when it ends.
+ApiStatus Collide(const v1::CollideRequest& request, v1::CollideResponse* response,
+                  const CallLimits& limits = {});
+
+/// A shot on a table, simulated until every ball is at rest or pocketed (or a cap is
+/// reached); the interrupt is checked every interrupt.check_every events.
+ApiStatus Simulate(const v1::SimulateRequest& request, v1::SimulateResponse* response,
+                   const CallLimits& limits = {});
 
 }  // namespace snooker::server

@@ -12,7 +12,9 @@ struct ApiStatus {
   enum class Code {
     kOk,
     kInvalidArgument,    // the request names a bad value; the message says which
-    kResourceExhausted,  // a solver reached its step cap
+    kResourceExhausted,  // a solver reached its step cap, or the answer would be too large
+    kDeadlineExceeded,   // the call's wall-time bound passed (client deadline or server maximum)
+    kCancelled,          // the caller cancelled the call (or the server is shutting down)
     kInternal,           // a broken invariant; a bug
   };
   Code code = Code::kOk;
@@ -22,5 +24,8 @@ struct ApiStatus {
   static ApiStatus Ok() { return {}; }
   static ApiStatus Invalid(std::string m) { return {Code::kInvalidArgument, std::move(m)}; }
 };
+
+/// "OK", "INVALID_ARGUMENT", ... (gRPC's names).
+const char* ToString(ApiStatus::Code code);
 
 }  // namespace snooker::server

@@ -1,71 +1,154 @@
 #include "server/convert.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <set>
 #include <sstream>
+#include <string_view>
+
+#include <google/protobuf/descriptor.h>
+
+#include "server/limits.h"
 
 namespace snooker::server {
 namespace {
 
-std::string Num(double x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << x;
-  return s.str();
+namespace plim = physics::limits;
+namespace slim = server::limits;
+
+std::string Num(double x) { return FormatNumber(x); }
+
+std::string RangeText(const physics::Range& r, const char* unit) {
+  std::string out = "must be in [" + Num(r.lo) + ", " + Num(r.hi) + "]";
+  if (unit[0] != '\0') out += std::string(" ") + unit;
+  return out;
 }
 
-// Adds an error when an optional double field is set and outside [lo, hi].
+// Adds an error when x is outside r (NaN and infinities always are).
+void CheckRange(std::vector<FieldError>* errors, double x, const char* field,
+                const physics::Range& r, const char* unit = "") {
+  if (!r.Contains(x)) errors->push_back({field, Num(x), RangeText(r, unit)});
+}
+
+// The same for an optional field: only when it is set.
 template <typename Msg, typename Has, typename Get>
-void CheckRange(std::vector<FieldError>* errors, const Msg& m, Has has, Get get,
-                const char* field, double lo, double hi) {
-  if (!(m.*has)()) return;
-  const double x = (m.*get)();
-  if (std::isfinite(x) && x >= lo && x <= hi) return;
-  errors->push_back({field, Num(x), "must be a number in [" + Num(lo) + ", " + Num(hi) + "]"});
+void CheckOptional(std::vector<FieldError>* errors, const Msg& m, Has has, Get get,
+                   const char* field, const physics::Range& r, const char* unit = "") {
+  if ((m.*has)()) CheckRange(errors, (m.*get)(), field, r, unit);
 }
 
-void CheckFinite(std::vector<FieldError>* errors, double x, const char* field) {
-  if (!std::isfinite(x)) errors->push_back({field, Num(x), "must be a finite number"});
-}
-
-}  // namespace
-
-std::string Describe(const std::vector<FieldError>& errors) {
+// "A (0), B (1), ..." for an enum, from its descriptor.
+std::string EnumValues(const google::protobuf::EnumDescriptor* d) {
   std::string out;
-  for (const FieldError& e : errors) {
-    if (!out.empty()) out += "; ";
-    out += e.field + " = " + e.value + " (" + e.rule + ")";
+  for (int i = 0; i < d->value_count(); ++i) {
+    if (i > 0) out += ", ";
+    out += d->value(i)->name() + " (" + std::to_string(d->value(i)->number()) + ")";
   }
   return out;
 }
 
+void CheckEnum(std::vector<FieldError>* errors, int value, bool valid, const char* field,
+               const google::protobuf::EnumDescriptor* d) {
+  if (!valid) errors->push_back({field, std::to_string(value), "must be one of " + EnumValues(d)});
+}
+
+// Length of the longest prefix of s of at most n bytes that does not end inside a
+// UTF-8 sequence.
+std::size_t Utf8Prefix(std::string_view s, std::size_t n) {
+  if (s.size() <= n) return s.size();
+  while (n > 0 && (static_cast<unsigned char>(s[n]) & 0xC0) == 0x80) --n;
+  return n;
+}
+
+}  // namespace
+
+std::string FormatNumber(double x) {
+  char buf[32];
+  const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, x);
+  return ec == std::errc() ? std::string(buf, end) : std::string("?");
+}
+
+std::string QuoteId(std::string_view id) {
+  const std::size_t shown = Utf8Prefix(id, slim::kMaxQuotedIdBytes);
+  std::string out = "\"";
+  for (char ch : id.substr(0, shown)) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (ch == '"' || ch == '\\') {
+      out += '\\';
+      out += ch;
+    } else if (c < 0x20 || c == 0x7F) {
+      static constexpr char kHex[] = "0123456789abcdef";
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 0xF];
+    } else {
+      out += ch;
+    }
+  }
+  if (shown < id.size()) out += "...\" (" + std::to_string(id.size()) + " bytes)";
+  else out += "\"";
+  return out;
+}
+
+std::string Describe(const std::vector<FieldError>& errors) {
+  std::string out;
+  const std::size_t shown = std::min<std::size_t>(errors.size(), slim::kMaxReportedProblems);
+  for (std::size_t i = 0; i < shown; ++i) {
+    const FieldError& e = errors[i];
+    if (!out.empty()) out += "; ";
+    out += e.field + " = " + e.value + " (" + e.rule + ")";
+  }
+  if (errors.size() > shown) {
+    out += "; and " + std::to_string(errors.size() - shown) + " more problem" +
+           (errors.size() - shown == 1 ? "" : "s");
+  }
+  return BoundMessage(std::move(out));
+}
+
+std::string BoundMessage(std::string message) {
+  if (message.size() <= slim::kMaxMessageBytes) return message;
+  constexpr std::string_view kCut = " ... (message cut)";
+  message.resize(Utf8Prefix(message, slim::kMaxMessageBytes - kCut.size()));
+  message += kCut;
+  return message;
+}
+
 std::vector<FieldError> ValidateCollideRequest(const v1::CollideRequest& r) {
   std::vector<FieldError> errors;
-  if (!(std::isfinite(r.speed()) && r.speed() > 0)) {
-    errors.push_back({"speed", Num(r.speed()), "must be a finite speed > 0 m/s"});
-  }
-  CheckFinite(&errors, r.topspin(), "topspin");
-  CheckFinite(&errors, r.sidespin(), "sidespin");
-  if (!(std::isfinite(r.cut_angle_deg()) && std::abs(r.cut_angle_deg()) < 90)) {
+  CheckRange(&errors, r.speed(), "speed", plim::kImpactSpeed, "m/s");
+  const physics::Range spin{-plim::kMaxSpin, plim::kMaxSpin};
+  CheckRange(&errors, r.topspin(), "topspin", spin, "rad/s");
+  CheckRange(&errors, r.sidespin(), "sidespin", spin, "rad/s");
+  if (!(std::isfinite(r.cut_angle_deg()) &&
+        std::abs(r.cut_angle_deg()) < slim::kCutAngleBoundDeg)) {
     errors.push_back({"cut_angle_deg", Num(r.cut_angle_deg()),
                       "must be in (-90, 90): at 90 deg or more the balls do not meet"});
   }
   using P = v1::CollisionParameters;
   const P& p = r.parameters();
-  CheckRange(&errors, p, &P::has_mu_bb, &P::mu_bb, "parameters.mu_bb", 0, 1);
-  CheckRange(&errors, p, &P::has_restitution, &P::restitution, "parameters.restitution", 0, 1);
-  CheckRange(&errors, p, &P::has_mu_s, &P::mu_s, "parameters.mu_s", 0, 1);
-  CheckRange(&errors, p, &P::has_mass_kg, &P::mass_kg, "parameters.mass_kg", 1e-3, 10);
-  CheckRange(&errors, p, &P::has_radius_m, &P::radius_m, "parameters.radius_m", 1e-3, 1);
-  CheckRange(&errors, p, &P::has_gravity, &P::gravity, "parameters.gravity", 0.1, 100);
-  CheckRange(&errors, p, &P::has_spin_decel, &P::spin_decel, "parameters.spin_decel", 0, 1e4);
+  CheckOptional(&errors, p, &P::has_mu_bb, &P::mu_bb, "parameters.mu_bb", slim::kFrictionCoefficient);
+  CheckOptional(&errors, p, &P::has_restitution, &P::restitution, "parameters.restitution",
+                slim::kRestitution);
+  CheckOptional(&errors, p, &P::has_mu_s, &P::mu_s, "parameters.mu_s", slim::kFrictionCoefficient);
+  CheckOptional(&errors, p, &P::has_mass_kg, &P::mass_kg, "parameters.mass_kg", slim::kBallMassKg, "kg");
+  CheckOptional(&errors, p, &P::has_radius_m, &P::radius_m, "parameters.radius_m", slim::kBallRadiusM, "m");
+  CheckOptional(&errors, p, &P::has_gravity, &P::gravity, "parameters.gravity", slim::kGravity, "m/s^2");
+  CheckOptional(&errors, p, &P::has_spin_decel, &P::spin_decel, "parameters.spin_decel",
+                slim::kSpinDecel, "rad/s^2");
+  CheckEnum(&errors, p.friction_law(), v1::BallBallFrictionLaw_IsValid(p.friction_law()),
+            "parameters.friction_law", v1::BallBallFrictionLaw_descriptor());
   using S = v1::ImpulseSolverOptions;
   const S& s = r.solver();
-  if (s.has_steps() && s.steps() <= 0) {
-    errors.push_back({"solver.steps", std::to_string(s.steps()), "must be an integer > 0"});
+  CheckEnum(&errors, s.integrator(), v1::ImpulseIntegrator_IsValid(s.integrator()),
+            "solver.integrator", v1::ImpulseIntegrator_descriptor());
+  if (s.has_steps() && (s.steps() < 1 || s.steps() > plim::kMaxFixedSteps)) {
+    errors.push_back({"solver.steps", std::to_string(s.steps()),
+                      "must be an integer in [1, " + std::to_string(plim::kMaxFixedSteps) + "]"});
   }
-  CheckRange(&errors, s, &S::has_tolerance, &S::tolerance, "solver.tolerance", 1e-15, 0.1);
+  CheckOptional(&errors, s, &S::has_tolerance, &S::tolerance, "solver.tolerance", plim::kTolerance);
   return errors;
 }
 
@@ -73,63 +156,74 @@ std::vector<FieldError> ValidateSimulateRequest(const v1::SimulateRequest& r,
                                                 const physics::TableModel& table) {
   std::vector<FieldError> errors;
   const v1::TableState& t = r.table();
-  if (t.balls_size() == 0) errors.push_back({"table.balls", "[]", "must list at least the cue ball"});
-  if (t.balls_size() > physics::Simulator::kMaxBalls) {
-    errors.push_back({"table.balls", std::to_string(t.balls_size()) + " balls",
-                      "at most " + std::to_string(physics::Simulator::kMaxBalls)});
+  const int n = t.balls_size();
+  if (n == 0) errors.push_back({"table.balls", "[]", "must list at least the cue ball"});
+  if (n > plim::kMaxBalls) {
+    // Refused before any ball is looked at: everything below is at least linear in
+    // the balls, the placement check quadratic.
+    errors.push_back({"table.balls", std::to_string(n) + " balls",
+                      "at most " + std::to_string(plim::kMaxBalls)});
+    return errors;
   }
-  std::set<std::string> ids;
+  std::set<std::string_view> ids;
   int cues = 0;
-  bool positions_ok = true;
-  for (int i = 0; i < t.balls_size(); ++i) {
+  bool placeable = n > 0;
+  for (int i = 0; i < n; ++i) {
     const v1::Ball& b = t.balls(i);
     const std::string where = "table.balls[" + std::to_string(i) + "]";
-    if (b.id().empty()) errors.push_back({where + ".id", "\"\"", "must not be empty"});
-    if (!ids.insert(b.id()).second) {
-      errors.push_back({where + ".id", "\"" + b.id() + "\"", "is used by another ball"});
+    if (b.id().empty()) {
+      errors.push_back({where + ".id", "\"\"", "must not be empty"});
+    } else if (b.id().size() > plim::kMaxIdBytes) {
+      errors.push_back({where + ".id", QuoteId(b.id()),
+                        "at most " + std::to_string(plim::kMaxIdBytes) + " bytes"});
+    } else if (!ids.insert(b.id()).second) {
+      errors.push_back({where + ".id", QuoteId(b.id()), "is used by another ball"});
     }
     if (b.kind() == v1::BALL_KIND_UNSPECIFIED || !v1::BallKind_IsValid(b.kind())) {
-      errors.push_back({where + ".kind", std::to_string(b.kind()) + " (ball \"" + b.id() + "\")",
+      errors.push_back({where + ".kind", std::to_string(b.kind()) + " (ball " + QuoteId(b.id()) + ")",
                         "must be one of CUE, RED, YELLOW, GREEN, BROWN, BLUE, PINK, BLACK"});
     }
     if (b.kind() == v1::CUE) ++cues;
     if (!(std::isfinite(b.position().x()) && std::isfinite(b.position().y()))) {
-      errors.push_back({where + ".position", "(" + Num(b.position().x()) + ", " +
-                                                 Num(b.position().y()) + ") (ball \"" + b.id() + "\")",
+      errors.push_back({where + ".position",
+                        "(" + Num(b.position().x()) + ", " + Num(b.position().y()) + ") (ball " +
+                            QuoteId(b.id()) + ")",
                         "must be finite, in metres"});
-      positions_ok = false;
+      placeable = false;
     }
   }
-  if (t.balls_size() > 0 && cues != 1) {
+  if (n > 0 && cues != 1) {
     errors.push_back({"table.balls", std::to_string(cues) + " CUE balls", "must have exactly one"});
   }
-  if (positions_ok && t.balls_size() > 0) {
+  if (placeable) {
     std::vector<physics::BallPlacement> placed;
+    placed.reserve(static_cast<std::size_t>(n));
     for (const v1::Ball& b : t.balls()) {
-      placed.push_back({b.id(), physics::Vec2(b.position().x(), b.position().y())});
+      // Names in the placement message are ids, cut like QuoteId cuts them.
+      const std::string_view id(b.id());
+      placed.push_back({id.substr(0, Utf8Prefix(id, slim::kMaxQuotedIdBytes)),
+                        physics::Vec2(b.position().x(), b.position().y())});
     }
-    const std::string msg = table.ValidatePlacement(placed);
+    const std::string msg = table.ValidatePlacement(placed, slim::kMaxReportedProblems);
     if (!msg.empty()) errors.push_back({"table.balls", "positions", msg});
   }
   const v1::Shot& shot = r.shot();
-  if (!(std::isfinite(shot.speed()) && shot.speed() >= 0 && shot.speed() <= 20)) {
-    errors.push_back({"shot.speed", Num(shot.speed()), "must be in [0, 20] m/s"});
-  }
-  CheckFinite(&errors, shot.heading_deg(), "shot.heading_deg");
-  for (const auto& [x, name] : {std::pair{shot.topspin(), "shot.topspin"},
-                                std::pair{shot.sidespin(), "shot.sidespin"}}) {
-    if (!(std::isfinite(x) && std::abs(x) <= 1000)) {
-      errors.push_back({name, Num(x), "must be in [-1000, 1000] rad/s"});
-    }
-  }
+  CheckRange(&errors, shot.speed(), "shot.speed", plim::kShotSpeed, "m/s");
+  CheckRange(&errors, shot.heading_deg(), "shot.heading_deg", slim::kHeadingDeg, "deg");
+  const physics::Range spin{-plim::kMaxSpin, plim::kMaxSpin};
+  CheckRange(&errors, shot.topspin(), "shot.topspin", spin, "rad/s");
+  CheckRange(&errors, shot.sidespin(), "shot.sidespin", spin, "rad/s");
   using O = v1::SimulationOptions;
   const O& o = r.options();
-  if (o.has_max_events() && (o.max_events() < 1 || o.max_events() > 1'000'000)) {
-    errors.push_back({"options.max_events", std::to_string(o.max_events()), "must be in [1, 1000000]"});
+  if (o.has_max_events() && (o.max_events() < 1 || o.max_events() > plim::kMaxEvents)) {
+    errors.push_back({"options.max_events", std::to_string(o.max_events()),
+                      "must be in [1, " + std::to_string(plim::kMaxEvents) + "]"});
   }
-  CheckRange(&errors, o, &O::has_max_time_s, &O::max_time_s, "options.max_time_s", 1e-3, 3600);
-  CheckRange(&errors, o, &O::has_tolerance, &O::tolerance, "options.tolerance", 1e-15, 0.1);
-  CheckRange(&errors, o, &O::has_path_sample_s, &O::path_sample_s, "options.path_sample_s", 1e-4, 1);
+  CheckOptional(&errors, o, &O::has_max_time_s, &O::max_time_s, "options.max_time_s",
+                plim::kMaxSimulatedTime, "s");
+  CheckOptional(&errors, o, &O::has_tolerance, &O::tolerance, "options.tolerance", plim::kTolerance);
+  CheckOptional(&errors, o, &O::has_path_sample_s, &O::path_sample_s, "options.path_sample_s",
+                plim::kPathSample, "s");
   return errors;
 }
 
@@ -140,12 +234,20 @@ int CueIndex(const v1::TableState& table) {
   return -1;
 }
 
+double NormalizedHeadingDeg(double heading_deg) {
+  double h = std::fmod(heading_deg, 360.0);  // exact; in (-360, 360)
+  if (h < 0) h += 360.0;
+  return h >= 360.0 ? 0.0 : h;  // -1e-20 + 360 rounds to 360
+}
+
 physics::Shot ShotFrom(const v1::Shot& shot) {
-  return {shot.speed(), physics::DegToRad(shot.heading_deg()), shot.topspin(), shot.sidespin()};
+  return {shot.speed(), physics::DegToRad(NormalizedHeadingDeg(shot.heading_deg())), shot.topspin(),
+          shot.sidespin()};
 }
 
 std::vector<physics::BallState> BallStatesFrom(const v1::TableState& table, const v1::Shot& shot) {
   std::vector<physics::BallState> balls;
+  balls.reserve(static_cast<std::size_t>(table.balls_size()));
   for (const v1::Ball& b : table.balls()) {
     const physics::Vec2 r(b.position().x(), b.position().y());
     if (b.kind() == v1::CUE) {
@@ -199,8 +301,11 @@ physics::ImpulseSolverOptions SolverOptionsFrom(const v1::ImpulseSolverOptions& 
   }
   if (o.has_steps()) {
     s.steps = o.steps();
-    // The scheme takes about N/2 steps (N for a wall): keep the cap above that.
-    s.max_steps = std::max(s.max_steps, 4 * s.steps);
+    // The scheme takes about N/2 steps (N for a wall): keep the cap above that. In 64
+    // bits: 4 N overflows an int32 from N = 2^29 (validation caps N far below).
+    const std::int64_t wanted = 4 * static_cast<std::int64_t>(s.steps);
+    s.max_steps = static_cast<std::int32_t>(std::clamp<std::int64_t>(
+        wanted, s.max_steps, std::numeric_limits<std::int32_t>::max()));
   }
   if (o.has_tolerance()) s.tolerance = o.tolerance();
   return s;

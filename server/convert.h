@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "physics/impact/ball_ball.h"
@@ -26,8 +27,23 @@ struct FieldError {
   std::string rule;
 };
 
-/// "field = value (rule); ..." for a list of errors.
+/// "field = value (rule); ..." for the first limits::kMaxReportedProblems errors,
+/// then "and N more problems"; never longer than limits::kMaxMessageBytes.
 std::string Describe(const std::vector<FieldError>& errors);
+
+/// The shortest text that reads back as x ("1e-06", "0.1", "nan", "-inf").
+std::string FormatNumber(double x);
+
+/// `message` cut (at a UTF-8 boundary, marked) to at most limits::kMaxMessageBytes.
+std::string BoundMessage(std::string message);
+
+/// A ball id for a message: in quotes, quotes, backslashes and control bytes escaped,
+/// cut after limits::kMaxQuotedIdBytes bytes with its length given
+/// ("abc..." (1048576 bytes)).
+std::string QuoteId(std::string_view id);
+
+/// Every field within its range (server/limits.h, physics/core/limits.h) and every
+/// enum one of its declared values; each error names the field and its value.
 
 std::vector<FieldError> ValidateCollideRequest(const v1::CollideRequest& request);
 
@@ -37,8 +53,10 @@ physics::ClothParams ClothParamsFrom(const v1::CollisionParameters& p);
 physics::BallBallParams BallBallParamsFrom(const v1::CollisionParameters& p);
 physics::ImpulseSolverOptions SolverOptionsFrom(const v1::ImpulseSolverOptions& o);
 
-/// Checks the table (ids, kinds, one cue ball, placement on `table`), the shot and
-/// the options; each error names the ball id or field and its value.
+/// Checks the table (ball count first, before anything that grows with it; ids not
+/// empty, unique and at most limits::kMaxIdBytes; kinds; one cue ball; placement on
+/// `table`), the shot and the options; each error names the ball id or field and its
+/// value.
 std::vector<FieldError> ValidateSimulateRequest(const v1::SimulateRequest& request,
                                                 const physics::TableModel& table);
 
@@ -46,7 +64,10 @@ std::vector<FieldError> ValidateSimulateRequest(const v1::SimulateRequest& reque
 /// gets the shot: v = speed (cos h, sin h), w = topspin (z x heading) + sidespin z.
 std::vector<physics::BallState> BallStatesFrom(const v1::TableState& table, const v1::Shot& shot);
 
-/// The shot in library units (heading in rad).
+/// A heading in degrees (finite) normalised into [0, 360).
+double NormalizedHeadingDeg(double heading_deg);
+
+/// The shot in library units (heading normalised, in rad).
 physics::Shot ShotFrom(const v1::Shot& shot);
 
 /// Simulation parameters from the request's options (defaults where unset).

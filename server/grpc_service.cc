@@ -1,26 +1,15 @@
 #include "server/grpc_service.h"
 
 #include <exception>
+#include <new>
+#include <sstream>
 #include <string>
+#include <thread>
+#include <vector>
 
-#include "server/api.h"
+#include "server/decode.h"
 
 namespace snooker::server {
-namespace {
-
-// Runs an API call so that no exception leaves a service method.
-template <typename Call>
-grpc::Status Guarded(Call&& call) {
-  try {
-    return ToGrpcStatus(call());
-  } catch (const std::exception& e) {
-    return {grpc::StatusCode::INTERNAL, std::string("internal error: ") + e.what()};
-  } catch (...) {
-    return {grpc::StatusCode::INTERNAL, "internal error"};
-  }
-}
-
-}  // namespace
 
 grpc::Status ToGrpcStatus(const ApiStatus& status) {
   switch (status.code) {
@@ -29,21 +18,228 @@ grpc::Status ToGrpcStatus(const ApiStatus& status) {
       return {grpc::StatusCode::INVALID_ARGUMENT, status.message};
     case ApiStatus::Code::kResourceExhausted:
       return {grpc::StatusCode::RESOURCE_EXHAUSTED, status.message};
+    case ApiStatus::Code::kDeadlineExceeded:
+      return {grpc::StatusCode::DEADLINE_EXCEEDED, status.message};
+    case ApiStatus::Code::kCancelled: return {grpc::StatusCode::CANCELLED, status.message};
     case ApiStatus::Code::kInternal: return {grpc::StatusCode::INTERNAL, status.message};
   }
   return {grpc::StatusCode::UNKNOWN, status.message};
 }
 
-grpc::Status ShotPlannerService::Collide(grpc::ServerContext* /*context*/,
-                                         const v1::CollideRequest* request,
-                                         v1::CollideResponse* response) {
-  return Guarded([&] { return server::Collide(*request, response); });
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+const char* StatusName(grpc::StatusCode code) {
+  static constexpr const char* kNames[] = {
+      "OK",           "CANCELLED",          "UNKNOWN",           "INVALID_ARGUMENT",
+      "DEADLINE_EXCEEDED", "NOT_FOUND",     "ALREADY_EXISTS",    "PERMISSION_DENIED",
+      "RESOURCE_EXHAUSTED", "FAILED_PRECONDITION", "ABORTED",    "OUT_OF_RANGE",
+      "UNIMPLEMENTED", "INTERNAL",          "UNAVAILABLE",       "DATA_LOSS",
+      "UNAUTHENTICATED"};
+  const auto i = static_cast<std::size_t>(code);
+  return i < std::size(kNames) ? kNames[i] : "UNKNOWN";
 }
 
-grpc::Status ShotPlannerService::Simulate(grpc::ServerContext* /*context*/,
-                                          const v1::SimulateRequest* request,
-                                          v1::SimulateResponse* response) {
-  return Guarded([&] { return server::Simulate(*request, response); });
+// Parse, run, serialise: one method of the service on raw bytes.
+template <typename Request, typename Response,
+          ApiStatus (*Operation)(const Request&, Response*, const CallLimits&)>
+ApiStatus RunMethod(std::string_view bytes, const CallLimits& limits, grpc::ByteBuffer* out) {
+  Request request;
+  if (ApiStatus st = ParseRequest(bytes, &request); !st.ok()) return st;
+  Response response;
+  if (ApiStatus st = Operation(request, &response, limits); !st.ok()) return st;
+  bool own = false;
+  const grpc::Status st = grpc::SerializationTraits<Response>::Serialize(response, out, &own);
+  if (!st.ok()) return {ApiStatus::Code::kInternal, "cannot serialise the response: " + st.error_message()};
+  return ApiStatus::Ok();
+}
+
+constexpr ShotPlannerService::Method kCollide{
+    "Collide", &RunMethod<v1::CollideRequest, v1::CollideResponse, &server::Collide>};
+constexpr ShotPlannerService::Method kSimulate{
+    "Simulate", &RunMethod<v1::SimulateRequest, v1::SimulateResponse, &server::Simulate>};
+
+// The call's deadline on the steady clock: the client's, or arrival + max_call when
+// that is earlier (or the client set none).
+Clock::time_point CallDeadline(std::chrono::system_clock::time_point client, Clock::time_point arrival,
+                               std::chrono::milliseconds max_call) {
+  const Clock::time_point server_bound = arrival + max_call;
+  const auto system_now = std::chrono::system_clock::now();
+  // Compared before subtracting: a deadline far in the future must not overflow.
+  if (client >= system_now + max_call) return server_bound;
+  const auto left = std::chrono::duration_cast<Clock::duration>(client - system_now);
+  return std::min(server_bound, Clock::now() + left);
+}
+
+// gRPC cancels a call when the client's deadline passes, with timers of a millisecond
+// grain: a cancellation within a few milliseconds of that deadline is the deadline.
+constexpr auto kTimerGrain = std::chrono::milliseconds(2);
+
+bool ClientDeadlinePassed(std::chrono::system_clock::time_point client) {
+  return client != std::chrono::system_clock::time_point::max() &&
+         std::chrono::system_clock::now() + kTimerGrain >= client;
+}
+
+bool IsCancelled(void* context) {
+  return static_cast<grpc::CallbackServerContext*>(context)->IsCancelled();
+}
+
+// One call's bytes as one contiguous string (requests are at most
+// limits::kMaxRequestBytes: gRPC refuses larger ones before they get here).
+bool Flatten(const grpc::ByteBuffer& buffer, std::string* out) {
+  std::vector<grpc::Slice> slices;
+  if (!buffer.Dump(&slices).ok()) return false;
+  out->clear();
+  out->reserve(buffer.Length());
+  for (const grpc::Slice& s : slices) out->append(reinterpret_cast<const char*>(s.begin()), s.size());
+  return true;
+}
+
+}  // namespace
+
+struct ShotPlannerService::Call {
+  const Method* method;
+  grpc::CallbackServerContext* context;
+  const grpc::ByteBuffer* request;
+  grpc::ByteBuffer* response;
+  grpc::ServerUnaryReactor* reactor;
+  std::string peer;
+  Clock::time_point arrival;
+  Clock::time_point deadline;  // the client's or the server's, whichever is first
+  std::chrono::system_clock::time_point client_deadline;
+  std::size_t request_bytes = 0;
+};
+
+ShotPlannerService::ShotPlannerService(const ServiceOptions& options)
+    : options_(options),
+      pool_(options.workers > 0 ? options.workers
+                                : static_cast<int>(std::max(1u, std::thread::hardware_concurrency())),
+            options.max_queued) {}
+
+ShotPlannerService::~ShotPlannerService() { pool_.Stop(); }
+
+grpc::ServerUnaryReactor* ShotPlannerService::Collide(grpc::CallbackServerContext* context,
+                                                      const grpc::ByteBuffer* request,
+                                                      grpc::ByteBuffer* response) {
+  return Accept(kCollide, context, request, response);
+}
+
+grpc::ServerUnaryReactor* ShotPlannerService::Simulate(grpc::CallbackServerContext* context,
+                                                       const grpc::ByteBuffer* request,
+                                                       grpc::ByteBuffer* response) {
+  return Accept(kSimulate, context, request, response);
+}
+
+grpc::ServerUnaryReactor* ShotPlannerService::Accept(const Method& method,
+                                                     grpc::CallbackServerContext* context,
+                                                     const grpc::ByteBuffer* request,
+                                                     grpc::ByteBuffer* response) {
+  // On a gRPC thread: queue the call and return at once (no blocking here, and no
+  // exception may leave).
+  received_.fetch_add(1);
+  grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
+  try {
+    auto call = std::make_shared<Call>();
+    call->method = &method;
+    call->context = context;
+    call->request = request;
+    call->response = response;
+    call->reactor = reactor;
+    call->peer = context->peer();
+    call->arrival = Clock::now();
+    call->client_deadline = context->deadline();
+    call->deadline = CallDeadline(call->client_deadline, call->arrival, options_.max_call);
+    call->request_bytes = request->Length();
+    if (!pool_.TrySubmit([this, call] { Run(call); })) {
+      Finish(*call,
+             {grpc::StatusCode::RESOURCE_EXHAUSTED,
+              "the server is busy: " + std::to_string(pool_.threads()) + " calls running and " +
+                  std::to_string(options_.max_queued) + " waiting; try again later"},
+             0);
+    }
+  } catch (const std::exception& e) {  // std::bad_alloc above all
+    by_status_[grpc::StatusCode::RESOURCE_EXHAUSTED].fetch_add(1);
+    finished_.fetch_add(1);
+    reactor->Finish({grpc::StatusCode::RESOURCE_EXHAUSTED,
+                     std::string("the server cannot take the call: ") + e.what()});
+  }
+  return reactor;
+}
+
+void ShotPlannerService::Run(const std::shared_ptr<Call>& call) {
+  running_.fetch_add(1);
+  grpc::Status status;
+  std::size_t response_bytes = 0;
+  const auto waited_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
+                             Clock::now() - call->arrival).count();
+  const bool cancelled = call->context->IsCancelled();
+  if (Clock::now() >= call->deadline || (cancelled && ClientDeadlinePassed(call->client_deadline))) {
+    status = {grpc::StatusCode::DEADLINE_EXCEEDED,
+              "the call's deadline passed before it started (" + std::to_string(waited_ms) +
+                  " ms waiting for a worker)"};
+  } else if (cancelled) {
+    status = {grpc::StatusCode::CANCELLED,
+              "the call was cancelled before it started (" + std::to_string(waited_ms) +
+                  " ms waiting for a worker)"};
+  } else {
+    CallLimits limits;
+    limits.interrupt.deadline = call->deadline;
+    limits.interrupt.poll = &IsCancelled;
+    limits.interrupt.poll_context = call->context;
+    try {
+      std::string bytes;
+      if (!Flatten(*call->request, &bytes)) {
+        status = {grpc::StatusCode::INVALID_ARGUMENT, "cannot read the request's bytes"};
+      } else {
+        ApiStatus result = call->method->run(bytes, limits, call->response);
+        if (result.code == ApiStatus::Code::kCancelled && ClientDeadlinePassed(call->client_deadline)) {
+          result.code = ApiStatus::Code::kDeadlineExceeded;
+          result.message = "the client's deadline passed: " + result.message;
+        }
+        status = ToGrpcStatus(result);
+        if (status.ok()) response_bytes = call->response->Length();
+      }
+    } catch (const std::bad_alloc&) {
+      status = {grpc::StatusCode::RESOURCE_EXHAUSTED, "out of memory"};
+    } catch (const std::exception& e) {
+      status = {grpc::StatusCode::INTERNAL, std::string("internal error: ") + e.what()};
+    } catch (...) {
+      status = {grpc::StatusCode::INTERNAL, "internal error"};
+    }
+  }
+  running_.fetch_sub(1);
+  Finish(*call, status, response_bytes);
+}
+
+void ShotPlannerService::Finish(Call& call, const grpc::Status& status, std::size_t response_bytes) {
+  const double latency_ms =
+      std::chrono::duration<double, std::milli>(Clock::now() - call.arrival).count();
+  // Counted and logged first: a client that has its answer sees it counted.
+  by_status_[static_cast<std::size_t>(status.error_code()) % by_status_.size()].fetch_add(1);
+  finished_.fetch_add(1);
+  if (options_.log != nullptr) {
+    std::ostringstream line;
+    line.precision(3);
+    line << std::fixed << "snooker: call method=" << call.method->name << " peer=" << call.peer
+         << " status=" << StatusName(status.error_code()) << " latency_ms=" << latency_ms
+         << " request_bytes=" << call.request_bytes << " response_bytes=" << response_bytes << "\n";
+    std::lock_guard<std::mutex> lock(log_mu_);
+    *options_.log << line.str() << std::flush;
+  }
+  // The context and buffers belong to gRPC once Finish is called: nothing of them
+  // is touched after it.
+  call.reactor->Finish(status);
+}
+
+CallCounts ShotPlannerService::counts() const {
+  CallCounts c;
+  // finished before received: a snapshot never shows more finished than received.
+  c.finished = finished_.load();
+  for (std::size_t i = 0; i < by_status_.size(); ++i) c.by_status[i] = by_status_[i].load();
+  c.running = running_.load();
+  c.received = received_.load();
+  return c;
 }
 
 }  // namespace snooker::server

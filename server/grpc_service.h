@@ -1,9 +1,33 @@
-// The gRPC adapter: proto in -> api.h call -> proto and status out. No logic here.
+// The gRPC adapter: request bytes in -> decode.h, api.h call -> response bytes and
+// status out. No logic about the physics here; what is here is about calls:
+//  * Raw requests: each method takes the grpc::ByteBuffer and parses it itself
+//    (decode.h), so bytes that do not parse answer INVALID_ARGUMENT with a reason
+//    (the generated service would answer INTERNAL with no message).
+//  * Callback API with a worker pool (worker_pool.h): gRPC's threads only queue a
+//    call; `workers` threads compute, at most `max_queued` calls wait, a call beyond
+//    that is refused with RESOURCE_EXHAUSTED at once.
+//  * Wall time: every call's deadline is the client's or arrival + max_call,
+//    whichever is first; it and the client's cancellation (ServerContext::
+//    IsCancelled) are checked before a call starts and inside long runs
+//    (physics::Interrupt). Stopped calls answer DEADLINE_EXCEEDED or CANCELLED.
+//  * One log line per call (method, peer, status, latency, bytes) and counters.
 #pragma once
 
 #include <grpcpp/grpcpp.h>
 
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <ostream>
+#include <string>
+
+#include "server/api.h"
 #include "server/api_status.h"
+#include "server/limits.h"
+#include "server/worker_pool.h"
 #include "snooker/v1/service.grpc.pb.h"
 
 namespace snooker::server {
@@ -11,12 +35,68 @@ namespace snooker::server {
 /// Maps an API status to a gRPC status (the only place that does).
 grpc::Status ToGrpcStatus(const ApiStatus& status);
 
-class ShotPlannerService final : public v1::ShotPlanner::Service {
+struct ServiceOptions {
+  /// Longest wall time of a call (and the default deadline of a call without one).
+  std::chrono::milliseconds max_call = limits::kDefaultMaxCall;
+  /// Calls computed at once; 0: one per hardware thread.
+  int workers = 0;
+  /// Calls waiting for a worker.
+  int max_queued = limits::kDefaultMaxQueued;
+  /// Where to write one line per finished call; nullptr: nowhere.
+  std::ostream* log = nullptr;
+};
+
+/// Counts of calls, for tests and monitoring (a snapshot).
+struct CallCounts {
+  std::int64_t received = 0;  ///< calls that reached a method
+  std::int64_t finished = 0;  ///< calls answered (any status)
+  std::int64_t running = 0;   ///< calls on a worker right now
+  /// Finished calls by grpc::StatusCode (0 OK ... 16 UNAUTHENTICATED).
+  std::array<std::int64_t, 17> by_status{};
+  std::int64_t in_flight() const { return received - finished; }
+  std::int64_t with(grpc::StatusCode code) const { return by_status[static_cast<size_t>(code)]; }
+};
+
+using ShotPlannerRawService = v1::ShotPlanner::WithRawCallbackMethod_Collide<
+    v1::ShotPlanner::WithRawCallbackMethod_Simulate<v1::ShotPlanner::Service>>;
+
+class ShotPlannerService final : public ShotPlannerRawService {
  public:
-  grpc::Status Collide(grpc::ServerContext* context, const v1::CollideRequest* request,
-                       v1::CollideResponse* response) override;
-  grpc::Status Simulate(grpc::ServerContext* context, const v1::SimulateRequest* request,
-                        v1::SimulateResponse* response) override;
+  explicit ShotPlannerService(const ServiceOptions& options);
+  ~ShotPlannerService() override;
+
+  grpc::ServerUnaryReactor* Collide(grpc::CallbackServerContext* context,
+                                    const grpc::ByteBuffer* request,
+                                    grpc::ByteBuffer* response) override;
+  grpc::ServerUnaryReactor* Simulate(grpc::CallbackServerContext* context,
+                                     const grpc::ByteBuffer* request,
+                                     grpc::ByteBuffer* response) override;
+
+  CallCounts counts() const;
+  /// Runs what is queued and joins the workers. Call after grpc::Server::Shutdown
+  /// returned (every call then has an answer).
+  void StopWorkers() { pool_.Stop(); }
+
+  /// One method: parse the request, run the operation, serialise the answer. A new
+  /// method (Plan) adds one entry.
+  struct Method {
+    const char* name;
+    ApiStatus (*run)(std::string_view request, const CallLimits& limits,
+                     grpc::ByteBuffer* response);
+  };
+
+ private:
+  struct Call;
+  grpc::ServerUnaryReactor* Accept(const Method& method, grpc::CallbackServerContext* context,
+                                   const grpc::ByteBuffer* request, grpc::ByteBuffer* response);
+  void Run(const std::shared_ptr<Call>& call);
+  void Finish(Call& call, const grpc::Status& status, std::size_t response_bytes);
+
+  ServiceOptions options_;
+  std::atomic<std::int64_t> received_{0}, finished_{0}, running_{0};
+  std::array<std::atomic<std::int64_t>, 17> by_status_{};
+  std::mutex log_mu_;
+  WorkerPool pool_;  // last: its threads use the members above
 };
 
 }  // namespace snooker::server

@@ -245,8 +245,20 @@ double TableModel::cushion_contact_distance() const {
   return std::sqrt(std::max(0.0, radius_ * radius_ - lift * lift));
 }
 
-std::string TableModel::ValidatePlacement(std::span<const BallPlacement> balls) const {
+std::string TableModel::ValidatePlacement(std::span<const BallPlacement> balls,
+                                          std::size_t max_problems) const {
   std::ostringstream out;
+  if (balls.size() > static_cast<std::size_t>(limits::kMaxBalls)) {
+    out << balls.size() << " balls: at most " << limits::kMaxBalls << " fit one table";
+    return out.str();
+  }
+  std::size_t problems = 0;
+  // True when problem number `problems` is to be written (then starts its entry).
+  auto report = [&]() {
+    if (problems++ >= max_problems) return false;
+    StartEntry(out);
+    return true;
+  };
   const double r = radius_;
   const double c = cushion_contact_distance();
   const double tol = kPlacementTolerance;
@@ -265,15 +277,16 @@ std::string TableModel::ValidatePlacement(std::span<const BallPlacement> balls) 
   for (std::size_t i = 0; i < balls.size(); ++i) {
     const Vec2& p = balls[i].r;
     if (!p.allFinite()) {
-      StartEntry(out);
-      WriteBall(out, balls[i].name, i, p);
-      out << ": not a finite position";
+      if (report()) {
+        WriteBall(out, balls[i].name, i, p);
+        out << ": not a finite position";
+      }
       continue;
     }
     for (const Limit& lim : limits) {
       const double x = p[lim.axis];
       if (lim.sign * (x - lim.bound) >= -tol) continue;
-      StartEntry(out);
+      if (!report()) continue;
       WriteBall(out, balls[i].name, i, p);
       out << ": " << (lim.axis == 0 ? "x" : "y") << " = " << x
           << " m is closer than the cushion contact distance " << c << " m to the "
@@ -284,12 +297,16 @@ std::string TableModel::ValidatePlacement(std::span<const BallPlacement> balls) 
     for (std::size_t j = i + 1; j < balls.size(); ++j) {
       const double d = (balls[i].r - balls[j].r).norm();
       if (!(d < 2 * r - tol)) continue;
-      StartEntry(out);
+      if (!report()) continue;
       WriteBall(out, balls[i].name, i, balls[i].r);
       out << " overlaps ";
       WriteBall(out, balls[j].name, j, balls[j].r);
       out << ": centre distance " << d << " m < 2R = " << 2 * r << " m";
     }
+  }
+  if (problems > max_problems) {
+    StartEntry(out);
+    out << "and " << problems - max_problems << " more";
   }
   return out.str();
 }

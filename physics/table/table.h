@@ -33,6 +33,7 @@
 #include <string>
 #include <string_view>
 
+#include "physics/core/limits.h"
 #include "physics/core/params.h"
 #include "physics/core/types.h"
 
@@ -215,10 +216,17 @@ class TableModel {
   /// 1..5 balls, each row from -x to +x), table frame. m.
   std::span<const Vec2> reds() const { return reds_; }
 
+  /// Problems ValidatePlacement lists by default; the rest are counted.
+  static constexpr std::size_t kMaxPlacementProblems = 5;
+
   /// Empty when every ball lies inside the playing area by at least
   /// cushion_contact_distance() and no two overlap (both within
-  /// kPlacementTolerance); otherwise a message naming each offending ball and value.
-  std::string ValidatePlacement(std::span<const BallPlacement> balls) const;
+  /// kPlacementTolerance); otherwise a message naming the first `max_problems`
+  /// offending balls and values, then "and N more" (its length is bounded by
+  /// max_problems and the names' lengths, whatever the number of balls). More than
+  /// limits::kMaxBalls balls are refused at once, before the quadratic overlap check.
+  std::string ValidatePlacement(std::span<const BallPlacement> balls,
+                                std::size_t max_problems = kMaxPlacementProblems) const;
 
  private:
   TableSpec spec_;

@@ -4,49 +4,23 @@
 #include <google/protobuf/struct.pb.h>
 #include <google/protobuf/util/json_util.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <array>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "tests/physics/impact/paper_shots.h"
+#include "tests/service/cli_support.h"
 
 namespace snooker {
 namespace {
 
-struct RunResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-// Runs the built `snooker` binary with `args` (already shell-quoted where needed).
-RunResult RunCli(const std::string& args) {
-  // Unique per process and call: ctest runs test cases in parallel processes.
-  static int calls = 0;
-  const std::string err_file = testing::TempDir() + "snooker_cli_stderr_" +
-                               std::to_string(getpid()) + "_" + std::to_string(++calls) + ".txt";
-  const std::string cmd = std::string(SNOOKER_CLI_PATH) + " " + args + " 2>" + err_file;
-  RunResult r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (p == nullptr) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  const int status = pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream f(err_file);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  r.err = ss.str();
-  std::remove(err_file.c_str());
-  return r;
-}
+using cli_support::RunCli;
+using cli_support::RunResult;
+using cli_support::TempFile;
 
 using google::protobuf::Struct;
 using google::protobuf::Value;
@@ -125,9 +99,13 @@ TEST(CliCollideTest, ReadableTableByDefault) {
 }
 
 struct BadInput {
+  const char* name;  // the test's name in ctest
   const char* args;
   const char* must_mention;
 };
+
+// gtest prints a parameter with this (not as bytes).
+void PrintTo(const BadInput& b, std::ostream* os) { *os << "collide " << b.args; }
 
 class CliBadInputTest : public testing::TestWithParam<BadInput> {};
 
@@ -140,23 +118,28 @@ TEST_P(CliBadInputTest, ExitsNonZeroNamingTheValue) {
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, CliBadInputTest,
-    testing::Values(BadInput{"--speed fast", "--speed 'fast' is not a number"},
-                    BadInput{"--speed 1 --cut-deg 12x", "--cut-deg '12x'"},
-                    BadInput{"--speed nan", "--speed 'nan' is not a finite number"},
-                    BadInput{"--speed inf", "--speed 'inf'"},
-                    BadInput{"--speed -2", "--speed -2"},
-                    BadInput{"--speed 0", "--speed 0"},
-                    BadInput{"--speed 1 --cut-deg 90", "--cut-deg 90"},
-                    BadInput{"--speed 1 --cut-deg 120", "--cut-deg 120"},
-                    BadInput{"--speed 1 --cut-deg -95", "--cut-deg -95"},
-                    BadInput{"--speed 1 --steps 0", "--steps 0"},
-                    BadInput{"--speed 1 --steps 2.5", "--steps '2.5'"},
-                    BadInput{"--speed 1 --mu-bb 3", "--mu-bb 3"},
-                    BadInput{"--speed 1 --restitution 1.2", "--restitution 1.2"},
-                    BadInput{"--speed 1 --tolerance 0", "--tolerance 0"},
-                    BadInput{"--cut-deg 10", "--speed is required"},
-                    BadInput{"--speed 1 --spin 3", "unknown option --spin"},
-                    BadInput{"--speed", "--speed needs a value"}));
+    testing::Values(BadInput{"SpeedNotANumber", "--speed fast", "--speed 'fast' is not a number"},
+                    BadInput{"CutWithTrailingText", "--speed 1 --cut-deg 12x", "--cut-deg '12x'"},
+                    BadInput{"SpeedNaN", "--speed nan", "--speed 'nan' is not a finite number"},
+                    BadInput{"SpeedInfinite", "--speed inf", "--speed 'inf'"},
+                    BadInput{"SpeedNegative", "--speed -2", "--speed -2"},
+                    BadInput{"SpeedZero", "--speed 0", "--speed 0"},
+                    BadInput{"SpeedTooLarge", "--speed 1e308", "--speed 1e+308"},
+                    BadInput{"SpeedTooSmall", "--speed 1e-300", "--speed 1e-300"},
+                    BadInput{"Cut90", "--speed 1 --cut-deg 90", "--cut-deg 90"},
+                    BadInput{"Cut120", "--speed 1 --cut-deg 120", "--cut-deg 120"},
+                    BadInput{"CutMinus95", "--speed 1 --cut-deg -95", "--cut-deg -95"},
+                    BadInput{"StepsZero", "--speed 1 --steps 0", "--steps 0"},
+                    BadInput{"StepsFraction", "--speed 1 --steps 2.5", "--steps '2.5'"},
+                    BadInput{"StepsBeyondTheCap", "--speed 1 --steps 536870911",
+                             "--steps 536870911 is out of range [1, 10000000]"},
+                    BadInput{"FrictionAboveOne", "--speed 1 --mu-bb 3", "--mu-bb 3"},
+                    BadInput{"RestitutionAboveOne", "--speed 1 --restitution 1.2", "--restitution 1.2"},
+                    BadInput{"ToleranceZero", "--speed 1 --tolerance 0", "--tolerance 0"},
+                    BadInput{"SpeedMissing", "--cut-deg 10", "--speed is required"},
+                    BadInput{"UnknownOption", "--speed 1 --spin 3", "unknown option --spin"},
+                    BadInput{"SpeedWithoutValue", "--speed", "--speed needs a value"}),
+    [](const testing::TestParamInfo<BadInput>& p) { return std::string(p.param.name); });
 
 TEST(CliCollideTest, HelpExplainsEveryOptionWithItsUnit) {
   const RunResult r = RunCli("collide --help");
@@ -196,13 +179,6 @@ TEST(CliTest, ServeOnABadAddressFails) {
   const RunResult r = RunCli("serve --address not-an-address:99999");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("cannot listen on not-an-address:99999"), std::string::npos) << r.err;
-}
-
-// Writes `text` to a fresh file in the test temp folder and returns its path.
-std::string TempFile(const std::string& name, const std::string& text) {
-  const std::string path = testing::TempDir() + std::to_string(getpid()) + "_" + name;
-  std::ofstream(path) << text;
-  return path;
 }
 
 // The issue's own example formats.

@@ -1,0 +1,23 @@
+// Reading an input file on the command line: only a regular file, only up to a size
+// limit, and a reason otherwise. A path may name anything: a directory, a FIFO that
+// nobody writes (reading it would hang), /dev/zero (endless), a file of gigabytes.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+namespace snooker::cli {
+
+/// Largest input file read, bytes (16 MiB: a full table is under 2 KB).
+inline constexpr std::size_t kMaxInputFileBytes = 16u << 20;
+
+/// The `why` of ReadInputFile when memory ran out.
+inline constexpr const char* kOutOfMemory = "out of memory";
+
+/// Reads the regular file at `path` (at most kMaxInputFileBytes) into `text`. On
+/// failure returns false and sets `why` ("is a directory", "is a FIFO (named pipe),
+/// not a regular file", "is 17825792 bytes; at most 16777216 are read", "No such file
+/// or directory", "out of memory"); never blocks on a FIFO or a device.
+bool ReadInputFile(const std::string& path, std::string* text, std::string* why);
+
+}  // namespace snooker::cli

@@ -1,0 +1,220 @@
+// libFuzzer target for the service's request path: bytes -> decoding (server/decode.h)
+// -> validation and conversion (server/convert.h) -> a bounded library call
+// (server/api.h), as the gRPC service runs it. The first input byte picks the method
+// (low bits) and the mode (high bit): the rest is either the request's wire bytes
+// as they are (random bytes, and the seeds of fuzz/seeds/request mutated) or drives a
+// builder that makes a structured request near the bounds, serialised and decoded
+// like any other. For every input:
+//  * no crash, hang or unbounded memory (libFuzzer's -timeout and -rss_limit_mb);
+//  * a status that is not OK has a reason, every message is within
+//    limits::kMaxMessageBytes, and no input is INTERNAL (a broken invariant, e.g. an
+//    event before the current time);
+//  * an answer has only finite numbers and fits limits::kMaxResponseBytes.
+// A broken property aborts (libFuzzer then saves the input as a crash-* file).
+//
+// A method is one entry of kMethods: Plan adds its own when it exists.
+#include <fuzzer/FuzzedDataProvider.h>
+#include <google/protobuf/descriptor.h>
+#include <google/protobuf/message.h>
+#include <google/protobuf/stubs/logging.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <string>
+#include <string_view>
+
+#include "physics/core/limits.h"
+#include "physics/table/table.h"
+#include "server/api.h"
+#include "server/decode.h"
+#include "server/limits.h"
+
+namespace {
+
+using namespace snooker;
+using server::ApiStatus;
+
+[[noreturn]] void Fail(const std::string& what) {
+  std::fprintf(stderr, "property broken: %s\n", what.c_str());
+  std::abort();
+}
+
+void CheckStatus(const ApiStatus& st, const char* method) {
+  if (st.message.size() > server::limits::kMaxMessageBytes) {
+    Fail(std::string(method) + ": a message of " + std::to_string(st.message.size()) + " bytes");
+  }
+  if (!st.ok() && st.message.empty()) Fail(std::string(method) + ": a status without a reason");
+  if (st.code == ApiStatus::Code::kInternal) Fail(std::string(method) + ": INTERNAL: " + st.message);
+}
+
+// Every double in a message (recursively) is finite.
+void CheckFinite(const google::protobuf::Message& m) {
+  using google::protobuf::FieldDescriptor;
+  const google::protobuf::Reflection* r = m.GetReflection();
+  std::vector<const FieldDescriptor*> fields;
+  r->ListFields(m, &fields);
+  for (const FieldDescriptor* f : fields) {
+    const bool repeated = f->is_repeated();
+    const int n = repeated ? r->FieldSize(m, f) : 1;
+    for (int i = 0; i < n; ++i) {
+      if (f->cpp_type() == FieldDescriptor::CPPTYPE_DOUBLE) {
+        const double x = repeated ? r->GetRepeatedDouble(m, f, i) : r->GetDouble(m, f);
+        if (!std::isfinite(x)) Fail("a non-finite number in the answer: " + f->full_name());
+      } else if (f->cpp_type() == FieldDescriptor::CPPTYPE_MESSAGE) {
+        CheckFinite(repeated ? r->GetRepeatedMessage(m, f, i) : r->GetMessage(m, f));
+      }
+    }
+  }
+}
+
+// The bounds let a valid request run up to a second or so (10^6 events, 10^7 fixed
+// steps; the service tests cover those). Here valid requests are capped lower so that
+// the fuzzer tries thousands of inputs a second; invalid values are left for
+// validation to refuse.
+void Tame(v1::SimulateRequest* r) {
+  v1::SimulationOptions* o = r->mutable_options();
+  if (!o->has_max_events() || (o->max_events() > 3000 && o->max_events() <= physics::limits::kMaxEvents)) {
+    o->set_max_events(3000);
+  }
+}
+void Tame(v1::CollideRequest* r) {
+  v1::ImpulseSolverOptions* s = r->mutable_solver();
+  if (s->has_steps() && s->steps() > 20'000 && s->steps() <= physics::limits::kMaxFixedSteps) {
+    s->set_steps(20'000);
+  }
+}
+
+template <typename Request, typename Response,
+          ApiStatus (*Operation)(const Request&, Response*, const server::CallLimits&)>
+void Exercise(std::string_view bytes, const char* method) {
+  Request request;
+  const ApiStatus parsed = server::ParseRequest(bytes, &request);
+  CheckStatus(parsed, method);
+  if (!parsed.ok()) {
+    if (parsed.code != ApiStatus::Code::kInvalidArgument) Fail("undecodable bytes not INVALID_ARGUMENT");
+    return;
+  }
+  Tame(&request);
+  server::CallLimits limits;  // a backstop; -timeout catches a hang
+  limits.interrupt.deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  Response response;
+  const ApiStatus st = Operation(request, &response, limits);
+  CheckStatus(st, method);
+  if (!st.ok()) return;
+  CheckFinite(response);
+  if (response.ByteSizeLong() > limits.max_response_bytes) Fail("an answer above the response limit");
+}
+
+// Mostly values inside or near the bounds, sometimes anything (NaN, inf, huge, tiny).
+double Value(FuzzedDataProvider& in, double lo, double hi) {
+  switch (in.ConsumeIntegralInRange<int>(0, 15)) {
+    case 0: return in.ConsumeFloatingPoint<double>();
+    case 1: return std::numeric_limits<double>::quiet_NaN();
+    case 2: return in.ConsumeBool() ? lo : hi;
+    default: return in.ConsumeFloatingPointInRange<double>(lo, hi);
+  }
+}
+
+std::string Serialized(const google::protobuf::Message& m) {
+  std::string bytes;
+  m.SerializePartialToString(&bytes);
+  return bytes;
+}
+
+std::string BuildCollide(FuzzedDataProvider& in) {
+  v1::CollideRequest r;
+  r.set_speed(Value(in, 0, 30));
+  r.set_topspin(Value(in, -1100, 1100));
+  r.set_sidespin(Value(in, -1100, 1100));
+  r.set_cut_angle_deg(Value(in, -91, 91));
+  v1::CollisionParameters* p = r.mutable_parameters();
+  if (in.ConsumeBool()) p->set_mu_bb(Value(in, -0.1, 1.1));
+  if (in.ConsumeBool()) p->set_restitution(Value(in, -0.1, 1.1));
+  if (in.ConsumeBool()) p->set_mu_s(Value(in, -0.1, 1.1));
+  if (in.ConsumeBool()) p->set_mass_kg(Value(in, 0, 11));
+  if (in.ConsumeBool()) p->set_radius_m(Value(in, 0, 1.1));
+  if (in.ConsumeBool()) p->set_gravity(Value(in, 0, 110));
+  if (in.ConsumeBool()) p->set_spin_decel(Value(in, -1, 1.1e4));
+  p->set_friction_law(v1::BallBallFrictionLaw(in.ConsumeIntegralInRange<int>(-2, 10)));
+  v1::ImpulseSolverOptions* s = r.mutable_solver();
+  s->set_integrator(v1::ImpulseIntegrator(in.ConsumeIntegralInRange<int>(-2, 10)));
+  if (in.ConsumeBool()) s->set_steps(in.ConsumeIntegral<std::int32_t>());
+  if (in.ConsumeBool()) s->set_tolerance(Value(in, 1e-16, 0.2));
+  return Serialized(r);
+}
+
+std::string Id(FuzzedDataProvider& in, int i) {
+  switch (in.ConsumeIntegralInRange<int>(0, 7)) {
+    case 0: return "";
+    case 1: return std::string(in.ConsumeIntegralInRange<std::size_t>(60, 200), 'x');
+    case 2: return in.ConsumeRandomLengthString(80);  // maybe not UTF-8: decoding refuses it
+    case 3: return "red-1";                           // maybe a duplicate
+    default: return "ball-" + std::to_string(i);
+  }
+}
+
+// A coordinate on or near the table, sometimes anything. (Balls exactly at the
+// cushion contact distance, frozen to a cushion, still make the engine report an
+// event before the current time: issue 7 item 1, being fixed in physics/. Add
+// cushion_contact_distance() as a choice here once that has landed.)
+double Coordinate(FuzzedDataProvider& in, double length) { return Value(in, -0.1, length + 0.1); }
+
+std::string BuildSimulate(FuzzedDataProvider& in) {
+  const physics::TableSpec& spec = physics::DefaultTable().spec();
+  v1::SimulateRequest r;
+  const int n = in.ConsumeBool() ? in.ConsumeIntegralInRange<int>(0, 8)
+                                 : in.ConsumeIntegralInRange<int>(0, 40);
+  for (int i = 0; i < n; ++i) {
+    v1::Ball* b = r.mutable_table()->add_balls();
+    b->set_id(i == 0 ? "cue" : Id(in, i));
+    b->set_kind(i == 0 ? v1::CUE : v1::BallKind(in.ConsumeIntegralInRange<int>(-1, 10)));
+    b->mutable_position()->set_x(Coordinate(in, spec.width));
+    b->mutable_position()->set_y(Coordinate(in, spec.length));
+  }
+  v1::Shot* shot = r.mutable_shot();
+  shot->set_speed(Value(in, 0, 21));
+  shot->set_heading_deg(Value(in, -4000, 4000));
+  shot->set_topspin(Value(in, -1100, 1100));
+  shot->set_sidespin(Value(in, -1100, 1100));
+  v1::SimulationOptions* o = r.mutable_options();
+  if (in.ConsumeBool()) o->set_max_events(in.ConsumeIntegral<std::int32_t>());
+  if (in.ConsumeBool()) o->set_max_time_s(Value(in, 0, 4000));
+  if (in.ConsumeBool()) o->set_tolerance(Value(in, 1e-16, 0.2));
+  o->set_include_paths(in.ConsumeBool());
+  if (in.ConsumeBool()) o->set_path_sample_s(Value(in, 1e-5, 2));
+  return Serialized(r);
+}
+
+struct Method {
+  const char* name;
+  void (*run)(std::string_view bytes, const char* name);
+  std::string (*build)(FuzzedDataProvider& in);
+};
+
+const Method kMethods[] = {
+    {"Collide", &Exercise<v1::CollideRequest, v1::CollideResponse, &server::Collide>, &BuildCollide},
+    {"Simulate", &Exercise<v1::SimulateRequest, v1::SimulateResponse, &server::Simulate>, &BuildSimulate},
+};
+
+}  // namespace
+
+extern "C" int LLVMFuzzerInitialize(int* /*argc*/, char*** /*argv*/) {
+  google::protobuf::SetLogHandler(nullptr);  // decoding errors are expected here
+  return 0;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  if (size == 0) return 0;
+  const Method& method = kMethods[(data[0] & 0x7F) % std::size(kMethods)];
+  const std::string_view rest(reinterpret_cast<const char*>(data + 1), size - 1);
+  if ((data[0] & 0x80) != 0) {
+    FuzzedDataProvider in(data + 1, size - 1);
+    method.run(method.build(in), method.name);
+  } else {
+    method.run(rest, method.name);
+  }
+  return 0;
+}

@@ -1,0 +1,78 @@
+// Bounds of the service that are not physics: request and response sizes, message
+// lengths, the wall time of a call, and the worker pool. Validation ranges of physical
+// quantities live in physics/core/limits.h; the few the API needs that are not there
+// yet are defined here once (marked "not yet in physics") and used by server/ and cli/.
+//
+// Why each bound: every request must cost a bounded amount of CPU, memory, time and
+// output, whatever its content; docs in proto/snooker/v1/*.proto state the same values.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+
+#include "physics/core/limits.h"
+
+namespace snooker::server::limits {
+
+using physics::Range;
+
+// --- Ranges of physical inputs not yet in physics/core/limits.h -----------------
+/// Friction coefficients mu_bb (ball-ball) and mu_s (ball-cloth): the impact solvers'
+/// own range (physics/core/params.cc), which keeps their step count bounded.
+inline constexpr Range kFrictionCoefficient{0, 1};
+/// Energetic coefficient of restitution e.
+inline constexpr Range kRestitution{0, 1};
+/// Ball mass, kg, and radius, m: from a marble to a bowling ball.
+inline constexpr Range kBallMassKg{1e-3, 10};
+inline constexpr Range kBallRadiusM{1e-3, 1};
+/// Gravity, m/s^2.
+inline constexpr Range kGravity{0.1, 100};
+/// Z-spin deceleration on the cloth, rad/s^2.
+inline constexpr Range kSpinDecel{0, 1e4};
+/// |cut angle| of a Collide request must stay below this, degrees (at 90 the balls
+/// do not meet).
+inline constexpr double kCutAngleBoundDeg = 90;
+/// Heading of a shot, degrees. Accepted within ten turns either way and normalised
+/// into [0, 360) before use; beyond that a heading is a client's bug, not an angle
+/// (at 1e300 deg not even the turn is known: one unit in the last place is more than
+/// 360 deg). At 3600 deg a unit in the last place is 5e-13 deg.
+inline constexpr Range kHeadingDeg{-3600, 3600};
+
+// --- Sizes ------------------------------------------------------------------------
+/// A request message on the wire, bytes (gRPC's default receive limit, set
+/// explicitly). 10 000 balls take about 320 KB.
+inline constexpr std::size_t kMaxRequestBytes = 4u << 20;
+/// A response message, bytes: gRPC clients refuse larger messages by default. A
+/// Simulate response that would be larger is refused with RESOURCE_EXHAUSTED, saying
+/// what to ask for less of.
+inline constexpr std::size_t kMaxResponseBytes = 4u << 20;
+/// Sampled path points in one Simulate response, all balls together (about 28 bytes
+/// each on the wire); the sampling interval grows to stay within it.
+inline constexpr std::int64_t kMaxPathPoints = 60'000;
+/// Problems listed in one error message; the rest are counted ("and 7 more").
+inline constexpr int kMaxReportedProblems = 5;
+/// Bytes of a ball id quoted in an error message (longer ids are cut, with their
+/// length given).
+inline constexpr std::size_t kMaxQuotedIdBytes = 24;
+/// An error message is never longer than this, bytes (kMaxReportedProblems problems
+/// of a few hundred bytes each and the count).
+inline constexpr std::size_t kMaxMessageBytes = 4096;
+
+// --- Calls ------------------------------------------------------------------------
+/// Wall time of one call: the client's deadline or this server maximum, whichever
+/// comes first (`snooker serve --max-call-ms`).
+inline constexpr std::chrono::milliseconds kDefaultMaxCall{10'000};
+inline constexpr std::int64_t kMaxCallMsLimit = 3'600'000;
+/// On SIGTERM/SIGINT, calls in flight may finish for this long, then are cancelled
+/// (`snooker serve --shutdown-grace-ms`).
+inline constexpr std::chrono::milliseconds kDefaultShutdownGrace{5'000};
+inline constexpr std::int64_t kMaxShutdownGraceMs = 600'000;
+/// Calls computed at once (worker threads) and calls waiting for a worker; a call
+/// beyond both is refused at once with RESOURCE_EXHAUSTED (`--workers`,
+/// `--max-queued`). Memory is bounded by workers x the largest call.
+inline constexpr int kMaxWorkers = 256;
+inline constexpr int kDefaultMaxQueued = 256;
+inline constexpr int kMaxQueuedLimit = 100'000;
+
+}  // namespace snooker::server::limits

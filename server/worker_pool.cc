@@ -1,0 +1,59 @@
+#include "server/worker_pool.h"
+
+#include <algorithm>
+#include <utility>
+
+namespace snooker::server {
+
+WorkerPool::WorkerPool(int threads, int max_queued)
+    : max_queued_(static_cast<std::size_t>(std::max(0, max_queued))),
+      thread_count_(static_cast<std::size_t>(std::max(1, threads))) {
+  threads_.reserve(thread_count_);
+  for (std::size_t i = 0; i < thread_count_; ++i) threads_.emplace_back([this] { Work(); });
+}
+
+WorkerPool::~WorkerPool() { Stop(); }
+
+bool WorkerPool::TrySubmit(std::function<void()> job) {
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    // Free workers take a job each at once; beyond them, at most max_queued_ wait.
+    if (stopping_ || queue_.size() >= max_queued_ + (thread_count_ - busy_)) return false;
+    queue_.push_back(std::move(job));
+  }
+  ready_.notify_one();
+  return true;
+}
+
+void WorkerPool::Stop() {
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    if (stopping_ && threads_.empty()) return;
+    stopping_ = true;
+  }
+  ready_.notify_all();
+  for (std::thread& t : threads_) {
+    if (t.joinable()) t.join();
+  }
+  threads_.clear();
+}
+
+void WorkerPool::Work() {
+  for (;;) {
+    std::function<void()> job;
+    {
+      std::unique_lock<std::mutex> lock(mu_);
+      ready_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+      if (queue_.empty()) return;  // stopping, and nothing left to run
+      job = std::move(queue_.front());
+      queue_.pop_front();
+      ++busy_;
+    }
+    job();
+    job = nullptr;  // its captures go now, not at the next job
+    std::lock_guard<std::mutex> lock(mu_);
+    --busy_;
+  }
+}
+
+}  // namespace snooker::server

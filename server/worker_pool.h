@@ -1,0 +1,46 @@
+// A fixed set of threads that run the service's calls, with a bounded queue. gRPC's
+// callback API must not block its own threads, and a fixed pool bounds how many
+// calls compute at once (so memory is bounded by threads x the largest call) and
+// how many may wait; a call beyond both is refused at once.
+#pragma once
+
+#include <condition_variable>
+#include <cstddef>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace snooker::server {
+
+class WorkerPool {
+ public:
+  /// `threads` >= 1 workers; at most `max_queued` jobs wait for one (beyond the
+  /// jobs that idle workers take at once).
+  WorkerPool(int threads, int max_queued);
+  ~WorkerPool();  // Stop()
+  WorkerPool(const WorkerPool&) = delete;
+  WorkerPool& operator=(const WorkerPool&) = delete;
+
+  /// Queues `job`; false (and `job` dropped) when the queue is full or the pool stopped.
+  bool TrySubmit(std::function<void()> job);
+  /// Runs every queued job, then joins the threads. Later submissions fail.
+  void Stop();
+
+  int threads() const { return static_cast<int>(thread_count_); }
+
+ private:
+  void Work();
+
+  const std::size_t max_queued_;
+  const std::size_t thread_count_;
+  std::mutex mu_;
+  std::condition_variable ready_;
+  std::deque<std::function<void()>> queue_;
+  std::size_t busy_ = 0;  // workers running a job
+  bool stopping_ = false;
+  std::vector<std::thread> threads_;
+};
+
+}  // namespace snooker::server

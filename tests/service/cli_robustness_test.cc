@@ -1,0 +1,246 @@
+// The `snooker` command under hostile input (issue 7, finding 4, and the service's
+// shutdown): input files that are not regular files or are too large, a table of
+// 3000 stacked balls, memory running out, and SIGTERM with calls in flight.
+#include <fcntl.h>
+#include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include "snooker/v1/service.grpc.pb.h"
+#include "tests/service/call_support.h"
+#include "tests/service/cli_support.h"
+#include "tests/service/requests.h"
+
+namespace snooker {
+namespace {
+
+using cli_support::RunCli;
+using cli_support::RunResult;
+using cli_support::RunShell;
+using cli_support::TempFile;
+using Clock = std::chrono::steady_clock;
+using std::chrono::milliseconds;
+
+constexpr const char* kShot = R"({"speed": 1.5, "headingDeg": 90})";
+
+bool Mentions(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// `simulate --table PATH` with a good shot file; at most 10 s (a FIFO hung forever).
+RunResult SimulateTable(const std::string& path) {
+  return RunShell("timeout 10 " + std::string(SNOOKER_CLI_PATH) + " simulate --table '" + path +
+                  "' --shot " + TempFile("robust_shot.json", kShot));
+}
+
+void ExpectRefused(const RunResult& r, const std::string& path, const std::string& why) {
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(Mentions(r.err, "cannot read '" + path + "': " + why)) << r.err;
+  EXPECT_LT(r.err.size(), 200u) << r.err;
+}
+
+// /dev/zero was read until memory ran out, and the command aborted.
+TEST(CliInputFileTest, ADeviceIsRefused) {
+  ExpectRefused(SimulateTable("/dev/zero"), "/dev/zero", "is a character device, not a regular file");
+}
+
+// A directory gave "Unexpected end of string".
+TEST(CliInputFileTest, ADirectoryIsRefused) {
+  const std::string dir = testing::TempDir();
+  ExpectRefused(SimulateTable(dir), dir, "is a directory");
+}
+
+// A FIFO hung.
+TEST(CliInputFileTest, AFifoIsRefusedWithoutWaiting) {
+  const std::string fifo = testing::TempDir() + std::to_string(getpid()) + "_table.fifo";
+  std::remove(fifo.c_str());
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  ExpectRefused(SimulateTable(fifo), fifo, "is a FIFO (named pipe), not a regular file");
+  std::remove(fifo.c_str());
+}
+
+TEST(CliInputFileTest, AFileOverSixteenMegabytesIsRefusedUnread) {
+  const std::string big = testing::TempDir() + std::to_string(getpid()) + "_big.json";
+  {
+    std::ofstream f(big);
+  }
+  ASSERT_EQ(truncate(big.c_str(), 17 << 20), 0);  // sparse: nothing written
+  ExpectRefused(SimulateTable(big), big, "is 17825792 bytes; at most 16777216 (16 MB) are read");
+  std::remove(big.c_str());
+}
+
+TEST(CliInputFileTest, AMissingFileSaysSo) {
+  ExpectRefused(SimulateTable("/nonexistent/table.json"), "/nonexistent/table.json",
+                "No such file or directory");
+}
+
+TEST(CliInputFileTest, AnUnreadableFileSaysSo) {
+  if (geteuid() == 0) GTEST_SKIP() << "root reads any file";
+  const std::string path = TempFile("unreadable.json", "{}");
+  ASSERT_EQ(chmod(path.c_str(), 0), 0);
+  ExpectRefused(SimulateTable(path), path, "Permission denied");
+}
+
+// 3000 stacked balls took 17 s and printed a 388 MB error.
+TEST(CliInputFileTest, ThreeThousandStackedBallsAreRefusedWithAShortMessage) {
+  std::string table = R"({"balls": [{"id": "cue", "kind": "CUE", "position": {"x": 0.9, "y": 1}})";
+  for (int i = 1; i < 3000; ++i) {
+    table += R"(, {"id": "red-)" + std::to_string(i) + R"(", "kind": "RED", "position": {"x": 0.9, "y": 1}})";
+  }
+  table += "]}";
+  const RunResult r = SimulateTable(TempFile("stacked.json", table));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(Mentions(r.err, "table.balls = 3000 balls (at most 32)")) << r.err.substr(0, 300);
+  EXPECT_LT(r.err.size(), 100u);
+}
+
+#if defined(__SANITIZE_ADDRESS__) || defined(__has_feature)
+#if defined(__SANITIZE_ADDRESS__) || __has_feature(address_sanitizer)
+#define SNOOKER_UNDER_ASAN 1
+#endif
+#endif
+
+// An allocation failure is reported, never an abort: a 15 MB id under a 60 MB
+// address-space limit (the command itself needs about 30 MB).
+TEST(CliInputFileTest, RunningOutOfMemoryIsReportedNotAnAbort) {
+#ifdef SNOOKER_UNDER_ASAN
+  GTEST_SKIP() << "AddressSanitizer reserves terabytes of address space: no ulimit -v";
+#endif
+  const std::string path = TempFile(
+      "hugeid.json", R"({"balls": [{"id": ")" + std::string(15'000'000, 'c') +
+                         R"(", "kind": "CUE", "position": {"x": 0.9, "y": 1}}]})");
+  const RunResult r =
+      RunShell("ulimit -v 60000; " + std::string(SNOOKER_CLI_PATH) + " simulate --table " + path +
+               " --shot " + TempFile("oom_shot.json", kShot));
+  EXPECT_EQ(r.exit_code, 1) << r.err.substr(0, 300);  // not -1: no abort
+  EXPECT_TRUE(Mentions(r.err, "out of memory")) << r.err.substr(0, 300);
+  std::remove(path.c_str());
+}
+
+TEST(CliServeTest, BadFlagsAreUsageErrors) {
+  for (const auto& [flags, text] :
+       {std::pair{"--max-call-ms 0", "--max-call-ms 0 is out of range"},
+        std::pair{"--shutdown-grace-ms -1", "--shutdown-grace-ms -1 is out of range"},
+        std::pair{"--workers 0", "--workers 0 is out of range"},
+        std::pair{"--max-queued lots", "--max-queued 'lots' is not a whole number"}}) {
+    const RunResult r = RunCli(std::string("serve ") + flags);
+    EXPECT_EQ(r.exit_code, 2) << flags;
+    EXPECT_TRUE(Mentions(r.err, text)) << r.err;
+  }
+}
+
+// `snooker serve` as a subprocess: stdout to a pipe (the port is printed there),
+// stderr (the call log) to a file.
+class ServeProcess {
+ public:
+  explicit ServeProcess(const std::vector<std::string>& flags) {
+    err_path_ = testing::TempDir() + std::to_string(getpid()) + "_serve_stderr.txt";
+    std::vector<std::string> args = {SNOOKER_CLI_PATH, "serve", "--address", "127.0.0.1:0"};
+    args.insert(args.end(), flags.begin(), flags.end());
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    int out[2];
+    if (pipe(out) != 0) return;
+    const int err = open(err_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    pid_ = fork();
+    if (pid_ == 0) {  // the child: only async-signal-safe calls until exec
+      dup2(out[1], 1);
+      dup2(err, 2);
+      execv(argv[0], argv.data());
+      _exit(127);
+    }
+    close(out[1]);
+    close(err);
+    out_ = fdopen(out[0], "r");
+  }
+  ~ServeProcess() {
+    if (pid_ > 0 && !exited_) {
+      kill(pid_, SIGKILL);
+      waitpid(pid_, nullptr, 0);
+    }
+    if (out_ != nullptr) fclose(out_);
+    std::remove(err_path_.c_str());
+  }
+  /// The next line on its stdout ("" at the end).
+  std::string Line() {
+    char buf[512];
+    return out_ != nullptr && fgets(buf, sizeof buf, out_) != nullptr ? std::string(buf) : "";
+  }
+  /// Waits up to `limit` for the process to exit; its exit code, or -1.
+  int Wait(std::chrono::seconds limit) {
+    const auto give_up = Clock::now() + limit;
+    int status = 0;
+    while (Clock::now() < give_up) {
+      if (waitpid(pid_, &status, WNOHANG) == pid_) {
+        exited_ = true;
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+      }
+      std::this_thread::sleep_for(milliseconds(2));
+    }
+    return -1;
+  }
+  pid_t pid() const { return pid_; }
+  std::string Stderr() const {
+    std::ifstream f(err_path_);
+    return std::string(std::istreambuf_iterator<char>(f), {});
+  }
+
+ private:
+  pid_t pid_ = -1;
+  FILE* out_ = nullptr;
+  bool exited_ = false;
+  std::string err_path_;
+};
+
+// On the server's side of a shutdown grace, the work given would take kWork: the
+// process must exit within the grace and a generous margin, well before that.
+TEST(CliServeTest, SigtermWithCallsInFlightExitsWithinTheGrace) {
+  constexpr auto kGrace = milliseconds(200);
+  const int n = call_support::HeavyCallsForTheWork();
+  ServeProcess serve({"--workers", "1", "--max-queued", "10000", "--shutdown-grace-ms",
+                      std::to_string(kGrace.count())});
+  ASSERT_GT(serve.pid(), 0);
+  const std::string first = serve.Line();
+  const auto at = first.find("on port ");
+  ASSERT_NE(at, std::string::npos) << first;
+  const int port = std::stoi(first.substr(at + 8));
+  auto channel = grpc::CreateChannel("127.0.0.1:" + std::to_string(port),
+                                     grpc::InsecureChannelCredentials());
+  auto stub = v1::ShotPlanner::NewStub(channel);
+  const v1::SimulateRequest heavy = testing_requests::Heavy();
+  call_support::Batch batch(stub.get(), heavy, n, std::nullopt);
+  // Work is under way once the first call is answered; the rest are in flight.
+  const auto t0 = Clock::now();
+  while (batch.done() == 0 && Clock::now() - t0 < std::chrono::seconds(20)) {
+    std::this_thread::sleep_for(milliseconds(1));
+  }
+  ASSERT_GT(batch.done(), 0u);
+  ASSERT_LT(batch.done(), static_cast<size_t>(n));
+  const auto signalled = Clock::now();
+  ASSERT_EQ(kill(serve.pid(), SIGTERM), 0);
+  const int code = serve.Wait(std::chrono::seconds(30));
+  const auto took = Clock::now() - signalled;
+  EXPECT_EQ(code, 0) << serve.Stderr().substr(0, 2000);
+  EXPECT_LT(took, kGrace + std::chrono::seconds(3));  // the work left would take seconds more
+  const std::string shutting_down = serve.Line();
+  EXPECT_TRUE(Mentions(shutting_down, "signal 15, shutting down:")) << shutting_down;
+  EXPECT_TRUE(Mentions(shutting_down, "may finish for up to 200 ms")) << shutting_down;
+  const std::string stopped = serve.Line();
+  EXPECT_TRUE(Mentions(stopped, "snooker: stopped after")) << stopped;
+  const std::vector<int> by_code = batch.Wait();
+  EXPECT_GT(by_code[grpc::StatusCode::UNAVAILABLE] + by_code[grpc::StatusCode::CANCELLED], n / 2);
+  EXPECT_TRUE(Mentions(serve.Stderr(), "status=CANCELLED")) << serve.Stderr().substr(0, 2000);
+}
+
+}  // namespace
+}  // namespace snooker

@@ -1,0 +1,56 @@
+// Running the built `snooker` command from the service tests.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace snooker::cli_support {
+
+struct RunResult {
+  int exit_code = -1;  // -1: killed by a signal (an abort is not an exit)
+  std::string out, err;
+};
+
+/// Runs `command` with /bin/sh; stdout and stderr captured apart.
+inline RunResult RunShell(const std::string& command) {
+  // Unique per process and call: ctest runs test cases in parallel processes.
+  static int calls = 0;
+  const std::string err_file = testing::TempDir() + "snooker_cli_stderr_" +
+                               std::to_string(getpid()) + "_" + std::to_string(++calls) + ".txt";
+  const std::string cmd = command + " 2>" + err_file;
+  RunResult r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (p == nullptr) return r;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+  const int status = pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream f(err_file);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  r.err = ss.str();
+  std::remove(err_file.c_str());
+  return r;
+}
+
+/// Runs the built `snooker` binary with `args` (already shell-quoted where needed).
+inline RunResult RunCli(const std::string& args) {
+  return RunShell(std::string(SNOOKER_CLI_PATH) + " " + args);
+}
+
+/// Writes `text` to a fresh file in the test temp folder and returns its path.
+inline std::string TempFile(const std::string& name, const std::string& text) {
+  const std::string path = testing::TempDir() + std::to_string(getpid()) + "_" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+}  // namespace snooker::cli_support
