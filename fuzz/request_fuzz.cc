@@ -156,23 +156,48 @@ std::string Id(FuzzedDataProvider& in, int i) {
   }
 }
 
-// A coordinate on or near the table, sometimes anything. (Balls exactly at the
-// cushion contact distance, frozen to a cushion, still make the engine report an
-// event before the current time: issue 7 item 1, being fixed in physics/. Add
-// cushion_contact_distance() as a choice here once that has landed.)
+// A coordinate on or near the table, sometimes anything.
 double Coordinate(FuzzedDataProvider& in, double length) { return Value(in, -0.1, length + 0.1); }
 
+// A ball's position: anywhere near the table, or in a resting contact (issue 7): its
+// centre exactly the cushion contact distance from a cushion, or exactly 2R from the
+// previous ball (touching it), which the engine must handle as ordinary states.
+physics::Vec2 Position(FuzzedDataProvider& in, const physics::Vec2* previous) {
+  const physics::TableModel& table = physics::DefaultTable();
+  const double w = table.spec().width, l = table.spec().length;
+  const double c = table.cushion_contact_distance();
+  switch (in.ConsumeIntegralInRange<int>(0, 3)) {
+    case 1: {  // frozen to a cushion
+      const double along = in.ConsumeProbability<double>();
+      switch (in.ConsumeIntegralInRange<int>(0, 3)) {
+        case 0: return {c, along * l};
+        case 1: return {w - c, along * l};
+        case 2: return {along * w, c};
+        default: return {along * w, l - c};
+      }
+    }
+    case 2:  // touching the previous ball
+      if (previous != nullptr) {
+        const double a = 2 * physics::kPi * in.ConsumeProbability<double>();
+        return *previous + 2 * table.ball_radius() * physics::Vec2(std::cos(a), std::sin(a));
+      }
+      [[fallthrough]];
+    default: return {Coordinate(in, w), Coordinate(in, l)};
+  }
+}
+
 std::string BuildSimulate(FuzzedDataProvider& in) {
-  const physics::TableSpec& spec = physics::DefaultTable().spec();
   v1::SimulateRequest r;
   const int n = in.ConsumeBool() ? in.ConsumeIntegralInRange<int>(0, 8)
                                  : in.ConsumeIntegralInRange<int>(0, 40);
+  physics::Vec2 previous;
   for (int i = 0; i < n; ++i) {
     v1::Ball* b = r.mutable_table()->add_balls();
     b->set_id(i == 0 ? "cue" : Id(in, i));
     b->set_kind(i == 0 ? v1::CUE : v1::BallKind(in.ConsumeIntegralInRange<int>(-1, 10)));
-    b->mutable_position()->set_x(Coordinate(in, spec.width));
-    b->mutable_position()->set_y(Coordinate(in, spec.length));
+    previous = Position(in, i > 0 ? &previous : nullptr);
+    b->mutable_position()->set_x(previous.x());
+    b->mutable_position()->set_y(previous.y());
   }
   v1::Shot* shot = r.mutable_shot();
   shot->set_speed(Value(in, 0, 21));

@@ -129,15 +129,15 @@ std::vector<FieldError> ValidateCollideRequest(const v1::CollideRequest& r) {
   }
   using P = v1::CollisionParameters;
   const P& p = r.parameters();
-  CheckOptional(&errors, p, &P::has_mu_bb, &P::mu_bb, "parameters.mu_bb", slim::kFrictionCoefficient);
+  CheckOptional(&errors, p, &P::has_mu_bb, &P::mu_bb, "parameters.mu_bb", physics::limits::kFrictionCoefficient);
   CheckOptional(&errors, p, &P::has_restitution, &P::restitution, "parameters.restitution",
-                slim::kRestitution);
-  CheckOptional(&errors, p, &P::has_mu_s, &P::mu_s, "parameters.mu_s", slim::kFrictionCoefficient);
-  CheckOptional(&errors, p, &P::has_mass_kg, &P::mass_kg, "parameters.mass_kg", slim::kBallMassKg, "kg");
-  CheckOptional(&errors, p, &P::has_radius_m, &P::radius_m, "parameters.radius_m", slim::kBallRadiusM, "m");
-  CheckOptional(&errors, p, &P::has_gravity, &P::gravity, "parameters.gravity", slim::kGravity, "m/s^2");
+                physics::limits::kRestitution);
+  CheckOptional(&errors, p, &P::has_mu_s, &P::mu_s, "parameters.mu_s", physics::limits::kFrictionCoefficient);
+  CheckOptional(&errors, p, &P::has_mass_kg, &P::mass_kg, "parameters.mass_kg", physics::limits::kBallMass, "kg");
+  CheckOptional(&errors, p, &P::has_radius_m, &P::radius_m, "parameters.radius_m", physics::limits::kBallRadius, "m");
+  CheckOptional(&errors, p, &P::has_gravity, &P::gravity, "parameters.gravity", physics::limits::kGravity, "m/s^2");
   CheckOptional(&errors, p, &P::has_spin_decel, &P::spin_decel, "parameters.spin_decel",
-                slim::kSpinDecel, "rad/s^2");
+                physics::limits::kSpinDecel, "rad/s^2");
   CheckEnum(&errors, p.friction_law(), v1::BallBallFrictionLaw_IsValid(p.friction_law()),
             "parameters.friction_law", v1::BallBallFrictionLaw_descriptor());
   using S = v1::ImpulseSolverOptions;

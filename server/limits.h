@@ -1,7 +1,6 @@
 // Bounds of the service that are not physics: request and response sizes, message
-// lengths, the wall time of a call, and the worker pool. Validation ranges of physical
-// quantities live in physics/core/limits.h; the few the API needs that are not there
-// yet are defined here once (marked "not yet in physics") and used by server/ and cli/.
+// lengths, the wall time of a call, the worker pool, and the API's angles in degrees.
+// Validation ranges of physical quantities live in physics/core/limits.h.
 //
 // Why each bound: every request must cost a bounded amount of CPU, memory, time and
 // output, whatever its content; docs in proto/snooker/v1/*.proto state the same values.
@@ -17,19 +16,7 @@ namespace snooker::server::limits {
 
 using physics::Range;
 
-// --- Ranges of physical inputs not yet in physics/core/limits.h -----------------
-/// Friction coefficients mu_bb (ball-ball) and mu_s (ball-cloth): the impact solvers'
-/// own range (physics/core/params.cc), which keeps their step count bounded.
-inline constexpr Range kFrictionCoefficient{0, 1};
-/// Energetic coefficient of restitution e.
-inline constexpr Range kRestitution{0, 1};
-/// Ball mass, kg, and radius, m: from a marble to a bowling ball.
-inline constexpr Range kBallMassKg{1e-3, 10};
-inline constexpr Range kBallRadiusM{1e-3, 1};
-/// Gravity, m/s^2.
-inline constexpr Range kGravity{0.1, 100};
-/// Z-spin deceleration on the cloth, rad/s^2.
-inline constexpr Range kSpinDecel{0, 1e4};
+// --- Angles at the API edge, in degrees (physics works in radians) ----------------
 /// |cut angle| of a Collide request must stay below this, degrees (at 90 the balls
 /// do not meet).
 inline constexpr double kCutAngleBoundDeg = 90;

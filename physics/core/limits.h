@@ -22,6 +22,19 @@ struct Range {
 
 namespace limits {
 
+/// Friction coefficients mu_bb (ball-ball), mu_s (ball-cloth) and mu_r (rolling).
+/// mu_bb <= 1 with mu_s <= 1 keeps the normal relative velocity strictly falling
+/// during an impact, which bounds the impulse and the integrators' step count.
+inline constexpr Range kFrictionCoefficient{0, 1};
+/// Energetic coefficient of restitution (Stronge).
+inline constexpr Range kRestitution{0, 1};
+/// Ball mass, kg, and radius, m, an API may ask for: from a marble to a bowling ball.
+inline constexpr Range kBallMass{1e-3, 10};
+inline constexpr Range kBallRadius{1e-3, 1};
+/// Gravitational acceleration, m/s^2.
+inline constexpr Range kGravity{0.1, 100};
+/// Z-spin deceleration on the cloth, rad/s^2.
+inline constexpr Range kSpinDecel{0, 1e4};
 /// Relative local error tolerance of the adaptive impact integrators.
 inline constexpr Range kTolerance{1e-15, 0.1};
 /// Steps N of the paper's fixed-step scheme (eq. 14). 1e7 steps cost about 0.3 s;

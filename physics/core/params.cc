@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "physics/core/limits.h"
+
 namespace snooker::physics {
 namespace {
 
@@ -26,8 +28,8 @@ std::string ValidateBallParams(const BallParams& p) {
 
 std::string ValidateClothParams(const ClothParams& p) {
   std::ostringstream out;
-  Check(out, Finite(p.mu_s) && p.mu_s >= 0 && p.mu_s <= 1, "mu_s", p.mu_s, "in [0, 1]");
-  Check(out, Finite(p.mu_r) && p.mu_r >= 0 && p.mu_r <= 1, "mu_r", p.mu_r, "in [0, 1]");
+  Check(out, limits::kFrictionCoefficient.Contains(p.mu_s), "mu_s", p.mu_s, "in [0, 1]");
+  Check(out, limits::kFrictionCoefficient.Contains(p.mu_r), "mu_r", p.mu_r, "in [0, 1]");
   Check(out, Finite(p.spin_decel) && p.spin_decel >= 0, "spin_decel", p.spin_decel,
         "a finite number >= 0 rad/s^2");
   Check(out, Finite(p.g) && p.g > 0, "g", p.g, "a finite number > 0 m/s^2");
@@ -36,10 +38,9 @@ std::string ValidateClothParams(const ClothParams& p) {
 
 std::string ValidateBallBallParams(const BallBallParams& p) {
   std::ostringstream out;
-  // mu_bb <= 1 together with mu_s <= 1 keeps the normal relative velocity strictly
-  // decreasing in P_I during the impact, which bounds the impulse and the step count.
-  Check(out, Finite(p.mu_bb) && p.mu_bb >= 0 && p.mu_bb <= 1, "mu_bb", p.mu_bb, "in [0, 1]");
-  Check(out, Finite(p.e) && p.e >= 0 && p.e <= 1, "e", p.e, "in [0, 1]");
+  // limits.h: mu_bb <= 1 with mu_s <= 1 bounds the impulse and the step count.
+  Check(out, limits::kFrictionCoefficient.Contains(p.mu_bb), "mu_bb", p.mu_bb, "in [0, 1]");
+  Check(out, limits::kRestitution.Contains(p.e), "e", p.e, "in [0, 1]");
   return out.str();
 }
 
