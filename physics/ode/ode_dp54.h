@@ -3,8 +3,8 @@
 // root finder and Hairer's PI step-size controller. Internal to physics/.
 //
 // Header-only templates over a fixed-size Eigen vector: no allocation, no exception,
-// no virtual call, every loop capped. Used by both impact integrators
-// (ball_ball_adaptive.cc, ball_cushion_adaptive.cc).
+// no virtual call, every loop capped. Used by the hybrid impulse integrator
+// (hybrid_integrator.h).
 //
 // Reference: Hairer, Norsett & Wanner, Solving ODEs I: II.5 (tableau, FSAL, local
 // extrapolation), II.6 (dense output), IV.2 (the PI controller for DOPRI5).

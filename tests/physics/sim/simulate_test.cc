@@ -295,8 +295,10 @@ TEST_F(SimulateTest, RandomShotsKeepTheInvariants) {
   EXPECT_GT(potted, 0);  // the pockets work at all
 }
 
-// Hash of the break-off's final state (see BreakOffIsDeterministic).
-constexpr std::uint64_t kBreakOffHash = 0x51d93b1f1e66e6ebULL;
+// Hash of the break-off's final state (see BreakOffIsDeterministic). Last changed by
+// the hybrid impulse integrator (issue 9): same model and tolerance, a different step
+// sequence; every final position moved by less than 1e-8 m.
+constexpr std::uint64_t kBreakOffHash = 0xd191045e0751afbdULL;
 
 std::uint64_t HashFinalState(const Simulator& sim, int n) {
   std::uint64_t h = 1469598103934665603ULL;  // FNV-1a over the exact bits
