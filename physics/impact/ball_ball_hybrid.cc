@@ -88,11 +88,13 @@ class BallBallHybrid {
     // zero changes spins by at most atol / R, within the tolerance. The floor keeps it
     // above the rounding of velocities of size v_scale.
     settings_.slip_zero = std::max(atol, 64 * kEps * v_scale);
+    // The frictionless impulse, (1 + e) (M/2) ydot_A (two free balls): the scale of P_I.
     settings_.impulse_scale =
-        (1.0 + model.contact.e) * (in.c.v.y() - in.o.v.y()) / model.inv_mass;
+        0.5 * (1.0 + model.contact.e) * (in.c.v.y() - in.o.v.y()) / model.inv_mass;
     settings_.log_clock_slip = kLogClockSlip * v_scale;
     free_slip_ = std::max(2 * settings_.slip_zero,
                           std::min(kSlavedSlipLimit * settings_.slip_zero, kSlavedSlipCap * v_scale));
+    mode_.slip_zero = settings_.slip_zero;
     weight_.setConstant(1.0 / v_scale);
     for (int i : {impulse::kWC, impulse::kWO}) weight_.segment<3>(i).setConstant(R / v_scale);
     weight_[impulse::kWork] = model.inv_mass / (v_scale * v_scale);
@@ -117,15 +119,17 @@ class BallBallHybrid {
   // Direction of the slip at contact c; a slaved slide whose slip is still within the
   // zero threshold (rounding residue) points along its drive (-stick friction).
   Vec2 SlideDirection(int c, const State& x, const Aux& f) const {
-    if (mode_.frozen[c]) return mode_.hold[c];
     const Vec2 u = Slip(c, x);
-    if (mode_.law[c] != Law::kSlideSlaved || u.norm() > settings_.slip_zero) {
-      return impulse::Direction(u);
+    if (mode_.law[c] != Law::kSlideSlaved || mode_.frozen[c] || u.norm() > settings_.slip_zero) {
+      return impulse::SlideDirection(c, u, mode_);
     }
     return -impulse::Direction(c == kD ? f.stick_d : f.stick_b);
   }
+  // Sent away from zero slip by Settle (slaved, or along dir0) and still at zero.
   bool Leaving(int c, const State& x) const {
-    return mode_.law[c] == Law::kSlideSlaved && Slip(c, x).norm() <= settings_.slip_zero;
+    const bool leave = mode_.law[c] == Law::kSlideSlaved ||
+                       (mode_.law[c] == Law::kSlide && !mode_.dir0[c].isZero(0.0));
+    return leave && Slip(c, x).norm() <= settings_.slip_zero;
   }
   // Followed in tau: a plain slide (a slaved one is growing from zero) that surely
   // reaches zero: at A always (friction at A is all that changes its slip), at D or B
@@ -288,20 +292,34 @@ void BallBallHybrid::SettleCloth(int c, State* x, bool count) {
     law = Law::kSlide;
     return;
   }
-  if (law != Law::kStick && Slip(c, *x).norm() > settings_.slip_zero) return;  // sliding on
+  const bool was_leaving =
+      law == Law::kSlideSlaved || (law == Law::kSlide && !mode_.dir0[c].isZero(0.0));
+  if (law != Law::kStick && Slip(c, *x).norm() > settings_.slip_zero) {  // sliding on
+    mode_.dir0[c] = Vec2::Zero();
+    return;
+  }
   if (law != Law::kStick) SnapSlipToZero(c, x);
   // Stick test: the friction that keeps the slip at zero against the cone.
   const Vec2 need = c == kD ? f.stick_d : f.stick_b;
+  mode_.dir0[c] = Vec2::Zero();
   if (need.norm() <= p_.mu_s * n) {
     if (law != Law::kStick && count) ++tr.stick;
     law = Law::kStick;
     return;
   }
   // Cannot hold: slide from zero along the drive (the contact's inverse inertia is
-  // isotropic, 7/(2M), so the slip grows along -need), slaved to it at first.
+  // isotropic, 7/(2M), so the slip grows along -need). Where friction nearly balances
+  // the drive the slip's direction is stiff while it is small: slaved to the drive at
+  // first. Otherwise the slip grows like the drive's integral: free sliding, along
+  // the drive while it is within slip_zero (only a step's first stage sees it there).
   if (law == Law::kSlideSlaved) return;  // already sliding from zero: no new transition
-  if (count) ++(law == Law::kStick ? tr.unstick : tr.reverse);
-  law = Law::kSlideSlaved;
+  if (count && !was_leaving) ++(law == Law::kStick ? tr.unstick : tr.reverse);
+  if (impulse::SlavedStiff(n, need, p_.mu_s)) {
+    law = Law::kSlideSlaved;
+  } else {
+    law = Law::kSlide;
+    mode_.dir0[c] = -impulse::Direction(need);
+  }
 }
 
 void BallBallHybrid::Settle(State* x, const std::array<bool, kContacts>& at_zero) {

@@ -65,6 +65,11 @@ struct Mode {
   /// A sliding contact with frozen[c] slides along hold[c] whatever its slip.
   std::array<bool, kContacts> frozen{false, false, false};
   std::array<Vec2, kContacts> hold{Vec2::Zero(), Vec2::Zero(), Vec2::Zero()};
+  /// Direction a sliding cloth contact leaves zero slip along (its drive), used while
+  /// its slip is at most slip_zero. Zero: no friction at exactly zero slip (the
+  /// paper's rule, used by the fixed-step scheme).
+  std::array<Vec2, kContacts> dir0{Vec2::Zero(), Vec2::Zero(), Vec2::Zero()};
+  double slip_zero = 0;  ///< m/s
   bool c_on_cloth = true;
   bool o_on_cloth = true;
 };
@@ -160,13 +165,24 @@ inline Vec2 FrictionA(const State& x, const Mode& m, const Model& p) {
   return -((marlow ? BallBallFriction(p.contact, s) : p.contact.mu_bb) / s) * u;
 }
 
-/// Cloth friction at a contact with normal force n, slip u and stick friction
-/// `stick` (the friction that would hold the slip constant). `lag` is the slaved
-/// direction's lag behind the drive, rad.
-inline Vec2 ClothFriction(Law law, bool frozen, const Vec2& hold, double n, const Vec2& u,
-                          const Vec2& stick, double mu_s, double lag = 0) {
+/// Direction of a sliding (kSlide) contact's slip in mode m: held if frozen, the
+/// leave direction dir0 while the slip is within slip_zero, else u/|u|.
+inline Vec2 SlideDirection(int c, const Vec2& u, const Mode& m) {
+  if (m.frozen[c]) return m.hold[c];
+  const double n2 = u.squaredNorm();
+  if (n2 <= m.slip_zero * m.slip_zero && (m.dir0[c].x() != 0 || m.dir0[c].y() != 0)) {
+    return m.dir0[c];
+  }
+  return n2 > 0 ? Vec2(u / std::sqrt(n2)) : Vec2::Zero();
+}
+
+/// Cloth friction at contact c (D or B) with normal force n, slip u and stick
+/// friction `stick` (the friction that would hold the slip constant). `lag` is the
+/// slaved direction's lag behind the drive, rad.
+inline Vec2 ClothFriction(int c, const Mode& m, double n, const Vec2& u, const Vec2& stick,
+                          double mu_s, double lag = 0) {
   if (!(n > 0)) return Vec2::Zero();
-  switch (law) {
+  switch (m.law[c]) {
     case Law::kStick: return stick;
     case Law::kSlideSlaved: {
       // The slip points along the drive -stick, rotated back by `lag`; friction
@@ -178,7 +194,7 @@ inline Vec2 ClothFriction(Law law, bool frozen, const Vec2& hold, double n, cons
     }
     case Law::kSlide: break;
   }
-  return -mu_s * n * (frozen ? hold : Direction(u));
+  return -mu_s * n * SlideDirection(c, u, m);
 }
 
 /// Cloth forces on C (at D) and O (at B) given the friction at A.
@@ -195,14 +211,8 @@ inline Forces ComputeForces(const State& x, const Mode& m, const Model& p) {
   f.n_o = m.o_on_cloth ? std::max(0.0, f2) : 0.0;
   f.stick_d = Vec2(-f1, 1.0 - p.kz * f2) * p.inv_k;
   f.stick_b = Vec2(f1, -1.0 - p.kz * f2) * p.inv_k;
-  if (f.n_c > 0) {
-    f.f_d = ClothFriction(m.law[kD], m.frozen[kD], m.hold[kD], f.n_c, SlipD(x, R), f.stick_d,
-                          p.mu_s);
-  }
-  if (f.n_o > 0) {
-    f.f_b = ClothFriction(m.law[kB], m.frozen[kB], m.hold[kB], f.n_o, SlipB(x, R), f.stick_b,
-                          p.mu_s);
-  }
+  if (f.n_c > 0) f.f_d = ClothFriction(kD, m, f.n_c, SlipD(x, R), f.stick_d, p.mu_s);
+  if (f.n_o > 0) f.f_b = ClothFriction(kB, m, f.n_o, SlipB(x, R), f.stick_b, p.mu_s);
   return f;
 }
 
@@ -285,12 +295,12 @@ inline void Derivative(const State& x, const Mode& m, const Model& p, State* dx,
     const double R = p.radius;
     if (slaved_d) {
       const Vec2 u = SlipD(x, R);
-      f.f_d = ClothFriction(m.law[kD], false, Vec2::Zero(), f.n_c, u, f.stick_d, p.mu_s,
+      f.f_d = ClothFriction(kD, m, f.n_c, u, f.stick_d, p.mu_s,
                             SlavedLag(u, f.stick_d, StickRate(kD, dfa, p), p));
     }
     if (slaved_b) {
       const Vec2 u = SlipB(x, R);
-      f.f_b = ClothFriction(m.law[kB], false, Vec2::Zero(), f.n_o, u, f.stick_b, p.mu_s,
+      f.f_b = ClothFriction(kB, m, f.n_o, u, f.stick_b, p.mu_s,
                             SlavedLag(u, f.stick_b, StickRate(kB, dfa, p), p));
     }
     DerivativeFromForces(x, f, p, dx);

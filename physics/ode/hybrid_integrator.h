@@ -76,8 +76,8 @@ struct HybridSettings {
   double slip_zero = 0;
   /// Speed scale of the impact (largest |v|, R|w| of the input). m/s.
   double speed_scale = 1;
-  /// Impulse scale of the impact (about the frictionless P_I at its end); the
-  /// largest step in P_I. N s.
+  /// Impulse scale of the impact: the frictionless P_I at its end (friction makes
+  /// it longer). Steps in P_I are at most twice this. N s.
   double impulse_scale = 1;
   /// Only slips below this are followed in tau = -ln|u|. m/s.
   double log_clock_slip = std::numeric_limits<double>::infinity();
@@ -106,6 +106,7 @@ concept HybridImpulseModel =
       { M::kWitnesses } -> std::convertible_to<int>;
       { M::kImpulse } -> std::convertible_to<int>;
       { M::kStiffSteps } -> std::convertible_to<bool>;
+      { M::kWork } -> std::convertible_to<int>;
       { cm.settings() } -> std::same_as<const HybridSettings&>;
       { cm.error_weights() } -> std::same_as<const typename M::State&>;
       // Continuous part, in the current mode, per unit P_I (dx[kImpulse] = 1).
@@ -176,7 +177,7 @@ class HybridIntegrator {
   static constexpr double kRayTurn = 1e-9;
   // A landing on a predicted zero stops this fraction short: a stage exactly on the
   // zero could see the slip reversed by rounding; the residual is settled as zero.
-  static constexpr double kLandingMargin = 1e-12;
+  static constexpr double kLandRatio = 1 - 1e-12;
   // A followed slip that grows in a step while under this many slip_zero has reached
   // the noise of the integration: it is taken as zero.
   static constexpr double kSlipNoiseFloor = 1e3;
@@ -190,12 +191,19 @@ class HybridIntegrator {
   // Loop passes allowed per step tried (a pass may change the clock or the plan
   // without taking a step).
   static constexpr int kPassesPerStep = 4;
+  // The first step is at most this many impulse scales (a little more than a
+  // frictionless impact: one step may then cover the whole impact), later steps at
+  // most kMaxStep.
+  static constexpr double kFirstStepCap = 1.25;
+  static constexpr double kMaxStep = 2.0;
   static constexpr int kNoContact = -1;
 
   struct StepOut {
     Dp54Result<State> step;
     Aux aux1;  // at step.y1
     bool hermite = false;  // dense output is the cubic Hermite (Rosenbrock step)
+    mutable Dp54Dense<State> dense;  // built on first use (Dense)
+    mutable bool dense_ready = false;
     std::array<double, kContacts> min_dot;   // min over stages of u . (start direction)
     std::array<double, kContacts> max_perp;  // max over stages of |d x u|, frozen slips
   };
@@ -224,6 +232,9 @@ class HybridIntegrator {
     return err.cwiseProduct(m_.error_weights()).cwiseAbs().maxCoeff() / s_.tolerance;
   }
   double FirstStep();
+  // The first step in tau = -ln|u|: the shrink of |u| that the last steps towards
+  // the zero achieved in P_I (at most a halving: 0.69).
+  double FirstLogStep() const { return std::clamp(-std::log1p(-land_ratio_), 0.05, 0.69); }
   void TakeStep(double h, StepOut* out);
   bool Stiff(double h, double threshold, int except) const;
   const typename Model::Jacobian& Jacobian();
@@ -245,7 +256,12 @@ class HybridIntegrator {
     return w < Model::kWitnesses ? m_.Action(w) : WitnessAction::kSwitch;
   }
   State Dense(const StepOut& s, double h, double t) const {
-    return s.hermite ? HermiteAt(y_, k1_, s.step.y1, s.step.k7, h, t) : Dp54DenseAt(y_, s.step, t);
+    if (s.hermite) return HermiteAt(y_, k1_, s.step.y1, s.step.k7, h, t);
+    if (!s.dense_ready) {
+      s.dense = Dp54Dense<State>(y_, s.step);
+      s.dense_ready = true;
+    }
+    return s.dense.At(y_, t);
   }
   double WitnessOnStep(int w, const StepOut& s, double h, double t) const {
     const State y = Dense(s, h, t);
@@ -278,29 +294,40 @@ class HybridIntegrator {
   int clock_ = kNoContact;
   int no_follow_ = kNoContact;  // a contact whose tau clock just failed
   int no_freeze_ = kNoContact;  // a contact that just left its ray in a frozen step
+  // A step that heads for a slip's predicted zero ends at this fraction of the way.
+  double land_ratio_ = kLandRatio;
 };
 
 // ---------------------------------------------------------------------------
 
 template <HybridImpulseModel Model>
 double HybridIntegrator<Model>::FirstStep() {
-  // Hairer, Norsett & Wanner II.4 (starting step size), in the model's error norm:
-  // h0 from |y| / |y'|, then h1 from the change of y' over h0 (a second derivative);
-  // h = min(100 h0, h1). In P_I a constant derivative (friction directions fixed) is
-  // integrated exactly: then the whole impact is one step.
+  // The first step sized from the impact (after Hairer, Norsett & Wanner II.4, made
+  // consistent in the units of P_I): the change of the derivative over a trial step
+  // h0 gives the scale L = |y'| / |y''| on which the solution bends, and a 5th-order
+  // step of length h errs by about |y'| L (h / L)^5 (weighted), so
+  // h = L (tol / (|y'| L))^(1/5). W and P_I are left out: W' is the normal speed, a
+  // linear function of the velocities, and P_I' = 1. A derivative that does not change
+  // (friction directions fixed) is integrated exactly: then the step is the whole
+  // impulse scale.
   const State& w = m_.error_weights();
-  const double d0 = y_.cwiseProduct(w).cwiseAbs().maxCoeff();
-  const double d1 = k1_.cwiseProduct(w).cwiseAbs().maxCoeff();
-  double h0 = d0 > 1e-5 && d1 > 1e-5 ? 0.01 * d0 / d1 : 1e-6 * s_.impulse_scale;
-  h0 = std::min(h0, s_.impulse_scale);
-  State y1 = y_ + h0 * k1_, k2;
+  const double h0 = 1e-2 * s_.impulse_scale;
+  State k2;
   Aux aux{};
-  F(y1, &k2, &aux);
-  const double d2 = (k2 - k1_).cwiseProduct(w).cwiseAbs().maxCoeff() / h0;
-  const double d = std::max(d1, d2) / s_.tolerance;
-  const double h1 = d > 1e-15 ? std::pow(0.01 / d, 1.0 / 5) : std::max(1e-6, h0 * 1e-3);
-  const double h = std::min(100 * h0, h1);
-  return std::isfinite(h) && h > 0 ? std::min(h, s_.impulse_scale) : 0.05 * s_.impulse_scale;
+  F(y_ + h0 * k1_, &k2, &aux);
+  double d1 = 0, d2 = 0;
+  for (int i = 0; i < kN; ++i) {
+    if (i == Model::kWork || i == kP) continue;
+    d1 = std::max(d1, std::abs(k1_[i] * w[i]));
+    d2 = std::max(d2, std::abs((k2[i] - k1_[i]) * w[i]) / h0);
+  }
+  // The estimate ignores higher derivatives (a slip direction turning faster and
+  // faster): it is halved, and capped at about the impulse of the whole impact.
+  const double cap = kFirstStepCap * s_.impulse_scale;
+  if (!(d2 > 0 && d1 > 0)) return cap;
+  const double scale = d1 / d2;
+  const double h = 0.5 * scale * std::pow(s_.tolerance / (d1 * scale), 0.2);
+  return std::isfinite(h) ? std::clamp(h, 1e-6 * s_.impulse_scale, cap) : 0.05 * s_.impulse_scale;
 }
 
 template <HybridImpulseModel Model>
@@ -330,6 +357,7 @@ void HybridIntegrator<Model>::TakeStep(double h, StepOut* out) {
     }
   };
   out->hermite = false;
+  out->dense_ready = false;
   if constexpr (Model::kStiffSteps) {
     if (stiff_) {
       Ros23Result<State> ros;
@@ -447,7 +475,8 @@ HybridStatus HybridIntegrator<Model>::Run(State* x) {
   const std::int64_t max_passes = kPassesPerStep * static_cast<std::int64_t>(s_.max_steps) + 16;
   for (std::int64_t pass = 0; pass < max_passes && attempts_ < s_.max_steps; ++pass) {
     const bool log_clock = clock_ != kNoContact;
-    double h = log_clock ? std::min(h_log, kMaxLogStep) : std::min(h_impulse, s_.impulse_scale);
+    double h = log_clock ? std::min(h_log, kMaxLogStep)
+                         : std::min(h_impulse, kMaxStep * s_.impulse_scale);
     if (!log_clock && m_.BeforeStep(y_, k1_, a1_, h)) Refresh();
     // Plan the step in P_I: hold the direction of a slip heading for zero along a ray,
     // limit the step to the predicted zero of one that turns, follow it in tau when
@@ -472,7 +501,7 @@ HybridStatus HybridIntegrator<Model>::Run(State* x) {
           freeze[c] = to_zero < h;  // along a ray: hold the direction, locate the zero
           continue;
         }
-        if (to_zero < h) h = to_zero * (1 - kLandingMargin), landing = c;
+        if (land_ratio_ * to_zero < h) h = land_ratio_ * to_zero, landing = c;
         // A turning slip is followed in tau if it surely reaches zero (the cone can
         // hold it there); otherwise it passes by zero.
         if (to_zero < reach && size < s_.log_clock_slip && c != no_follow_ &&
@@ -483,7 +512,7 @@ HybridStatus HybridIntegrator<Model>::Run(State* x) {
       // Not while another slip is stiff: the tau clock has no stiff integrator.
       if (follow != kNoContact && !Stiff(h, kStiffEnter, follow)) {
         h_impulse = h;
-        h_log = 0.5;
+        h_log = FirstLogStep();
         SetClock(follow);
         continue;
       }
@@ -534,13 +563,19 @@ HybridStatus HybridIntegrator<Model>::Run(State* x) {
     }
     if (!(err <= 1) || reversed) {
       unfreeze();
-      if (landing != kNoContact && !Stiff(h, kStiffEnter, landing)) {
+      if (landing != kNoContact && !Stiff(h, kStiffEnter, landing) &&
+          m_.Slip(landing, y_).norm() < s_.log_clock_slip) {
         // The landing on a zero failed: follow that slip in tau = -ln|u| instead.
         h_impulse = h;
-        h_log = 1.0;
+        h_log = FirstLogStep();
         SetClock(landing);
       } else if (log_clock) {
         h_log = h * shrink;
+      } else if (landing != kNoContact) {
+        // A failed landing far from zero: the step is held to a fraction of the
+        // distance to the predicted zero, which shrinks with it (near a turning zero
+        // the error depends on that ratio, not on the step's length).
+        land_ratio_ *= std::min(shrink, 0.5);
       } else {
         h_impulse = h * shrink;
       }
@@ -564,6 +599,7 @@ HybridStatus HybridIntegrator<Model>::Run(State* x) {
     }
     const double grow = stiff_ ? Ros23StepFactor(err) : control_.Accepted(err);
     (log_clock ? h_log : h_impulse) = h * grow;
+    land_ratio_ = landing != kNoContact ? std::min(land_ratio_ * grow, kLandRatio) : kLandRatio;
 
     if (event < 0 && log_clock) {
       const double before = u_start.norm();

@@ -566,7 +566,7 @@ TEST(CushionStatus, BadParametersAndOptionsAreInvalidAndNamed) {
 
 TEST(CushionStatus, StepCapStopsBothIntegrators) {
   ImpulseSolverOptions a = Adaptive();
-  a.max_steps = 3;
+  a.max_steps = 1;  // the impact needs two at least: the slip at I reaches zero inside it
   ImpulseSolverOptions f = FixedStep(1000);
   f.max_steps = 3;
   for (const ImpulseSolverOptions& o : {a, f}) {
