@@ -189,8 +189,8 @@ inline Vec2 ClothFriction(int c, const Mode& m, double n, const Vec2& u, const V
       // opposes it.
       const Vec2 d = Direction(stick);
       if (lag == 0) return mu_s * n * d;
-      const double c = std::cos(lag), s = std::sin(lag);
-      return mu_s * n * Vec2(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
+      const double cl = std::cos(lag), sl = std::sin(lag);
+      return mu_s * n * Vec2(cl * d.x() + sl * d.y(), -sl * d.x() + cl * d.y());
     }
     case Law::kSlide: break;
   }
