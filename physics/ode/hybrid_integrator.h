@@ -25,12 +25,15 @@
 //    compression) changes no dynamics: it is recorded and the search goes on.
 //  * A sliding slip heading for zero along a fixed ray has its direction held over the
 //    step (Freeze): the right-hand side stays smooth through the zero, which is then a
-//    witness like the others. A slip that turns as it shrinks limits the step to its
-//    predicted zero; where that landing fails (near a sticking zero the direction's
-//    derivatives blow up) the clock becomes tau = -ln|u| (a Sundman transformation,
-//    dP_I/dtau = |u| / (-d|u|/dP_I)), in which the solution is smooth, until |u| =
-//    slip_zero. Steps whose stages see a slip reversed, or a frozen slip leave its
-//    ray, are rejected.
+//    witness like the others. A slip that turns as it shrinks limits the step to a
+//    fraction of the way to its predicted zero: near the zero the direction's
+//    derivatives blow up like inverse powers of the distance to it, so the error
+//    depends on that fraction, and the step controller adjusts the fraction instead of
+//    the step's length. Once the slip is small (and where a landing fails close to
+//    zero) the clock becomes tau = -ln|u| (a Sundman transformation, dP_I/dtau =
+//    |u| / (-d|u|/dP_I)), in which the solution is smooth, until |u| = slip_zero.
+//    Steps whose stages see a slip reversed, or a frozen slip leave its ray, are
+//    rejected.
 //  * At zero slip the model's stick law decides (Settle): stick while the friction
 //    that holds the slip at zero lies in the cone, otherwise slide away from zero.
 //  * Where a small sliding slip makes the problem stiff (its direction relaxes at a
@@ -175,8 +178,9 @@ class HybridIntegrator {
   static constexpr double kMaxLogStep = 20.0;
   // A slip whose rate makes at most this sine with it heads for zero along a ray.
   static constexpr double kRayTurn = 1e-9;
-  // A landing on a predicted zero stops this fraction short: a stage exactly on the
-  // zero could see the slip reversed by rounding; the residual is settled as zero.
+  // A step towards a slip's predicted zero covers at most this fraction of the way
+  // (land_ratio_, adjusted by the step controller, starts here): a stage exactly on
+  // the zero could see the slip reversed by rounding; the residual is settled as zero.
   static constexpr double kLandRatio = 1 - 1e-12;
   // A followed slip that grows in a step while under this many slip_zero has reached
   // the noise of the integration: it is taken as zero.
