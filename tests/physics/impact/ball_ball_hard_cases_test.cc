@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "physics/impact/ball_ball.h"
+#include "tests/physics/impact/impact_test_support.h"
 
 namespace snooker::physics {
 namespace {
@@ -41,9 +42,7 @@ struct HardCase {
 };
 
 double MaxDiff(const ImpactState& a, const ImpactState& b) {
-  return std::max({(a.c.v - b.c.v).cwiseAbs().maxCoeff(), (a.o.v - b.o.v).cwiseAbs().maxCoeff(),
-                   kR * (a.c.w - b.c.w).cwiseAbs().maxCoeff(),
-                   kR * (a.o.w - b.o.w).cwiseAbs().maxCoeff()});
+  return test::MaxDifference(a, b, kR);
 }
 
 bool AllFinite(const ImpactState& s) {
