@@ -276,8 +276,11 @@ TEST_F(SimulateTest, RandomShotsKeepTheInvariants) {
 //    the break-off's many impacts amplify into a new final state.
 //  * Issue 9: the hybrid impulse integrator (same model and tolerance, a different
 //    step sequence; alone it moved every final position by less than 1e-8 m).
-constexpr std::uint64_t kBreakOffHash = 0x502e455b1e4ef3e8ULL;
-constexpr std::uint64_t kPairwiseBreakOffHash = 0xbe1e0fb4ba5af4fdULL;
+//  * Issue 9: the simulation's impact tolerance, set from measured final positions
+//    (SimParams::kShotTolerance, 1e-10 -> 1e-9): on the break-offs of
+//    docs/shot-speed-vs-error.md that moves well-conditioned balls by at most 6 um.
+constexpr std::uint64_t kBreakOffHash = 0xa8fc69c579244801ULL;
+constexpr std::uint64_t kPairwiseBreakOffHash = 0xfff74af25ad2ac79ULL;
 
 std::uint64_t HashFinalState(const Simulator& sim, int n) {
   std::uint64_t h = 1469598103934665603ULL;  // FNV-1a over the exact bits
