@@ -68,7 +68,7 @@ struct PlanRequest {
   /// balls use noise.position.
   std::vector<double> position_sigma;
   /// Time budget. s.
-  double time_budget = 0.1;
+  double time_budget = 0.08;
   /// How many shots to return (best first).
   int max_shots = 3;
   std::uint64_t seed = 1;

@@ -27,7 +27,7 @@ struct SelfPlayOptions {
   int frames = 100;
   std::uint64_t seed = 1;
   /// Planning budget per shot, s.
-  double time_budget = 0.1;
+  double time_budget = 0.08;
   NoiseModel noise;
   RobotLimits limits;
   bool position_play = true;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "server/api_status.h"
+#include "server/plan_api.h"  // Plan (planner)
 #include "physics/table/table.h"
 #include "snooker/v1/collide.pb.h"
 #include "snooker/v1/simulate.pb.h"
