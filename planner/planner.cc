@@ -334,8 +334,8 @@ PlanAnswer Planner::Plan(const PlanRequest& request) const {
     const Candidate& cand = *chosen[static_cast<size_t>(task)];
     SearchSettings s = settings;
     const int e = evals[static_cast<size_t>(task)];
-    s.global_evaluations = e / 2;
-    s.local_evaluations = e - e / 2;
+    s.global_evaluations = static_cast<int>(std::lround(e * config_.global_share));
+    s.local_evaluations = e - s.global_evaluations;
     const SearchResult r = SearchCandidate(table, *on, cand, ctx, s, w.search, search_stop);
     w.evaluations += r.evaluations;
     search_sims_done[static_cast<size_t>(task)] = r.simulations;

@@ -26,7 +26,7 @@ struct PositionOptions {
   std::array<double, 3> weights = {1.0, 0.33, 0.15};
   /// Points a potted next ball is worth beyond its value (the break it keeps
   /// alive): ranks colours by p (value + continuation).
-  double continuation = 8.0;
+  double continuation = 30.0;
   /// A cue ball touching a cushion keeps this share of each next shot's
   /// probability, rising linearly to 1 at one ball radius off the cushion (the
   /// robot can strike it only high and without much spin).

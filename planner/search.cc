@@ -201,8 +201,11 @@ class Search {
     shot.sidespin = (2 * u[2] - 1) * lim.max_sidespin_fraction * shot.speed / r;
     const Vec2 cue = table_.balls[static_cast<size_t>(cue_)].position;
     const Vec2 object = table_.balls[static_cast<size_t>(cand_.object)].position;
-    const auto predicted = PredictCut(cue, object, cand_.estimate.object_direction, shot.speed,
-                                      shot.topspin, shot.sidespin, sim_.params());
+    const auto predicted =
+        settings_.predict_throw
+            ? PredictCut(cue, object, cand_.estimate.object_direction, shot.speed, shot.topspin,
+                         shot.sidespin, sim_.params())
+            : std::nullopt;
     const double cut = predicted.value_or(cand_.estimate.aim.cut) +
                        (2 * u[3] - 1) * settings_.max_cut_correction;
     const auto heading = HeadingForCut(cue, object, cut, r);

@@ -79,6 +79,9 @@ struct SearchSettings {
   int global_evaluations = 24;
   int local_evaluations = 24;
   LocalAlgorithm local = LocalAlgorithm::kBobyqa;
+  /// Aim by the collision model's predicted throw (false: the geometric ghost-ball
+  /// cut, for the comparison in docs/planner.md).
+  bool predict_throw = true;
   /// Largest correction of the predicted cut, rad.
   double max_cut_correction = 0.6 * physics::kPi / 180;
   /// Stop a stage when a step changes no variable by more than this (unit cube).
