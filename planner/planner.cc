@@ -224,7 +224,11 @@ PlanAnswer Planner::Plan(const PlanRequest& request) const {
   // Deadlines of the phases and the work they may do.
   const auto budget = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(request.time_budget));
-  const Clock::time_point end = std::min(start + budget, request.deadline);
+  // The work ends a little before the budget: the last simulation in flight, the
+  // threads' join and the answer's assembly come after it.
+  const Clock::time_point end =
+      std::min(start + std::chrono::duration_cast<Clock::duration>(budget * config_.end_share),
+               request.deadline);
   auto at = [&](double share) {
     return std::min(end, start + std::chrono::duration_cast<Clock::duration>(budget * share));
   };

@@ -184,6 +184,9 @@ struct PlannerConfig {
   /// search_share, the Monte Carlo at search_share + monte_carlo_share.
   double search_share = 0.65;
   double monte_carlo_share = 0.27;
+  /// Share of the budget at which all work stops (the rest is left for the
+  /// simulation in flight and the answer's assembly).
+  double end_share = 0.95;
   /// Share of each candidate's evaluations given to the global stage (the rest
   /// to the local one).
   double global_share = 0.5;

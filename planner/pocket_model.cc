@@ -1,7 +1,9 @@
 #include "planner/pocket_model.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <thread>
 
 #include "planner/geometry.h"
 #include "planner/shot_sim.h"
@@ -32,20 +34,41 @@ Vec2 Rotate(const Vec2& v, double a) {
 PocketModel::PocketModel(const physics::TableModel& table, const physics::SimParams& params,
                          const Options& options)
     : table_(table), params_(params), options_(options) {
-  physics::Simulator sim(table_, params_);
+  // Every cell is independent: two threads (one simulator each) share them, and the
+  // table is the same whichever thread measured a cell.
+  struct Cell {
+    bool corner;
+    size_t speed;
+    int angle;
+  };
+  std::vector<Cell> cells;
   for (const bool corner : {true, false}) {
     AngleGrid& g = corner ? corner_ : middle_;
     g.max_angle = corner ? options_.corner_max_angle : options_.middle_max_angle;
     g.count = 2 * static_cast<int>(std::lround(g.max_angle / options_.angle_step)) + 1;
     g.cells.resize(static_cast<size_t>(g.count) * options_.arrival_speeds.size());
     for (size_t s = 0; s < options_.arrival_speeds.size(); ++s) {
-      for (int a = 0; a < g.count; ++a) {
-        g.cells[s * static_cast<size_t>(g.count) + static_cast<size_t>(a)] =
-            Measure(sim, corner ? kCornerSample : kMiddleSample, angle_at(corner, a),
-                    options_.arrival_speeds[s]);
-      }
+      for (int a = 0; a < g.count; ++a) cells.push_back({corner, s, a});
     }
   }
+  std::atomic<size_t> next{0};
+  std::atomic<long> sims{0};
+  auto work = [&] {
+    physics::Simulator sim(table_, params_);
+    long count = 0;
+    for (size_t k = next.fetch_add(1); k < cells.size(); k = next.fetch_add(1)) {
+      const Cell& c = cells[k];
+      AngleGrid& g = c.corner ? corner_ : middle_;
+      g.cells[c.speed * static_cast<size_t>(g.count) + static_cast<size_t>(c.angle)] =
+          Measure(sim, c.corner ? kCornerSample : kMiddleSample, angle_at(c.corner, c.angle),
+                  options_.arrival_speeds[c.speed], &count);
+    }
+    sims += count;
+  };
+  std::thread helper(work);
+  work();
+  helper.join();
+  simulations_ = sims.load();
 }
 
 const PocketModel& PocketModel::Default() {
@@ -59,7 +82,7 @@ double PocketModel::angle_at(bool corner, int angle_index) const {
 }
 
 bool PocketModel::Drops(physics::Simulator& sim, PocketId id, double approach, double speed,
-                        double offset) {
+                        double offset, long* count) const {
   const physics::Pocket& p = table_.pocket(id);
   const Vec2 u = Rotate(p.axis, approach);
   const double c = table_.cushion_contact_distance();
@@ -73,7 +96,7 @@ bool PocketModel::Drops(physics::Simulator& sim, PocketId id, double approach, d
     const double v0 = std::sqrt(speed * speed + 2 * decel * d);
     b.v = physics::Vec3(v0 * u.x(), v0 * u.y(), 0);
     b.w = physics::Vec3(-u.y(), u.x(), 0) * (v0 / table_.ball_radius());  // rolling
-    ++simulations_;
+    ++*count;
     // Run until the ball drops, or has come away from the mouth (a miss: it is past
     // the pocket's reach and moving away from it), or rests.
     physics::RunOptions run = physics::RunOptions::Lean();
@@ -95,21 +118,21 @@ bool PocketModel::Drops(physics::Simulator& sim, PocketId id, double approach, d
 }
 
 PocketWindow PocketModel::Measure(physics::Simulator& sim, PocketId id, double approach,
-                                  double speed) {
+                                  double speed, long* count) const {
   const double h = options_.scan_half_width, step = options_.scan_step;
   const int n = 2 * static_cast<int>(std::lround(h / step)) + 1;
   auto offset = [&](int k) { return -h + k * step; };
   const int centre = n / 2;  // offset 0
   int best_lo = -1, best_hi = -1;
-  if (Drops(sim, id, approach, speed, 0.0)) {
+  if (Drops(sim, id, approach, speed, 0.0, count)) {
     // The usual case: walk out from the centre line to the first miss each way.
     best_lo = best_hi = centre;
-    while (best_lo > 0 && Drops(sim, id, approach, speed, offset(best_lo - 1))) --best_lo;
-    while (best_hi < n - 1 && Drops(sim, id, approach, speed, offset(best_hi + 1))) ++best_hi;
+    while (best_lo > 0 && Drops(sim, id, approach, speed, offset(best_lo - 1), count)) --best_lo;
+    while (best_hi < n - 1 && Drops(sim, id, approach, speed, offset(best_hi + 1), count)) ++best_hi;
   } else {
     // Scan every offset; keep the widest dropping run.
     std::vector<char> drops(static_cast<size_t>(n));
-    for (int k = 0; k < n; ++k) drops[static_cast<size_t>(k)] = Drops(sim, id, approach, speed, offset(k));
+    for (int k = 0; k < n; ++k) drops[static_cast<size_t>(k)] = Drops(sim, id, approach, speed, offset(k), count);
     for (int k = 0; k < n;) {
       if (!drops[static_cast<size_t>(k)]) {
         ++k;
@@ -131,7 +154,7 @@ PocketWindow PocketModel::Measure(physics::Simulator& sim, PocketId id, double a
     double out = offset(best_lo - 1), in = win.lo;
     for (int i = 0; i < options_.bisections; ++i) {
       const double mid = 0.5 * (out + in);
-      (Drops(sim, id, approach, speed, mid) ? in : out) = mid;
+      (Drops(sim, id, approach, speed, mid, count) ? in : out) = mid;
     }
     win.lo = in;
   }
@@ -139,7 +162,7 @@ PocketWindow PocketModel::Measure(physics::Simulator& sim, PocketId id, double a
     double out = offset(best_hi + 1), in = win.hi;
     for (int i = 0; i < options_.bisections; ++i) {
       const double mid = 0.5 * (out + in);
-      (Drops(sim, id, approach, speed, mid) ? in : out) = mid;
+      (Drops(sim, id, approach, speed, mid, count) ? in : out) = mid;
     }
     win.hi = in;
   }

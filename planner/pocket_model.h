@@ -15,7 +15,8 @@
 // symmetric), so one pocket of each kind is tabulated.
 //
 // Resolution (angle step, offset step, bisection depth) is a parameter with a cost:
-// the default table takes about 4000 single-ball simulations, once per process.
+// the default table takes about 4000 single-ball simulations, once per process, on
+// two threads.
 #pragma once
 
 #include <vector>
@@ -79,9 +80,9 @@ class PocketModel {
   };
   const AngleGrid& Grid(bool corner) const { return corner ? corner_ : middle_; }
   PocketWindow Measure(physics::Simulator& sim, physics::PocketId id, double approach,
-                       double speed);
+                       double speed, long* count) const;
   bool Drops(physics::Simulator& sim, physics::PocketId id, double approach, double speed,
-             double offset);
+             double offset, long* count) const;
   PocketWindow InterpolateAngle(const AngleGrid& g, int speed_index, double approach) const;
 
   const physics::TableModel& table_;

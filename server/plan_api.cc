@@ -22,9 +22,11 @@ void ForwardProgress(const planner::PlannedShot& best, void* context) {
 }  // namespace
 
 ApiStatus Plan(const v1::PlanRequest& request, v1::PlanResponse* response, const PlanControl& control) {
-  const planner::Planner& planner = planner::Planner::Default();
-  const std::vector<FieldError> errors = ValidatePlanRequest(request, *planner.config().table);
+  // Validate before the planner is first built (its pocket and throw tables take a
+  // few thousand simulations once per process): bad input costs nothing.
+  const std::vector<FieldError> errors = ValidatePlanRequest(request, physics::DefaultTable());
   if (!errors.empty()) return ApiStatus::Invalid(Describe(errors));
+  const planner::Planner& planner = planner::Planner::Default();
   planner::PlanRequest p = PlanRequestFrom(request);
   p.deadline = control.deadline;
   p.cancel = control.cancel;

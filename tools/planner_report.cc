@@ -11,7 +11,6 @@
 //       algorithm, global stage, throw prediction; each variant plans the same
 //       tables and its best shot is judged by an independent Monte Carlo.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -26,12 +25,7 @@
 namespace snooker::planner {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using physics::Vec2;
-
-double Seconds(Clock::time_point a, Clock::time_point b) {
-  return std::chrono::duration<double>(b - a).count();
-}
 
 // CPU time of this thread, s: less disturbed than wall time by the other jobs of a
 // shared machine (they still share caches and the memory bus).

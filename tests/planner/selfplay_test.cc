@@ -53,9 +53,9 @@ TEST(SelfPlayTest, AShortRunIsConsistent) {
   o.frames = 2;
   o.seed = 3;
   o.time_budget = 30;
-  o.max_simulations = 150;
+  o.max_simulations = 100;
   o.monte_carlo_samples = 8;
-  o.max_shots_per_frame = 6;
+  o.max_shots_per_frame = 4;
   const SelfPlayReport r = RunSelfPlay(Planner::Default(), o);
   ASSERT_EQ(r.frames, 2);
   ASSERT_EQ(r.records.size(), 2u);
