@@ -24,7 +24,7 @@ constexpr const char* kHelp = R"(usage: snooker plan --table T.json [--on RED|YE
                     [--budget-ms N] [--shots K] [--seed S] [--json] [--svg out.svg]
                     [--noise-heading-deg X] [--noise-speed X] [--noise-spin X]
                     [--noise-position-mm X] [--min-speed X] [--max-speed X]
-                    [--max-topspin X] [--max-sidespin X] [--pot-only]
+                    [--max-topspin X] [--max-sidespin X] [--cue-clearance-m X] [--pot-only]
                     [--max-simulations N] [--samples N]
 
 Plans the shots that pot a ball on and leave the cue ball in a good position for the
@@ -58,6 +58,7 @@ Robot limits:
   --min-speed X, --max-speed X     cue-ball speed range, m/s (default 0.3 to 6)
   --max-topspin X                  largest |topspin|, fraction of the rolling spin (1)
   --max-sidespin X                 largest |sidespin|, fraction of the rolling spin (0.5)
+  --cue-clearance-m X              clear bed the level cue needs behind the cue ball, m (0.10)
 Planner:
   --pot-only             ignore the position left (the comparison of docs/planner.md)
   --max-simulations N    cap on simulations (default: from the budget)
@@ -157,7 +158,7 @@ int RunPlan(const std::vector<std::string>& argv, std::ostream& out, std::ostrea
   Args args(argv,
             {"table", "on", "budget-ms", "shots", "seed", "svg", "noise-heading-deg", "noise-speed",
              "noise-spin", "noise-position-mm", "min-speed", "max-speed", "max-topspin",
-             "max-sidespin", "max-simulations", "samples"},
+             "max-sidespin", "cue-clearance-m", "max-simulations", "samples"},
             {"json", "help", "pot-only"});
   if (args.error().empty() && args.Switch("help")) {
     out << kHelp;
@@ -218,6 +219,7 @@ int RunPlan(const std::vector<std::string>& argv, std::ostream& out, std::ostrea
   number("max-speed", [&](double x) { limits->set_max_speed(x); });
   number("max-topspin", [&](double x) { limits->set_max_topspin_fraction(x); });
   number("max-sidespin", [&](double x) { limits->set_max_sidespin_fraction(x); });
+  number("cue-clearance-m", [&](double x) { limits->set_cue_clearance_m(x); });
   if (args.Switch("pot-only")) req.set_position_play(false);
   if (!args.error().empty()) {
     err << "snooker plan: " << args.error() << "\n(see snooker plan --help)\n";

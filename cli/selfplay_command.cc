@@ -15,7 +15,7 @@ namespace {
 
 constexpr const char* kHelp = R"(usage: snooker selfplay --frames N --seed S [--budget-ms N] [--json]
                         [--noise-heading-deg X] [--noise-speed X] [--noise-spin X]
-                        [--noise-position-mm X] [--pot-only] [--max-simulations N]
+                        [--noise-position-mm X] [--cue-clearance-m X] [--pot-only] [--max-simulations N]
                         [--samples N] [--threads N] [--progress]
 
 The planner plays snooker alone. Each frame starts from a seeded random mid-frame
@@ -37,6 +37,8 @@ Noise (standard deviations; the same options as snooker plan):
   --noise-speed X         cue speed, fraction of the speed (default 0.01)
   --noise-spin X          topspin and sidespin, rad/s (default 2)
   --noise-position-mm X   vision, each ball centre per axis, mm (default 0.2)
+Robot:
+  --cue-clearance-m X     clear bed the level cue needs behind the cue ball, m (0.10)
 Planner:
   --pot-only             ignore the position left
   --max-simulations N    per-plan cap on simulations (default: from the budget)
@@ -51,7 +53,7 @@ Planner:
 int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
   Args args(argv,
             {"frames", "seed", "budget-ms", "noise-heading-deg", "noise-speed", "noise-spin",
-             "noise-position-mm", "max-simulations", "samples", "threads"},
+             "noise-position-mm", "cue-clearance-m", "max-simulations", "samples", "threads"},
             {"json", "help", "pot-only", "progress"});
   if (args.error().empty() && args.Switch("help")) {
     out << kHelp;
@@ -65,6 +67,7 @@ int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::os
   const auto speed = args.Number("noise-speed", o.noise.speed_fraction);
   const auto spin = args.Number("noise-spin", o.noise.topspin);
   const auto position = args.Number("noise-position-mm", o.noise.position * 1e3);
+  const auto clearance = args.Number("cue-clearance-m", o.limits.cue.length);
   const auto sims = args.Integer("max-simulations", 0, 0, 100'000'000);
   const auto samples = args.Integer("samples", o.monte_carlo_samples, 0, 100'000);
   const auto threads = args.Integer("threads", o.threads, 1, 64);
@@ -82,6 +85,7 @@ int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::os
   if (!(*speed >= 0 && *speed <= 0.5)) return bad("noise-speed", *speed, "is out of range [0, 0.5]");
   if (!(*spin >= 0 && *spin <= 100)) return bad("noise-spin", *spin, "is out of range [0, 100]");
   if (!(*position >= 0 && *position <= 50)) return bad("noise-position-mm", *position, "is out of range [0, 50]");
+  if (!(*clearance >= 0 && *clearance <= 2)) return bad("cue-clearance-m", *clearance, "is out of range [0, 2]");
   o.frames = static_cast<int>(*frames);
   o.seed = static_cast<std::uint64_t>(*seed);
   o.time_budget = *budget * 1e-3;
@@ -89,6 +93,7 @@ int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::os
   o.noise.speed_fraction = *speed;
   o.noise.topspin = o.noise.sidespin = *spin;
   o.noise.position = *position * 1e-3;
+  o.limits.cue.length = *clearance;
   o.position_play = !args.Switch("pot-only");
   o.max_simulations = *sims;
   o.monte_carlo_samples = static_cast<int>(*samples);

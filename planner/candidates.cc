@@ -10,7 +10,7 @@ using physics::Vec2;
 const char* ToString(PruneReason r) {
   switch (r) {
     case PruneReason::kNone: return "kept";
-    case PruneReason::kCutTooThin: return "cut too thin";
+    case PruneReason::kCutTooThin: return "cut too thin or past 90 deg";
     case PruneReason::kPocketAngle: return "pocket closed at that angle";
     case PruneReason::kCueBallPath: return "cue ball's path blocked";
     case PruneReason::kObjectBallPath: return "object ball's path blocked";

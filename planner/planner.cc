@@ -260,15 +260,25 @@ PlanAnswer Planner::Plan(const PlanRequest& request) const {
     return finish();
   }
 
-  // 2. How much search each candidate gets: the likeliest pots most, hopeless ones
-  // (a tenth of the best estimate) none.
+  // 2. How much search each candidate gets: by its prior, the estimated points
+  // p (value + continuation), the most promising most; hopeless ones (under a tenth
+  // of the best prior) none.
+  const double continuation = settings.position.continuation;
+  auto prior = [&](const Candidate& c) {
+    return c.estimate.probability *
+           (Value(table.balls[static_cast<size_t>(c.object)].kind) + continuation);
+  };
+  std::vector<const Candidate*> ordered;
+  for (const Candidate& c : set.candidates) ordered.push_back(&c);
+  std::stable_sort(ordered.begin(), ordered.end(),
+                   [&](const Candidate* a, const Candidate* b) { return prior(*a) > prior(*b); });
   std::vector<const Candidate*> chosen;
   std::vector<double> weight;
-  const double best_prior = set.candidates.front().estimate.probability;
-  for (const Candidate& c : set.candidates) {
+  const double best_prior = prior(*ordered.front());
+  for (const Candidate* c : ordered) {
     if (static_cast<int>(chosen.size()) >= config_.max_candidates) break;
-    if (!chosen.empty() && c.estimate.probability < 0.1 * best_prior) break;
-    chosen.push_back(&c);
+    if (!chosen.empty() && prior(*c) < 0.1 * best_prior) break;
+    chosen.push_back(c);
     const size_t rank = chosen.size() - 1;
     weight.push_back(rank < 4 ? 1.0 : rank < 8 ? 0.5 : 0.25);
   }

@@ -43,10 +43,12 @@ PositionValue EvaluatePosition(const TableState& table, BallOn next_on, const Po
     const Vec2 o = table.balls[i].position;
     for (int k = 0; k < physics::kPocketCount; ++k) {
       const auto id = static_cast<physics::PocketId>(k);
-      // Cheapest test first: the pocket's angular reach from the ball.
+      // Cheapest test first: the pocket's angular reach from the ball (a dot
+      // product against the cosine of the largest approach angle, no atan2).
       const physics::Pocket& p = ctx.table->pocket(id);
-      const double approach = ctx.pockets->Approach(id, Direction(p.mouth_centre - o));
-      if (std::abs(approach) > ctx.pockets->MaxApproach(id) + 0.1) continue;
+      const Vec2 to_mouth = p.mouth_centre - o;
+      const double reach = std::cos(std::min(physics::kPi, ctx.pockets->MaxApproach(id) + 0.1));
+      if (to_mouth.dot(p.axis) < reach * to_mouth.norm()) continue;
       const auto est = EstimatePot(c, o, id, ctx.sigma_of(cue), ctx.sigma_of(static_cast<int>(i)),
                                    ctx.noise, *ctx.pockets, *ctx.throws);
       if (!est || std::abs(est->aim.cut) > ctx.max_cut || est->probability <= 0) continue;

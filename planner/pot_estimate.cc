@@ -23,12 +23,11 @@ double LateralSigma(const Vec2& cue, const Vec2& object, double heading, double 
   const double k = distance / (2 * radius * cos_c);
   const double heading_gain = distance * (1 - u.dot(object - cue) / (2 * radius * cos_c));
   const ThrowSensitivity t = throws.At(cut, contact_speed);
-  const double throw_var = std::pow(t.per_sidespin * noise.sidespin, 2) +
-                           std::pow(t.per_topspin * noise.topspin, 2) +
-                           std::pow(t.per_log_speed * noise.speed_fraction, 2);
-  const double var = std::pow(noise.heading * heading_gain, 2) + std::pow(cue_sigma * k, 2) +
-                     object_sigma * object_sigma * (k * k + 1 + 2 * k * cos_c) +
-                     distance * distance * throw_var;
+  auto sq = [](double x) { return x * x; };
+  const double throw_var = sq(t.per_sidespin * noise.sidespin) + sq(t.per_topspin * noise.topspin) +
+                           sq(t.per_log_speed * noise.speed_fraction);
+  const double var = sq(noise.heading * heading_gain) + sq(cue_sigma * k) +
+                     sq(object_sigma) * (k * k + 1 + 2 * k * cos_c) + sq(distance) * throw_var;
   return std::sqrt(var);
 }
 

@@ -136,6 +136,7 @@ def main():
     d = runs["default"]["result"]
     half = runs["position 0.5 mm"]["result"]
     pot = runs["pot only"]["result"]
+    room = runs["cue clearance 5 cm"]["result"]
     ratio = d["meanBreak"] / pot["meanBreak"] if pot["meanBreak"] > 0 else float("inf")
 
     def status(ok):
@@ -253,7 +254,7 @@ Monte Carlo blocks, one simulator each.
 
 ## Self-play
 
-{selfplay_table(runs, ['default', 'position 0.5 mm', 'pot only'])}
+{selfplay_table(runs, ['default', 'position 0.5 mm', 'pot only', 'cue clearance 5 cm'])}
 What position play is worth: the same planner with the position term switched off
 (`--pot-only`: the objective is P x value) breaks {pot['meanBreak']:.1f} on average against
 {d['meanBreak']:.1f}, and its pots drop less often ({100 * pot['potRate']:.1f} % against
@@ -350,8 +351,11 @@ samples) of the same objective (`tools/planner_report search`):
   what it is, and the best of a few noisy estimates is a little optimistic (the winner's
   curse of ranking by 48 samples).
 - **Breaks that end with no pot**: some random frames start with no pottable red for a
-  level cue (every path blocked or no room for the cue), and position play sometimes
-  leaves none after the noise moves the cue ball.
+  level cue (every path blocked, or the cue ball near a cushion with every shot leading
+  away from it, where a level cue has no room), and position play sometimes leaves none
+  after the noise moves the cue ball. The cue's room is the robot's: with 5 cm of clear
+  bed behind the cue ball instead of 10 cm, the mean break is {room['meanBreak']:.1f}
+  ({100 * room['potRate']:.1f} % of pots dropping).
 - **Estimate**: first order in the geometry; on cuts beyond 70 deg its error grows (table
   above), so thin cuts are ranked by the Monte Carlo only.
 """
