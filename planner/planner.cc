@@ -314,10 +314,17 @@ PlanAnswer Planner::Plan(const PlanRequest& request) const {
   PotContext after_ctx = ctx;
   after_ctx.position_sigma.clear();
 
+  auto task_of = [&](const Candidate& cand) {
+    return static_cast<size_t>(std::find(chosen.begin(), chosen.end(), &cand) - chosen.begin());
+  };
   auto verify = [&](Worker& w, const Candidate& cand, const ShotCandidate& sc) -> std::optional<PlannedShot> {
     const ShotSetup setup{&table, cue, cand.object, cand.pocket, *on};
     const ShotOutcome& out = w.full.Run(setup, sc.shot, {}, ShotSimulator::Mode::kFull, final_stop.AsInterrupt());
-    if (!out.success) return std::nullopt;
+    if (!out.success) {
+      // An interrupted check says nothing about the shot: it is dropped unverified.
+      if (out.status != physics::SimStatus::kInterrupted) failed_verification[task_of(cand)] = 1;
+      return std::nullopt;
+    }
     PlannedShot ps;
     ps.shot = sc.shot;
     ps.cut = sc.cut;
@@ -356,10 +363,7 @@ PlanAnswer Planner::Plan(const PlanRequest& request) const {
     interrupted[static_cast<size_t>(task)] = r.status == SearchStatus::kInterrupted;
     if (!r.best || final_stop.Due()) return;
     auto ps = verify(w, cand, *r.best);
-    if (!ps) {
-      failed_verification[static_cast<size_t>(task)] = 1;
-      return;
-    }
+    if (!ps) return;
     found[static_cast<size_t>(task)] = ps;
     if (request.progress != nullptr) {
       std::lock_guard<std::mutex> lock(progress_mutex);

@@ -63,15 +63,19 @@ int Estimate(double position_mm) {
                                        planner.config().full);
       if (!shot) continue;
       const ShotSetup setup{&t, 0, 1, c.pocket, BallOn::kRed};
-      const bool nominal = sim.Run(setup, *shot, {}, ShotSimulator::Mode::kDecide, {}).success;
+      // The estimate is of the object ball dropping into the pocket (what happens to
+      // the cue ball afterwards is the search's business): run to the end and count
+      // the object ball's drops.
+      const bool nominal = sim.Run(setup, *shot, {}, ShotSimulator::Mode::kFull, {}).object_pocket ==
+                           static_cast<int>(c.pocket);
       Rng mc(DeriveSeed(77, f, static_cast<std::uint64_t>(c.pocket)));
       std::vector<Vec2> truth;
       int dropped = 0;
       for (int k = 0; k < kSamples; ++k) {
         SampleTruePositions(t, ctx, mc, &truth);
         const ShotOutcome& out =
-            sim.Run(setup, SampleExecution(*shot, ctx.noise, mc), truth, ShotSimulator::Mode::kDecide, {});
-        dropped += out.success && out.object_pocket == static_cast<int>(c.pocket);
+            sim.Run(setup, SampleExecution(*shot, ctx.noise, mc), truth, ShotSimulator::Mode::kFull, {});
+        dropped += out.first_hit == 1 && out.object_pocket == static_cast<int>(c.pocket);
       }
       std::printf("%s{\"cut_deg\": %.3f, \"cue_distance\": %.4f, \"object_distance\": %.4f, "
                   "\"pocket\": \"%s\", \"estimate\": %.5f, \"monte_carlo\": %.5f, \"nominal\": %s}",

@@ -112,9 +112,11 @@ TEST(PotEstimateTest, AgreesWithMonteCarloOnASetOfPositions) {
       int dropped = 0;
       for (int k = 0; k < kSamples; ++k) {
         SampleTruePositions(t, ctx, mc, &truth);
+        // The estimate is of the object ball dropping (not of where the cue ball
+        // goes after): run to the end, count the object ball's drops.
         const ShotOutcome& out = sim.Run(setup, SampleExecution(*shot, ctx.noise, mc), truth,
-                                         ShotSimulator::Mode::kDecide, {});
-        dropped += out.success && out.object_pocket == static_cast<int>(c.pocket);
+                                         ShotSimulator::Mode::kFull, {});
+        dropped += out.first_hit == 1 && out.object_pocket == static_cast<int>(c.pocket);
       }
       const double rate = static_cast<double>(dropped) / kSamples;
       EXPECT_NEAR(c.estimate.probability, rate, kEach)
