@@ -1,6 +1,7 @@
 // snooker selfplay: the planner plays breaks alone (planner/selfplay.h) and reports
 // mean and largest break, the share of attempted pots that dropped, and planning
 // time per shot. The measure of docs/planner.md.
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -16,7 +17,7 @@ namespace {
 constexpr const char* kHelp = R"(usage: snooker selfplay --frames N --seed S [--budget-ms N] [--json]
                         [--noise-heading-deg X] [--noise-speed X] [--noise-spin X]
                         [--noise-position-mm X] [--cue-clearance-m X] [--pot-only] [--max-simulations N]
-                        [--samples N] [--threads N] [--progress]
+                        [--samples N] [--threads N] [--progress] [--records out.jsonl]
 
 The planner plays snooker alone. Each frame starts from a seeded random mid-frame
 table (6 to 10 reds scattered where they touch nothing, the colours on their spots,
@@ -45,6 +46,9 @@ Planner:
   --samples N            Monte Carlo samples per ranked shot (default 48)
   --threads N            planner threads (default 2)
   --progress             print each frame's break on stderr as it ends
+  --records out.jsonl    write one JSON line per frame: {"frame", "reds", "points",
+                         "attempts", "pots", "end"} (end: "miss", "foul: ...",
+                         "no pot", "cleared" or "shot cap")
   --help                 this text
 )";
 
@@ -53,7 +57,8 @@ Planner:
 int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
   Args args(argv,
             {"frames", "seed", "budget-ms", "noise-heading-deg", "noise-speed", "noise-spin",
-             "noise-position-mm", "cue-clearance-m", "max-simulations", "samples", "threads"},
+             "noise-position-mm", "cue-clearance-m", "max-simulations", "samples", "threads",
+             "records"},
             {"json", "help", "pot-only", "progress"});
   if (args.error().empty() && args.Switch("help")) {
     out << kHelp;
@@ -111,6 +116,19 @@ int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::os
             }
           : nullptr,
       &progress);
+  if (const auto records = args.Text("records", ""); !records->empty()) {
+    std::ofstream f(*records);
+    for (size_t i = 0; i < r.records.size(); ++i) {
+      const planner::FrameRecord& rec = r.records[i];
+      f << "{\"frame\": " << i << ", \"reds\": " << rec.reds << ", \"points\": " << rec.points
+        << ", \"attempts\": " << rec.attempts << ", \"pots\": " << rec.pots << ", \"end\": \""
+        << rec.end << "\"}\n";
+    }
+    if (!f) {
+      err << "snooker selfplay: cannot write '" << *records << "'\n";
+      return kExitFailure;
+    }
+  }
   if (args.Switch("json")) {
     std::ostringstream j;
     j.precision(10);

@@ -7,7 +7,11 @@
 // every ball rests, because the position it leaves is the point of it (and a late
 // in-off would still foul it). Verification runs (Mode::kFull) never stop early and
 // record the events. kEventLimit, kSolverFailure, kEventOrder and kTimeLimit are
-// failures, never successes (Foul::kSimulationFailed).
+// failures, never successes (Foul::kSimulationFailed). Simulator::Decided does not
+// foresee a ball that a later bounce brings back, so a fluke (a moving ball knocking
+// the resting object ball in afterwards) counts as a miss in these runs: the rule
+// errs on the safe side, and tests/planner/shot_sim_test.cc checks that it changes
+// no verdict on a set of random shots.
 //
 // At the cue ball's first contact with the object ball the object ball's rolling
 // line is measured (its post-impact state carried through its slip phase in closed

@@ -36,16 +36,38 @@ def machine():
     return f"{cpu}, {os.cpu_count()} cores, {platform.system()} {platform.release()}"
 
 
-def selfplay_table(runs, names):
+def ends(data, run):
+    """How the run's breaks ended: counts of cleared, miss, foul, no pot (and of those,
+    no pot from the frame's first shot)."""
+    out = {"cleared": 0, "miss": 0, "foul": 0, "no pot": 0, "no pot at once": 0, "shot cap": 0}
+    path = os.path.join(data, run.get("records", ""))
+    if not run.get("records") or not os.path.exists(path):
+        return None
+    with open(path) as f:
+        for line in f:
+            rec = json.loads(line)
+            end = rec["end"]
+            key = "foul" if end.startswith("foul") else end
+            out[key] = out.get(key, 0) + 1
+            if end == "no pot" and rec["attempts"] == 0:
+                out["no pot at once"] += 1
+    return out
+
+
+def selfplay_table(runs, names, data):
     out = ("| run | command | frames | shots | mean break | largest | pots dropped | "
-           "plan p50 (ms) | plan p99 (ms) | load (1/5/15 min) |\n"
-           "|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n")
+           "plan p50 (ms) | plan p99 (ms) | breaks ended: cleared / miss / foul / no pot (at once) | "
+           "load (1/5/15 min) |\n"
+           "|---|---|---:|---:|---:|---:|---:|---:|---:|---|---|\n")
     for name in names:
         r = runs[name]
         x = r["result"]
+        e = ends(data, r)
+        e_text = (f"{e['cleared']} / {e['miss']} / {e['foul']} / {e['no pot']} ({e['no pot at once']})"
+                  if e else "?")
         out += (f"| {name} | `{r['command']}` | {x['frames']} | {x['shots']} | {x['meanBreak']:.1f} | "
                 f"{x['maxBreak']} | {100 * x['potRate']:.1f} % | {x['planMsP50']:.1f} | "
-                f"{x['planMsP99']:.1f} | {r.get('load', '?')} |\n")
+                f"{x['planMsP99']:.1f} | {e_text} | {r.get('load', '?')} |\n")
     return out
 
 
@@ -138,6 +160,21 @@ def main():
     pot = runs["pot only"]["result"]
     room = runs["cue clearance 5 cm"]["result"]
     ratio = d["meanBreak"] / pot["meanBreak"] if pot["meanBreak"] > 0 else float("inf")
+    se = float("nan")
+    rec_path = os.path.join(data, runs["default"].get("records", ""))
+    if runs["default"].get("records") and os.path.exists(rec_path):
+        with open(rec_path) as f:
+            pts = [json.loads(line)["points"] for line in f]
+        mean = sum(pts) / len(pts)
+        se = (sum((p - mean) ** 2 for p in pts) / (len(pts) - 1)) ** 0.5 / len(pts) ** 0.5
+    d_ends = ends(data, runs["default"]) or {}
+    by_budget = [(b, runs[n]["result"]) for b, n in budgets]
+    best_budget = max(by_budget, key=lambda t: t[1]["meanBreak"])
+    variants = {v["variant"]: v for v in search["variants"]}
+    default_v = variants.get("DIRECT-L + BOBYQA (default)")
+    locals_ = [v["mean_score"] for k, v in variants.items() if k.startswith("DIRECT-L +") and "geometric" not in k]
+    no_throw = next((v for k, v in variants.items() if "geometric" in k), None)
+    bobyqa_only = variants.get("BOBYQA only")
 
     def status(ok):
         return "met" if ok else "**missed**"
@@ -228,7 +265,9 @@ break ends at a miss, a foul, a table with no pot for the planner, or a cleared 
    0.6 deg that the search sets from the simulation. GN_DIRECT_L explores speed and spin
    (deterministic, bound-constrained, evenly spread at a few dozen evaluations: stun,
    follow and screw leave the cue ball in different places), then LN_BOBYQA refines all
-   four (a quadratic model centres the narrow cut ridge in few evaluations). The
+   four (a quadratic model fits the smooth Gaussian pot probability around the cut
+   ridge in few evaluations; at equal work the three local algorithms tried score
+   within {100 * (max(locals_) - min(locals_)) / max(locals_):.1f} % of each other, see below). The
    objective of a shot that pots in its (early-stopping, looser-tolerance) simulation is
    P x (value + position): P its pot probability from its simulated object-ball line
    under noise, position the expected points of the position left (`position.h`:
@@ -256,22 +295,24 @@ Monte Carlo blocks, one simulator each.
 
 ## Self-play
 
-{selfplay_table(runs, ['default', 'position 0.5 mm', 'pot only', 'cue clearance 5 cm'])}
+{selfplay_table(runs, ['default', 'position 0.5 mm', 'pot only', 'cue clearance 5 cm'], data)}
 What position play is worth: the same planner with the position term switched off
-(`--pot-only`: the objective is P x value) breaks {pot['meanBreak']:.1f} on average against
-{d['meanBreak']:.1f}, and its pots drop less often ({100 * pot['potRate']:.1f} % against
-{100 * d['potRate']:.1f} %): it leaves itself long and thin pots. At 0.5 mm of vision
-noise (2.5x the default) the mean break is {half['meanBreak']:.1f} and
-{100 * half['potRate']:.1f} % of pots drop: vision error dominates a pot's error (about
-1 deg of object-ball direction per millimetre; `../shared/planning-notes.md`), and
-the planner answers it by choosing shorter, straighter pots.
+(`--pot-only`: the objective is P x value, the most likely points now) breaks
+{pot['meanBreak']:.1f} on average against {d['meanBreak']:.1f} ({ratio:.1f}x), and its pots drop
+less often ({100 * pot['potRate']:.1f} % against {100 * d['potRate']:.1f} %): not choosing where the
+cue ball stops, it leaves itself harder pots, or none. At 0.5 mm of vision noise (2.5x
+the default) the mean break is {half['meanBreak']:.1f} and {100 * half['potRate']:.1f} % of pots drop:
+vision error dominates a pot's error (an object ball 0.5 mm off where vision put it
+leaves about 0.5 deg off line; `../shared/planning-notes.md`), and over a metre that is
+most of the pocket's tolerance. The standard error of a 100-frame mean break is about
+{se:.1f} points (the breaks' spread / 10), so differences smaller than twice that are noise.
 
 ## Answer quality against budget
 
 ![quality and time against budget](planner-budget.svg)
 
 {sweep}
-{selfplay_table(runs, [n for _, n in budgets if n != 'default'])}
+{selfplay_table(runs, [n for _, n in budgets if n != 'default'], data)}
 ## Elapsed time against budget
 
 Google Benchmark `bench/planner_bench` (`BM_PlanBudget/<budget ms>/<reds>`): 64 seeded
@@ -349,20 +390,37 @@ samples) of the same objective (`tools/planner_report search`):
 
 ## What limits it
 
-- **Time is simulation.** Almost all of a plan is simulation; the cushion impact solver
-  alone was about 45 % of a plan's CPU time in a profile (perf), the event detection's
-  root finding about 13 %. Quality grows with work (the budget sweep), so the speed-up of
-  the impact integrators under way in physics/ goes straight into answer quality at the
-  same budget.
-- **Missed pots** come from the noise: every ranked shot's Monte Carlo success rate is
-  what it is, and the best of a few noisy estimates is a little optimistic (the winner's
-  curse of ranking by 48 samples).
-- **Breaks that end with no pot**: some random frames start with no pottable red for a
-  level cue (every path blocked, or the cue ball near a cushion with every shot leading
-  away from it, where a level cue has no room), and position play sometimes leaves none
-  after the noise moves the cue ball. The cue's room is the robot's: with 5 cm of clear
-  bed behind the cue ball instead of 10 cm, the mean break is {room['meanBreak']:.1f}
-  ({100 * room['potRate']:.1f} % of pots dropping).
+- **Work, up to about the default budget.** The mean break rises from
+  {by_budget[0][1]['meanBreak']:.1f} at {by_budget[0][0]} ms to {d['meanBreak']:.1f} at 80 ms; beyond, the
+  differences are within the noise (best {best_budget[1]['meanBreak']:.1f} at {best_budget[0]} ms,
+  {runs['budget 300 ms']['result']['meanBreak']:.1f} at 300 ms): each candidate's search
+  converges (NLopt's tolerances) before the budget is spent, and what is left is the
+  noise's share. Nearly all of a plan's time is simulation; in a profile (perf) the
+  cushion impact solver took about 28 % of a plan's CPU time and the event detection's
+  root finding about 14 %, so the impact integrators' speed-up under way in physics/
+  will bring the small budgets up to the default's quality.
+- **Missed pots** come from the noise ({100 * (1 - d['potRate']):.1f} % of attempted pots, most
+  of the breaks that end: {d_ends.get('miss', '?')} of {d['frames']} by a miss and {d_ends.get('foul', '?')}
+  by a foul). Every ranked shot's Monte Carlo success rate is what it is, and the best of
+  a few noisy estimates (48 samples) is a little optimistic. Vision noise matters most:
+  at 0.5 mm the pot rate falls to {100 * half['potRate']:.1f} %.
+- **Breaks that end with no pot** ({d_ends.get('no pot', '?')} of {d['frames']}, of which
+  {d_ends.get('no pot at once', '?')} at the frame's first shot): some random frames start with
+  no pottable red for a level cue (every path blocked, or every line leading away from a
+  cushion the cue ball lies near), and position play, one shot deep, sometimes leaves
+  none once the noise has moved the cue ball. With 5 cm of clear bed for the cue instead
+  of 10 cm the mean break is {room['meanBreak']:.1f}.
+- **Search choices** matter less than work: at {search['simulations_per_plan']} simulations per plan the
+  local algorithms score alike, the global stage adds
+  {(default_v['mean_score'] - bobyqa_only['mean_score']) if default_v and bobyqa_only else float('nan'):.2f} points per shot over
+  BOBYQA alone, and the throw prediction
+  {(default_v['mean_score'] - no_throw['mean_score']) if default_v and no_throw else float('nan'):.2f}
+  (without it the search must find the throw correction itself within its 0.6 deg
+  range, so thin cuts are lost).
+- **Small budgets overrun** on a loaded machine: at 10 ms the 99th percentile is about
+  twice the budget (scheduling latency of the two worker threads, the thread starts and
+  the simulation in flight when time runs out are a few milliseconds); from 30 ms on it
+  is within a third, from 100 ms within a tenth.
 - **Estimate**: first order in the geometry; on cuts beyond 70 deg its error grows (table
   above), so thin cuts are ranked by the Monte Carlo only.
 """

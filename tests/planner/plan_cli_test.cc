@@ -160,7 +160,8 @@ INSTANTIATE_TEST_SUITE_P(
     [](const testing::TestParamInfo<BadInput>& param) { return "case_" + std::to_string(param.index); });
 
 TEST(CliSelfPlayTest, JsonHasExactlyTheContractedNames) {
-  const RunResult r = RunCli("selfplay --frames 1 --seed 4 --json --max-simulations 100 --budget-ms 30000 --samples 8");
+  const std::string records = testing::TempDir() + "frames_" + std::to_string(getpid()) + ".jsonl";
+  const RunResult r = RunCli("selfplay --frames 1 --seed 4 --json --max-simulations 100 --budget-ms 30000 --samples 8 --records " + records);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   Struct json;
   ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &json).ok()) << r.out;
@@ -169,6 +170,17 @@ TEST(CliSelfPlayTest, JsonHasExactlyTheContractedNames) {
   EXPECT_EQ(json.fields().at("frames").number_value(), 1);
   EXPECT_GE(json.fields().at("potRate").number_value(), 0);
   EXPECT_LE(json.fields().at("potRate").number_value(), 1);
+  // One record per frame, agreeing with the summary.
+  std::ifstream f(records);
+  std::string line;
+  ASSERT_TRUE(std::getline(f, line));
+  Struct rec;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(line, &rec).ok()) << line;
+  EXPECT_EQ(Keys(rec), (std::set<std::string>{"frame", "reds", "points", "attempts", "pots", "end"}));
+  EXPECT_EQ(rec.fields().at("points").number_value(), json.fields().at("meanBreak").number_value());
+  EXPECT_EQ(rec.fields().at("attempts").number_value(), json.fields().at("shots").number_value());
+  EXPECT_FALSE(std::getline(f, line));
+  std::remove(records.c_str());
 }
 
 }  // namespace
