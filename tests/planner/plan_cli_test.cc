@@ -8,8 +8,10 @@
 #include <unistd.h>
 
 #include <array>
+#include <cctype>
 #include <cstdio>
 #include <fstream>
+#include <ostream>
 #include <set>
 #include <sstream>
 #include <string>
@@ -129,6 +131,9 @@ struct BadInput {
   const char* must_mention;
 };
 
+// Readable in test listings (ctest shows the parameter).
+void PrintTo(const BadInput& b, std::ostream* os) { *os << "snooker " << b.args; }
+
 class CliPlanBadInputTest : public testing::TestWithParam<BadInput> {};
 
 TEST_P(CliPlanBadInputTest, ExitsNonZeroNamingTheValue) {
@@ -157,7 +162,21 @@ INSTANTIATE_TEST_SUITE_P(
                     BadInput{"selfplay --seed 1", "--frames is required"},
                     BadInput{"selfplay --frames 0 --seed 1", "--frames 0 is out of range"},
                     BadInput{"selfplay --frames 1 --seed 1 --noise-position-mm -1", "--noise-position-mm -1"}),
-    [](const testing::TestParamInfo<BadInput>& param) { return "case_" + std::to_string(param.index); });
+    [](const testing::TestParamInfo<BadInput>& param) {
+      // The command line itself, as a name: "plan_on_PURPLE", "selfplay_frames_0_seed_1".
+      std::string name;
+      for (const char c : std::string(param.param.args)) {
+        if (std::isalnum(static_cast<unsigned char>(c))) {
+          name += c;
+        } else if (!name.empty() && name.back() != '_') {
+          name += '_';
+        }
+      }
+      while (!name.empty() && name.back() == '_') name.pop_back();
+      const std::string table = "table_TABLE_";
+      if (const size_t at = name.find(table); at != std::string::npos) name.erase(at, table.size());
+      return name;
+    });
 
 TEST(CliSelfPlayTest, JsonHasExactlyTheContractedNames) {
   const std::string records = testing::TempDir() + "frames_" + std::to_string(getpid()) + ".jsonl";

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <ostream>
 #include <string>
 
 #include "planner/geometry.h"
@@ -78,6 +79,11 @@ struct ProbeCase {
   double approach_deg;
   double speed;
 };
+
+// Readable in test listings (ctest shows the parameter).
+void PrintTo(const ProbeCase& c, std::ostream* os) {
+  *os << physics::ToString(c.pocket) << " " << c.approach_deg << " deg " << c.speed << " m/s";
+}
 
 class WindowProbeTest : public testing::TestWithParam<ProbeCase> {};
 
