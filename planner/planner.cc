@@ -389,7 +389,8 @@ PlanAnswer Planner::Plan(const PlanRequest& request) const {
   });
 
   // 4. Monte Carlo of the best few, blocks across the workers.
-  const int ranked = std::min(static_cast<int>(shots.size()), request.max_shots + 2);
+  const int ranked = std::min(static_cast<int>(shots.size()),
+                              std::max(request.max_shots + 2, config_.min_ranked));
   int blocks = (request.monte_carlo_samples + kBlock - 1) / kBlock;
   if (ranked > 0) blocks = std::min(blocks, static_cast<int>(mc_sims / (ranked * kBlock)));
   blocks = std::max(blocks, request.monte_carlo_samples > 0 ? 1 : 0);

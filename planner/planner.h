@@ -190,6 +190,9 @@ struct PlannerConfig {
   /// Share of each candidate's evaluations given to the global stage (the rest
   /// to the local one).
   double global_share = 0.5;
+  /// Shots ranked by Monte Carlo: the max_shots asked for plus two, and at least
+  /// this many (the nominal objective's best is not always the most robust).
+  int min_ranked = 3;
   /// Candidates searched at most, and the smallest evaluation count worth a search.
   int max_candidates = 12;
   int min_evaluations = 8;

@@ -12,8 +12,9 @@
 //           + sigma_O^2 (k^2 + 1 + 2k cos c) + L^2 sigma_throw^2,   k = L / (2R cos c),
 // and the pot drops when the line falls inside the pocket's window (PocketModel):
 //   P = Phi((hi - mu) / sigma) - Phi((lo - mu) / sigma),
-// mu being the line's planned offset. Vision dominates: 0.2 mm on each ball moves a
-// 1 m pot's line by about 5 mm at the mouth, 0.02 deg of heading by 1 to 3 mm.
+// mu being the line's planned offset. For a straight pot 1 m from the pocket, 0.2 mm
+// of vision error on each ball moves the line by about 5.5 mm at the mouth; 0.02 deg
+// of heading by about 1.6 mm with the cue ball 0.3 m back and 6 mm from 1 m back.
 // tests/planner/pot_estimate_test.cc checks it against Monte Carlo with the simulator.
 #pragma once
 

@@ -37,9 +37,11 @@
 //    screw), which a local method from one start would miss.
 //  * local: LN_BOBYQA (Powell) over all four from the best global point: a
 //    quadratic model fits the smooth part of the objective (the Gaussian pot
-//    probability and the position's slow change) in few evaluations, and it is
-//    the only way to centre the cut, whose good range is a narrow ridge. Measured
-//    against LN_SBPLX and LN_COBYLA at equal evaluations in docs/planner.md.
+//    probability and the position's slow change) in few evaluations, which is
+//    what centring the cut on its narrow ridge needs. Measured against LN_SBPLX
+//    and LN_COBYLA at equal work (docs/planner.md, "Search choices"): the three
+//    score alike there, while the global stage and the throw prediction each add
+//    measurably; BOBYQA stays for its bound handling and its cheap steps.
 // Both have bounds, tolerances, an evaluation cap and a time limit.
 #pragma once
 

@@ -54,6 +54,24 @@ def ends(data, run):
     return out
 
 
+def first_frames(data, run, n):
+    """The run's first n frames (from its records) in the form of a self-play result,
+    so runs of different lengths compare on the same tables. Planning times are the
+    whole run's."""
+    path = os.path.join(data, run.get("records", ""))
+    if not run.get("records") or not os.path.exists(path):
+        return run["result"]
+    with open(path) as f:
+        recs = [json.loads(line) for line in f][:n]
+    shots = sum(r["attempts"] for r in recs)
+    out = dict(run["result"])
+    out.update({"frames": len(recs), "shots": shots,
+                "meanBreak": sum(r["points"] for r in recs) / len(recs),
+                "maxBreak": max(r["points"] for r in recs),
+                "potRate": sum(r["pots"] for r in recs) / shots if shots else 0})
+    return out
+
+
 def selfplay_table(runs, names, data):
     out = ("| run | command | frames | shots | mean break | largest | pots dropped | "
            "plan p50 (ms) | plan p99 (ms) | breaks ended: cleared / miss / foul / no pot (at once) | "
@@ -71,18 +89,31 @@ def selfplay_table(runs, names, data):
     return out
 
 
-def budget_plot(runs, budgets, path):
+def break_se(data, run, n):
+    """Standard error of the mean break over the run's first n frames."""
+    path = os.path.join(data, run.get("records", ""))
+    if not run.get("records") or not os.path.exists(path):
+        return 0.0
+    with open(path) as f:
+        pts = [json.loads(line)["points"] for line in f][:n]
+    m = sum(pts) / len(pts)
+    return (sum((p - m) ** 2 for p in pts) / (len(pts) - 1)) ** 0.5 / len(pts) ** 0.5
+
+
+def budget_plot(runs, budgets, path, data, frames):
     xs = [b for b, _ in budgets]
-    res = [runs[n]["result"] for _, n in budgets]
+    res = [first_frames(data, runs[n], frames) for _, n in budgets]
+    se = [break_se(data, runs[n], frames) for _, n in budgets]
     fig, ax = plt.subplots(1, 2, figsize=(10, 4))
-    ax[0].plot(xs, [r["meanBreak"] for r in res], "o-", color="#1a7f37")
+    ax[0].errorbar(xs, [r["meanBreak"] for r in res], yerr=se, fmt="o-", color="#1a7f37",
+                   capsize=3, label="mean break +- 1 standard error")
     ax[0].set_xscale("log")
     ax[0].set_xlabel("planning budget per shot (ms)")
     ax[0].set_ylabel("mean break (points)", color="#1a7f37")
     ax2 = ax[0].twinx()
     ax2.plot(xs, [100 * r["potRate"] for r in res], "s--", color="#c0161c")
     ax2.set_ylabel("attempted pots that dropped (%)", color="#c0161c")
-    ax[0].set_title("Answer quality against budget")
+    ax[0].set_title(f"Answer quality against budget ({frames} frames each)")
     ax[1].plot(xs, [r["planMsP50"] for r in res], "o-", label="p50")
     ax[1].plot(xs, [r["planMsP99"] for r in res], "s--", label="p99")
     ax[1].plot(xs, xs, ":", color="grey", label="budget")
@@ -152,14 +183,16 @@ def main():
 
     budgets = [(10, "budget 10 ms"), (30, "budget 30 ms"), (80, "default"),
                (100, "budget 100 ms"), (300, "budget 300 ms")]
-    budget_plot(runs, budgets, os.path.join(docs, "planner-budget.svg"))
+    budget_plot(runs, budgets, os.path.join(docs, "planner-budget.svg"), data, sp["frames"])
     estimate_plot([(0.2, est2), (0.5, est5)], os.path.join(docs, "planner-estimate.svg"))
 
     d = runs["default"]["result"]
+    # The comparisons use the default run's first frames: the same tables as theirs.
+    d_same = first_frames(data, runs["default"], sp["frames"])
     half = runs["position 0.5 mm"]["result"]
     pot = runs["pot only"]["result"]
     room = runs["cue clearance 5 cm"]["result"]
-    ratio = d["meanBreak"] / pot["meanBreak"] if pot["meanBreak"] > 0 else float("inf")
+    ratio = d_same["meanBreak"] / pot["meanBreak"] if pot["meanBreak"] > 0 else float("inf")
     se = float("nan")
     rec_path = os.path.join(data, runs["default"].get("records", ""))
     if runs["default"].get("records") and os.path.exists(rec_path):
@@ -168,7 +201,12 @@ def main():
         mean = sum(pts) / len(pts)
         se = (sum((p - mean) ** 2 for p in pts) / (len(pts) - 1)) ** 0.5 / len(pts) ** 0.5
     d_ends = ends(data, runs["default"]) or {}
-    by_budget = [(b, runs[n]["result"]) for b, n in budgets]
+    blocks = []
+    if runs["default"].get("records") and os.path.exists(rec_path):
+        with open(rec_path) as f:
+            pts = [json.loads(line)["points"] for line in f]
+        blocks = [sum(pts[k:k + 100]) / len(pts[k:k + 100]) for k in range(0, len(pts), 100)]
+    by_budget = [(b, first_frames(data, runs[n], sp["frames"])) for b, n in budgets]
     best_budget = max(by_budget, key=lambda t: t[1]["meanBreak"])
     variants = {v["variant"]: v for v in search["variants"]}
     default_v = variants.get("DIRECT-L + BOBYQA (default)")
@@ -185,8 +223,8 @@ def main():
         f"| planning p99 < 500 ms | {d['planMsP99']:.1f} ms | {status(d['planMsP99'] < 500)} |\n"
         f"| >= 95 % of attempted pots drop | {100 * d['potRate']:.1f} % | {status(d['potRate'] >= 0.95)} |\n"
         f"| mean break >= 50 | {d['meanBreak']:.1f} (standard error {se:.1f}) | {status(d['meanBreak'] >= 50)} |\n"
-        f"| position play at least doubles the pot-only mean break | {ratio:.1f}x ({d['meanBreak']:.1f} against "
-        f"{pot['meanBreak']:.1f}) | {status(ratio >= 2)} |\n")
+        f"| position play at least doubles the pot-only mean break | {ratio:.1f}x ({d_same['meanBreak']:.1f} against "
+        f"{pot['meanBreak']:.1f} on the same first {sp['frames']} frames) | {status(ratio >= 2)} |\n")
 
     est_table = ("| vision noise | pots | mean abs difference | mean difference (bias) | largest | within 0.10 |\n"
                  "|---|---:|---:|---:|---:|---:|\n")
@@ -224,12 +262,15 @@ def main():
                         f"{b['elapsed_p99']:.2f} | {b['elapsed_max']:.2f} | {b['simulations']:.0f} | "
                         f"{b['shots']:.2f} |\n")
     work = next((b for b in bench["benchmarks"] if b["name"].startswith("BM_PlanWork")), None)
-    max_ratio = max(b["elapsed_max"] for _, _, b in bench_rows(bench))
+    rows = bench_rows(bench)
+    p99_10 = max((b["elapsed_p99"] for budget, _, b in rows if budget == 10), default=float("nan"))
+    p99_rest = max((b["elapsed_p99"] for budget, _, b in rows if budget > 10), default=float("nan"))
     ctx = bench["context"]
 
-    sweep = "| budget (ms) | mean break | largest | pots dropped | plan p50 (ms) | plan p99 (ms) |\n|---:|---:|---:|---:|---:|---:|\n"
+    sweep = ("| budget (ms) | mean break | largest | pots dropped | plan p50 (ms) | plan p99 (ms) |\n"
+             "|---:|---:|---:|---:|---:|---:|\n")
     for b, name in budgets:
-        x = runs[name]["result"]
+        x = first_frames(data, runs[name], sp["frames"])
         sweep += (f"| {b} | {x['meanBreak']:.1f} | {x['maxBreak']} | {100 * x['potRate']:.1f} % | "
                   f"{x['planMsP50']:.1f} | {x['planMsP99']:.1f} |\n")
 
@@ -303,15 +344,20 @@ Monte Carlo blocks, one simulator each.
 {selfplay_table(runs, ['default', 'position 0.5 mm', 'pot only', 'cue clearance 5 cm'], data)}
 What position play is worth: the same planner with the position term switched off
 (`--pot-only`: the objective is P x value, the most likely points now) breaks
-{pot['meanBreak']:.1f} on average against {d['meanBreak']:.1f} ({ratio:.1f}x), and its pots drop
-less often ({100 * pot['potRate']:.1f} % against {100 * d['potRate']:.1f} %): not choosing where the
+{pot['meanBreak']:.1f} on average against {d_same['meanBreak']:.1f} on the same {sp['frames']} tables
+({ratio:.1f}x), and its pots drop less often ({100 * pot['potRate']:.1f} % against
+{100 * d_same['potRate']:.1f} %): not choosing where the
 cue ball stops, it leaves itself harder pots, or none. At 0.5 mm of vision noise (2.5x
 the default) the mean break is {half['meanBreak']:.1f} and {100 * half['potRate']:.1f} % of pots drop:
 vision error dominates a pot's error (an object ball 0.5 mm off where vision put it
 leaves about 0.5 deg off line; `../shared/planning-notes.md`), and over a metre that is
 most of the pocket's tolerance. The standard error of the default run's mean break is
 {se:.1f} points ({d['frames']} frames); of a 100-frame run's about {se * (d['frames'] / 100) ** 0.5:.1f}: differences
-smaller than twice that are noise.
+smaller than twice that are noise. The same frames played twice do not give the same
+breaks: the work a plan does depends on the time it gets (the budget binds on a
+shared machine), so the shots, and everything after them, differ. The default run's
+first {sp['frames']} frames broke {d_same['meanBreak']:.1f} on average here; its three blocks of 100
+frames {', '.join('%.1f' % x for x in blocks)}.
 
 ## Answer quality against budget
 
@@ -386,8 +432,8 @@ samples) of the same objective (`tools/planner_report search`):
 |---|---|---|
 | heading noise | 0.02 deg | snooker's long pots need a few hundredths of a degree: over 1.5 m + 1.5 m a straight pot drops 63 % at 0.025 deg and 14 % at the pool tournaments' 0.125 deg (planning notes, section 2); a good robot arm with a calibrated cue reaches 0.02 deg |
 | speed noise | 1 % | a servo-driven cue's repeatability; speed matters for position, little for the pot |
-| spin noise | 2 rad/s (topspin and sidespin) | about 3 mm of tip offset error at 1 m/s; it turns the object ball through throw, 0.1-0.25 deg at slow speeds (ThrowModel) |
-| vision noise | 0.2 mm per axis per ball | what calibrated overhead cameras can reach; published systems reach about 4 mm (pix2pockets). 0.2 mm on each ball already moves a 1 m pot's line by about 5 mm at the mouth, more than the heading noise |
+| spin noise | 2 rad/s (topspin and sidespin) | about half a millimetre of tip offset at 1 m/s (spin = 5 v b / 2R^2 for an offset b); it turns the object ball through throw, for a full-ball contact about 0.5 deg at 0.3 m/s and 0.13 deg at 1.2 m/s (ThrowModel) |
+| vision noise | 0.2 mm per axis per ball | what calibrated overhead cameras can reach; published systems reach about 4 mm (pix2pockets). For a straight pot 1 m from the pocket, 0.2 mm on each ball moves the object ball's line by about 5.5 mm at the mouth, as much as the heading noise does with the cue ball 1 m back (6 mm); at 0.5 mm vision dominates |
 | speed range | 0.3 to 6 m/s | from a soft roll to a firm positional shot (a break-off is about 7-10 m/s) |
 | spin | topspin within the rolling spin, sidespin within half of it | a tip offset of about half the radius gives 1.25x the rolling spin; the robot keeps a margin against miscues |
 | cue room | 10 cm of clear bed behind the cue ball, 7 mm stick radius | a level cue at the ball's centre height cannot pass over the cushion (36 mm nose) or a ball |
@@ -396,39 +442,43 @@ samples) of the same objective (`tools/planner_report search`):
 
 ## What limits it
 
-- **Work, up to about the default budget.** The mean break rises from
-  {by_budget[0][1]['meanBreak']:.1f} at {by_budget[0][0]} ms to {d['meanBreak']:.1f} at 80 ms; beyond, the
-  differences are within the noise (best {best_budget[1]['meanBreak']:.1f} at {best_budget[0]} ms,
-  {runs['budget 300 ms']['result']['meanBreak']:.1f} at 300 ms): each candidate's search
-  converges (NLopt's tolerances) before the budget is spent, and what is left is the
-  noise's share. Nearly all of a plan's time is simulation; in a profile (perf) the
-  cushion impact solver took about 28 % of a plan's CPU time and the event detection's
-  root finding about 14 %, so the impact integrators' speed-up under way in physics/
-  should bring the small budgets close to the default's quality.
-- **Missed pots** come from the noise ({100 * (1 - d['potRate']):.1f} % of attempted pots, most
-  of the breaks that end: {d_ends.get('miss', '?')} of {d['frames']} by a miss and {d_ends.get('foul', '?')}
-  by a foul). Every ranked shot's Monte Carlo success rate is what it is, and the best of
-  a few noisy estimates (48 samples) is a little optimistic. Vision noise matters most:
-  at 0.5 mm the pot rate falls to {100 * half['potRate']:.1f} %.
+- **Time beyond a few tens of milliseconds does not buy a longer break.** The mean
+  break is lowest at the smallest budget ({by_budget[0][1]['meanBreak']:.1f} at {by_budget[0][0]} ms); from
+  30 ms on the runs lie between {min(x['meanBreak'] for b, x in by_budget[1:]):.1f} and {max(x['meanBreak'] for b, x in by_budget[1:]):.1f}, within about two
+  standard errors of each other. Each candidate's search converges (NLopt's tolerances)
+  before a large budget is spent (the simulations per plan in the benchmark below grow
+  ever slower with the budget), and what is left is the noise's share. The search
+  optimises the nominal shot's position, and more of it can find positions the noise
+  does not keep (a cue ball that ends just right after two cushions); the Monte Carlo
+  ranking sees that, but only among the few shots it ranks. Nearly all of a plan's time
+  is simulation (in a profile, perf, the cushion impact solver took about 28 % of a
+  plan's CPU time, the event detection's root finding about 14 %), so the impact
+  integrators' speed-up under way in physics/ should bring the smallest budgets up to
+  the others.
+- **Missed pots** end most breaks ({d_ends.get('miss', '?')} of {d['frames']}; {d_ends.get('foul', '?')} end by a foul):
+  {100 * (1 - d['potRate']):.1f} % of attempted pots miss. The planner takes the shot with the best
+  expected points, which trades a little pot probability for position; the Monte Carlo
+  success rates it ranks by are estimates (48 samples), and the best of a few is a
+  little optimistic. Vision noise matters most: at 0.5 mm the pot rate falls to
+  {100 * half['potRate']:.1f} %.
 - **Breaks that end with no pot** ({d_ends.get('no pot', '?')} of {d['frames']}, of which
   {d_ends.get('no pot at once', '?')} at the frame's first shot): some random frames start with
   no pottable red for a level cue (every path blocked, or every line leading away from a
   cushion the cue ball lies near), and position play, one shot deep, sometimes leaves
   none once the noise has moved the cue ball. With 5 cm of clear bed for the cue instead
-  of 10 cm the mean break is {room['meanBreak']:.1f}.
-- **Search choices** matter less than work: at {search['simulations_per_plan']} simulations per plan the
-  local algorithms score alike, the global stage adds
-  {(default_v['mean_score'] - bobyqa_only['mean_score']) if default_v and bobyqa_only else float('nan'):.2f} points per shot over
-  BOBYQA alone, and the throw prediction
-  {(default_v['mean_score'] - no_throw['mean_score']) if default_v and no_throw else float('nan'):.2f}
-  (without it the search must find the throw correction itself within its 0.6 deg
-  range, so thin cuts are lost).
-- **Elapsed time**: the largest elapsed / budget over all rows of the benchmark above
-  is {max_ratio:.2f} (load average {', '.join('%.2f' % x for x in ctx.get('load_avg', []))} at its start). A plan
-  cannot be faster than the scheduler: on this machine under other developers' builds
-  (load average 5 to 8) an earlier run of the same benchmark saw 10 ms plans reach about
-  twice their budget at the 99th percentile (the worker threads waiting for a core, the
-  simulation in flight when time runs out); from 100 ms on, within a tenth.
+  of 10 cm the mean break is {room['meanBreak']:.1f} (against {d_same['meanBreak']:.1f} on the same
+  {sp['frames']} tables) and {(ends(data, runs['cue clearance 5 cm']) or {}).get('no pot at once', '?')} frames start with no pot.
+- **Search choices** matter little: at {search['simulations_per_plan']} simulations per plan the local
+  algorithms score alike; the global stage adds
+  {(default_v['mean_score'] - bobyqa_only['mean_score']) if default_v and bobyqa_only else float('nan'):.2f} points of objective per shot over BOBYQA alone,
+  and the throw prediction {(default_v['mean_score'] - no_throw['mean_score']) if default_v and no_throw else float('nan'):.2f} (without it the search must find the throw
+  correction itself within its 0.6 deg range, so thin cuts are lost).
+- **Elapsed time** is the scheduler's as much as the planner's: over the benchmark
+  above (load average {', '.join('%.2f' % x for x in ctx.get('load_avg', []))} at its start) the 99th percentile of
+  elapsed / budget is {p99_10:.2f} at 10 ms and at most {p99_rest:.2f} from 30 ms on. At 10 ms the
+  two worker threads waiting for a core and the simulation in flight when time runs out
+  are a large share of the budget (an earlier run under heavier load, 5 to 8, saw
+  twice the budget there).
 - **Estimate**: first order in the geometry; on cuts beyond 70 deg its error grows (table
   above), so thin cuts are ranked by the Monte Carlo only.
 """
