@@ -333,12 +333,13 @@ break ends at a miss, a foul, a table with no pot for the planner, or a cleared 
 
 Anytime: the search keeps its best verified shot apart from NLopt's iterate, reports it
 through the progress callback each time it improves, and every phase stops at its share
-of the budget (search 65 %, Monte Carlo to 92 %), at the caller's deadline or when the
-cancel flag is set. Work is capped in simulations derived from the budget (12 per ms per
-thread), so on an idle machine the cap binds first and the same seed gives the same
-answer whatever the thread timing; on a loaded machine the deadline binds and the
-answer is the best found in time. Two worker threads share the candidates and the
-Monte Carlo blocks, one simulator each.
+of the budget (search to 65 %, Monte Carlo to 92 %, everything by 95 %), at the
+caller's deadline or when the cancel flag is set. Work is also capped in simulations
+derived from the budget (12 per ms per thread), and NLopt's tolerances end most
+searches sooner still: unless time runs out first, the same seed gives the same
+answer whatever the thread timing (a test checks it); when it does, the answer is the
+best found in time. Two worker threads share the candidates and the Monte Carlo
+blocks, one simulator each.
 
 ## Self-play
 
