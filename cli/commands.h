@@ -17,5 +17,7 @@ int RunCollide(const std::vector<std::string>& args, std::ostream& out, std::ost
 int RunSimulate(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int RunServe(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int RunDemo(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int RunPlan(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int RunSelfPlay(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 }  // namespace snooker::cli

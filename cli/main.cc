@@ -14,6 +14,8 @@ constexpr const char* kUsage = R"(usage: snooker <command> [options]
 commands:
   collide    resolve one ball-ball collision (Mathavan et al. 2014)
   simulate   simulate a shot on a table until every ball is at rest
+  plan       plan the shots that pot a ball on and leave the cue ball well
+  selfplay   the planner plays breaks alone: mean break, pot rate, planning time
   serve      run the gRPC service (snooker.v1.ShotPlanner)
   demo       start the service and use it on built-in examples
   help       this text
@@ -31,6 +33,8 @@ int Run(int argc, char** argv) {
   const std::vector<std::string> args(argv + 2, argv + argc);
   if (command == "collide") return RunCollide(args, std::cout, std::cerr);
   if (command == "simulate") return RunSimulate(args, std::cout, std::cerr);
+  if (command == "plan") return RunPlan(args, std::cout, std::cerr);
+  if (command == "selfplay") return RunSelfPlay(args, std::cout, std::cerr);
   if (command == "serve") return RunServe(args, std::cout, std::cerr);
   if (command == "demo") return RunDemo(args, std::cout, std::cerr);
   if (command == "help" || command == "--help" || command == "-h") {

@@ -11,6 +11,7 @@
 #include <cstddef>
 
 #include "physics/sim/simulate.h"
+#include "server/plan_api.h"  // Plan (planner)
 #include "physics/table/table.h"
 #include "server/api_status.h"
 #include "server/limits.h"

@@ -1,0 +1,155 @@
+// snooker selfplay: the planner plays breaks alone (planner/selfplay.h) and reports
+// mean and largest break, the share of attempted pots that dropped, and planning
+// time per shot. The measure of docs/planner.md.
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "planner/selfplay.h"
+
+namespace snooker::cli {
+namespace {
+
+constexpr const char* kHelp = R"(usage: snooker selfplay --frames N --seed S [--budget-ms N] [--json]
+                        [--noise-heading-deg X] [--noise-speed X] [--noise-spin X]
+                        [--noise-position-mm X] [--cue-clearance-m X] [--pot-only] [--max-simulations N]
+                        [--samples N] [--threads N] [--progress] [--records out.jsonl]
+
+The planner plays snooker alone. Each frame starts from a seeded random mid-frame
+table (6 to 10 reds scattered where they touch nothing, the colours on their spots,
+the cue ball anywhere free) with a red on. The planner sees the table as vision
+would (every ball moved by the position noise); its best shot is played on the true
+table with the execution noise added, simulated at full fidelity and judged by the
+rules. The break goes on until a miss, a foul or a cleared table; potted colours are
+re-spotted while reds remain.
+
+  --frames N       frames to play (1 to 100000)
+  --seed S         seed of the frames, the noise and the planner
+  --budget-ms N    planning budget per shot, ms (default 80)
+  --json           print one JSON object: {"meanBreak", "maxBreak", "potRate",
+                   "planMsP50", "planMsP99", "frames", "shots"} (points, points, share
+                   of attempted pots that dropped, ms, ms, count, count)
+Noise (standard deviations; the same options as snooker plan):
+  --noise-heading-deg X   cue heading, degrees (default 0.02)
+  --noise-speed X         cue speed, fraction of the speed (default 0.01)
+  --noise-spin X          topspin and sidespin, rad/s (default 2)
+  --noise-position-mm X   vision, each ball centre per axis, mm (default 0.2)
+Robot:
+  --cue-clearance-m X     clear bed the level cue needs behind the cue ball, m (0.10)
+Planner:
+  --pot-only             ignore the position left
+  --max-simulations N    per-plan cap on simulations (default: from the budget)
+  --samples N            Monte Carlo samples per ranked shot (default 48)
+  --threads N            planner threads (default 2)
+  --progress             print each frame's break on stderr as it ends
+  --records out.jsonl    write one JSON line per frame: {"frame", "reds", "points",
+                         "attempts", "pots", "end"} (end: "miss", "foul: ...",
+                         "no pot", "cleared" or "shot cap")
+  --help                 this text
+)";
+
+}  // namespace
+
+int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
+  Args args(argv,
+            {"frames", "seed", "budget-ms", "noise-heading-deg", "noise-speed", "noise-spin",
+             "noise-position-mm", "cue-clearance-m", "max-simulations", "samples", "threads",
+             "records"},
+            {"json", "help", "pot-only", "progress"});
+  if (args.error().empty() && args.Switch("help")) {
+    out << kHelp;
+    return kExitOk;
+  }
+  planner::SelfPlayOptions o;
+  const auto frames = args.Integer("frames", std::nullopt, 1, 100'000);
+  const auto seed = args.Integer("seed", std::nullopt, 0, std::numeric_limits<long>::max());
+  const auto budget = args.Number("budget-ms", 80.0);
+  const auto heading = args.Number("noise-heading-deg", physics::RadToDeg(o.noise.heading));
+  const auto speed = args.Number("noise-speed", o.noise.speed_fraction);
+  const auto spin = args.Number("noise-spin", o.noise.topspin);
+  const auto position = args.Number("noise-position-mm", o.noise.position * 1e3);
+  const auto clearance = args.Number("cue-clearance-m", o.limits.cue.length);
+  const auto sims = args.Integer("max-simulations", 0, 0, 100'000'000);
+  const auto samples = args.Integer("samples", o.monte_carlo_samples, 0, 100'000);
+  const auto threads = args.Integer("threads", o.threads, 1, 64);
+  if (!args.error().empty()) {
+    err << "snooker selfplay: " << args.error() << "\n(see snooker selfplay --help)\n";
+    return kExitUsage;
+  }
+  // Ranges, named by flag (the planner checks them again by field).
+  auto bad = [&](const char* flag, double x, const char* rule) {
+    err << "snooker selfplay: --" << flag << " " << x << " " << rule << "\n";
+    return kExitUsage;
+  };
+  if (!(*budget >= 1 && *budget <= 60'000)) return bad("budget-ms", *budget, "is out of range [1, 60000]");
+  if (!(*heading >= 0 && *heading <= 10)) return bad("noise-heading-deg", *heading, "is out of range [0, 10]");
+  if (!(*speed >= 0 && *speed <= 0.5)) return bad("noise-speed", *speed, "is out of range [0, 0.5]");
+  if (!(*spin >= 0 && *spin <= 100)) return bad("noise-spin", *spin, "is out of range [0, 100]");
+  if (!(*position >= 0 && *position <= 50)) return bad("noise-position-mm", *position, "is out of range [0, 50]");
+  if (!(*clearance >= 0 && *clearance <= 2)) return bad("cue-clearance-m", *clearance, "is out of range [0, 2]");
+  o.frames = static_cast<int>(*frames);
+  o.seed = static_cast<std::uint64_t>(*seed);
+  o.time_budget = *budget * 1e-3;
+  o.noise.heading = physics::DegToRad(*heading);
+  o.noise.speed_fraction = *speed;
+  o.noise.topspin = o.noise.sidespin = *spin;
+  o.noise.position = *position * 1e-3;
+  o.limits.cue.length = *clearance;
+  o.position_play = !args.Switch("pot-only");
+  o.max_simulations = *sims;
+  o.monte_carlo_samples = static_cast<int>(*samples);
+  o.threads = static_cast<int>(*threads);
+  struct Progress {
+    std::ostream* err;
+  } progress{&err};
+  const planner::SelfPlayReport r = planner::RunSelfPlay(
+      planner::Planner::Default(), o,
+      args.Switch("progress")
+          ? +[](int f, const planner::FrameRecord& rec, void* ctx) {
+              *static_cast<Progress*>(ctx)->err << "frame " << f + 1 << ": " << rec.reds
+                                                << " reds, break " << rec.points << " (" << rec.pots
+                                                << "/" << rec.attempts << " pots), " << rec.end << "\n";
+            }
+          : nullptr,
+      &progress);
+  if (const auto records = args.Text("records", ""); !records->empty()) {
+    std::ofstream f(*records);
+    for (size_t i = 0; i < r.records.size(); ++i) {
+      const planner::FrameRecord& rec = r.records[i];
+      f << "{\"frame\": " << i << ", \"reds\": " << rec.reds << ", \"points\": " << rec.points
+        << ", \"attempts\": " << rec.attempts << ", \"pots\": " << rec.pots << ", \"end\": \""
+        << rec.end << "\"}\n";
+    }
+    if (!f) {
+      err << "snooker selfplay: cannot write '" << *records << "'\n";
+      return kExitFailure;
+    }
+  }
+  if (args.Switch("json")) {
+    std::ostringstream j;
+    j.precision(10);
+    j << "{\"meanBreak\": " << r.mean_break << ", \"maxBreak\": " << r.max_break
+      << ", \"potRate\": " << r.pot_rate << ", \"planMsP50\": " << r.plan_ms_p50
+      << ", \"planMsP99\": " << r.plan_ms_p99 << ", \"frames\": " << r.frames
+      << ", \"shots\": " << r.shots << "}\n";
+    out << j.str();
+    return kExitOk;
+  }
+  std::map<std::string, int> ends;
+  for (const planner::FrameRecord& f : r.records) ++ends[f.end];
+  out << std::fixed << std::setprecision(1) << r.frames << " frames, " << r.shots << " shots\n"
+      << "mean break " << r.mean_break << ", largest " << r.max_break << "\n"
+      << "pots dropped " << std::setprecision(3) << r.pot_rate << " (" << r.pots << " of " << r.shots
+      << ")\n"
+      << std::setprecision(1) << "planning time per shot: median " << r.plan_ms_p50 << " ms, 99th percentile "
+      << r.plan_ms_p99 << " ms\nbreaks ended by:";
+  for (const auto& [why, n] : ends) out << " " << why << " " << n << ";";
+  out << "\n";
+  return kExitOk;
+}
+
+}  // namespace snooker::cli

@@ -1,0 +1,232 @@
+// The shot planner: given a table state from vision, the ranked shots that pot a
+// ball on and leave the cue ball well (issue 8).
+//
+// One request runs, within its time budget:
+//  1. candidates: every legal object ball with every pocket, pruned by geometry
+//     (candidates.h), ordered by the fast pot estimate;
+//  2. search: an NLopt search per candidate over speed, topspin, sidespin and cut
+//     (search.h), on a cheaper, early-stopping simulation; the candidates' share
+//     of the work follows their estimate;
+//  3. verification: each candidate's best shot is simulated again at full
+//     fidelity, to the end, and dropped if it fails there: no shot leaves the
+//     planner that its own full simulation says fails;
+//  4. robustness: seeded Monte Carlo of the best few under execution and vision
+//     noise (robustness.h); the final ranking is by the Monte Carlo mean of the
+//     objective (success x (points + position)), and potProbability is the
+//     Monte Carlo success rate.
+//
+// Anytime and interruptible: the work is capped in simulations (derived from the
+// budget at a calibrated rate, so the same seed gives the same answer whatever the
+// timing) and in time (the budget, the caller's deadline, its cancel flag): when
+// time runs out the best verified shots so far are returned. The progress callback
+// is called, from a worker thread and never concurrently, whenever a verified shot
+// beats the best so far (its potProbability then is the fast estimate).
+//
+// Threads: candidates and Monte Carlo blocks are shared among `threads` workers
+// (the caller's thread and threads - 1 more), each with its own simulators. Every
+// task's result depends only on the task (its own seed), so the answer does not
+// depend on which thread ran what.
+//
+// Units: SI inside (m, s, rad, m/s, rad/s); degrees and milliseconds only at the
+// API and command-line edges.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "physics/core/shot.h"
+#include "physics/sim/simulate.h"
+#include "planner/candidates.h"
+#include "planner/pocket_model.h"
+#include "planner/position.h"
+#include "planner/rules.h"
+#include "planner/search.h"
+#include "planner/throw_model.h"
+
+namespace snooker::planner {
+
+struct PlannedShot;
+
+/// Called whenever the best verified shot so far improves: the shot and the
+/// caller's context. From a worker thread; calls never overlap.
+using ProgressFn = void (*)(const PlannedShot& best, void* context);
+
+struct PlanRequest {
+  /// The table as vision saw it (exactly one cue ball).
+  TableState table;
+  /// The ball on; nullopt: a red while reds remain, else the lowest colour.
+  std::optional<BallOn> ball_on;
+  RobotLimits limits;
+  /// Execution noise and the vision sigma for every ball.
+  NoiseModel noise;
+  /// Vision sigma per ball (m, per axis), same order as table.balls; empty: all
+  /// balls use noise.position.
+  std::vector<double> position_sigma;
+  /// Time budget. s.
+  double time_budget = 0.08;
+  /// How many shots to return (best first).
+  int max_shots = 3;
+  std::uint64_t seed = 1;
+
+  /// false: pot only (the objective ignores the position left).
+  bool position_play = true;
+  /// Worker threads (the caller's included).
+  int threads = 2;
+  /// Cap on simulations; 0: derived from the budget (Planner::Config).
+  std::int64_t max_simulations = 0;
+  /// Monte Carlo samples per ranked shot (rounded up to blocks of 8; fewer when
+  /// the budget is small); 0 ranks by the search's estimate alone.
+  int monte_carlo_samples = 48;
+
+  /// The caller's own deadline (e.g. an RPC's): the plan ends by the earlier of
+  /// this and start + time_budget.
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+  /// Set from another thread to stop the plan as soon as possible. Optional.
+  const std::atomic<bool>* cancel = nullptr;
+  ProgressFn progress = nullptr;
+  void* progress_context = nullptr;
+};
+
+/// An event of a shot's verification run (physics::SimEvent; indices into the
+/// request's table.balls; `where` indexes the table's segments, jaws or pockets).
+using PlannedEvent = physics::SimEvent;
+
+struct PlannedShot {
+  /// The shot, as `snooker simulate` takes it (heading in rad here).
+  physics::Shot shot;
+  /// Cut angle (geometry.h's sign), rad.
+  double cut = 0;
+  /// Index of the object ball in the request's table, and the pocket.
+  int object_ball = -1;
+  physics::PocketId pocket = physics::PocketId::kBaulkLeft;
+  /// Probability that the object ball drops without a foul under execution and
+  /// vision noise: the Monte Carlo success rate (the fast estimate when no Monte
+  /// Carlo ran).
+  double pot_probability = 0;
+  /// Value of the position left (position.h: weighted next pot probabilities).
+  double position_value = 0;
+  /// The ball the position sets up (index in the request's table; -1 if none).
+  int next_ball = -1;
+  /// Where the cue ball stops (table frame, m).
+  physics::Vec2 cue_ball_end = physics::Vec2::Zero();
+  /// The full-fidelity simulation's events.
+  std::vector<PlannedEvent> events;
+
+  // For reports and ranking (not part of the API's answer).
+  double score = 0;              ///< ranking score: Monte Carlo mean objective
+  double search_score = 0;       ///< the objective at the nominal shot
+  double pot_estimate = 0;       ///< fast estimate from the nominal object-ball line
+  int monte_carlo_samples = 0;
+};
+
+enum class PlanStatus : std::uint8_t {
+  kOk,              ///< at least one shot
+  kNoPot,           ///< no candidate survived pruning, or none was found to pot
+  kInvalidRequest,  ///< reason names the field
+  kDeadline,        ///< time ran out before any shot was verified
+  kCancelled,       ///< the cancel flag stopped it (shots found so far are kept)
+};
+const char* ToString(PlanStatus s);
+
+struct PlanAnswer {
+  PlanStatus status = PlanStatus::kOk;
+  /// Best first; empty with a reason when no pot exists or none was found.
+  std::vector<PlannedShot> shots;
+  std::string reason;
+  /// The ball on the plan used.
+  std::optional<BallOn> ball_on;
+  /// Work done: every simulation (search, verification, Monte Carlo), NLopt
+  /// objective evaluations, and wall time (s).
+  std::int64_t simulations = 0;
+  std::int64_t evaluations = 0;
+  double elapsed = 0;
+  // For reports.
+  int candidate_pairs = 0;
+  int candidates = 0;
+  int searched = 0;
+  int verified = 0;
+  int verification_failures = 0;
+  bool deadline_hit = false;
+};
+
+/// How a Planner is set up (fidelity, budget calibration and shares).
+struct PlannerConfig {
+  const physics::TableModel* table = &physics::DefaultTable();
+  /// Full fidelity: verification and Monte Carlo. The event cap is lower than the
+  /// simulator's 5000: a pot and its positional run take 10 to 60 events (a mean
+  /// of 14 in docs/planner.md's fidelity set), so a run past 2000 is the event
+  /// loop repeating an event (a ball frozen to a cushion, a tight cluster: a known
+  /// physics issue) and is a failed candidate, not worth 5000 events.
+  physics::SimParams full = [] {
+    physics::SimParams p;
+    p.max_events = 2000;
+    return p;
+  }();
+  /// The search's fidelity: looser impact tolerance (docs/planner.md measures what
+  /// it costs and changes) and a tighter event cap.
+  physics::SimParams search = [] {
+    physics::SimParams p;
+    p.ball_ball_solver.tolerance = 1e-6;
+    p.cushion_solver.tolerance = 1e-6;
+    p.max_events = 400;
+    return p;
+  }();
+  SearchSettings search_settings;
+  /// Simulations per millisecond per thread that the budget buys (calibrated on
+  /// the 2-core development machine, RelWithDebInfo, with margin).
+  double simulations_per_ms = 12.0;
+  /// Shares of the budget (time and simulations): the search ends at
+  /// search_share, the Monte Carlo at search_share + monte_carlo_share.
+  double search_share = 0.65;
+  double monte_carlo_share = 0.27;
+  /// Share of the budget at which all work stops (the rest is left for the
+  /// simulation in flight and the answer's assembly).
+  double end_share = 0.95;
+  /// Share of each candidate's evaluations given to the global stage (the rest
+  /// to the local one).
+  double global_share = 0.5;
+  /// Shots ranked by Monte Carlo: the max_shots asked for plus two, and at least
+  /// this many (the nominal objective's best is not always the most robust).
+  int min_ranked = 3;
+  /// Candidates searched at most, and the smallest evaluation count worth a search.
+  int max_candidates = 12;
+  int min_evaluations = 8;
+};
+
+class Planner {
+ public:
+  using Config = PlannerConfig;
+
+  /// Builds the pocket and throw models for the configured table (the defaults'
+  /// are shared and built once per process).
+  explicit Planner(const Config& config = Config());
+  /// A planner with the default configuration, built on first use.
+  static const Planner& Default();
+
+  /// Plans a shot. Thread-safe (const); any number of plans may run at once.
+  PlanAnswer Plan(const PlanRequest& request) const;
+
+  /// Empty when the request is valid; otherwise a message naming each bad field
+  /// and value (the names of PlanRequest's members).
+  std::string Validate(const PlanRequest& request) const;
+
+  const Config& config() const { return config_; }
+  const PocketModel& pockets() const { return *pockets_; }
+  const ThrowModel& throws() const { return *throws_; }
+  /// The geometric context of a request (noise, sigmas, models).
+  PotContext ContextFor(const PlanRequest& request) const;
+
+ private:
+  Config config_;
+  std::unique_ptr<PocketModel> own_pockets_;
+  std::unique_ptr<ThrowModel> own_throws_;
+  const PocketModel* pockets_ = nullptr;
+  const ThrowModel* throws_ = nullptr;
+};
+
+}  // namespace snooker::planner

@@ -1,0 +1,77 @@
+#include "planner/pot_estimate.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace snooker::planner {
+
+using physics::Vec2;
+
+double NormalCdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
+
+double WindowProbability(double mean, double sigma, const PocketWindow& window) {
+  if (window.empty) return 0;
+  if (!(sigma > 0)) return mean >= window.lo && mean <= window.hi ? 1.0 : 0.0;
+  return std::max(0.0, NormalCdf((window.hi - mean) / sigma) - NormalCdf((window.lo - mean) / sigma));
+}
+
+double LateralSigma(const Vec2& cue, const Vec2& object, double heading, double cut,
+                    double distance, double contact_speed, double cue_sigma, double object_sigma,
+                    const NoiseModel& noise, const ThrowModel& throws, double radius) {
+  const Vec2 u(std::cos(heading), std::sin(heading));
+  const double cos_c = std::max(std::cos(cut), 1e-3);
+  const double k = distance / (2 * radius * cos_c);
+  const double heading_gain = distance * (1 - u.dot(object - cue) / (2 * radius * cos_c));
+  const ThrowSensitivity t = throws.At(cut, contact_speed);
+  auto sq = [](double x) { return x * x; };
+  const double throw_var = sq(t.per_sidespin * noise.sidespin) + sq(t.per_topspin * noise.topspin) +
+                           sq(t.per_log_speed * noise.speed_fraction);
+  const double var = sq(noise.heading * heading_gain) + sq(cue_sigma * k) +
+                     sq(object_sigma) * (k * k + 1 + 2 * k * cos_c) + sq(distance) * throw_var;
+  return std::sqrt(var);
+}
+
+double TypicalContactSpeed(double distance, double cut) {
+  constexpr double kArrival = kTypicalArrivalSpeed;
+  constexpr double kRollDecel = 0.1256;  // mu_r g, m/s^2
+  constexpr double kTransfer = 0.9;      // object speed / cue speed along the line, full ball
+  constexpr double kSlide = 5.0 / 7.0;   // the object ball leaves sliding, rolls at 5/7
+  const double v_object = std::sqrt(kArrival * kArrival + 2 * kRollDecel * distance) / kSlide;
+  return std::clamp(v_object / (kTransfer * std::max(std::cos(cut), 0.2)), 0.5, 5.0);
+}
+
+std::optional<PotEstimate> EstimatePot(const Vec2& cue, const Vec2& object, physics::PocketId pocket,
+                                       double cue_sigma, double object_sigma,
+                                       const NoiseModel& noise, const PocketModel& pockets,
+                                       const ThrowModel& throws, double arrival_speed) {
+  const physics::Pocket& p = pockets.table().pocket(pocket);
+  const double radius = pockets.table().ball_radius();
+  const Vec2 q = p.mouth_centre - object;
+  const double l0 = q.norm();
+  if (!(l0 > 0)) return std::nullopt;
+  PotEstimate e;
+  // Aim at the window's centre: the line through the object ball whose offset at
+  // the mouth is the centre (offset = -l0 sin(phi_q - theta)). The window depends on
+  // the direction, so settle it in two passes.
+  double theta = Direction(q);
+  for (int pass = 0; pass < 2; ++pass) {
+    e.window = pockets.Window(pocket, theta, arrival_speed);
+    if (e.window.empty) return std::nullopt;
+    const double s = e.window.centre() / l0;
+    if (std::abs(s) >= 1) return std::nullopt;
+    theta = Direction(q) + std::asin(s);
+  }
+  const auto aim = AimAlong(cue, object, theta, radius);
+  if (!aim) return std::nullopt;
+  e.aim = *aim;
+  e.object_direction = theta;
+  e.approach = pockets.Approach(pocket, theta);
+  e.distance = l0 * std::cos(std::asin(e.window.centre() / l0));
+  const double contact = TypicalContactSpeed(e.distance, e.aim.cut);
+  e.sigma = LateralSigma(cue, object, e.aim.heading, e.aim.cut, e.distance, contact, cue_sigma,
+                         object_sigma, noise, throws, radius);
+  e.probability = WindowProbability(e.window.centre(), e.sigma, e.window);
+  return e;
+}
+
+}  // namespace snooker::planner

@@ -1,0 +1,88 @@
+// The fast pot-probability estimate: how likely a pot is to drop under the robot's
+// execution noise and the vision system's position noise, from the geometry alone.
+//
+// To first order every error moves the object ball's line sideways at the mouth by
+//   dlat = L dtheta + n_perp . dO,     dtheta = dh + dc,
+//   dc = db / (2R cos c),  db = -dh (u . (O - C)) + u_perp . (dO - dC)
+// (heading h along u, cut c, object ball O sent along n over L to the mouth, cue
+// ball C, impact parameter b = 2R sin c; the ghost-ball geometry). With independent
+// Gaussian errors - heading sigma_h, each ball's position sigma per axis, and the
+// throw that spin and speed noise add (ThrowModel) - the lateral error is Gaussian:
+//   sigma^2 = sigma_h^2 L^2 (1 - u.(O-C) / (2R cos c))^2 + sigma_C^2 k^2
+//           + sigma_O^2 (k^2 + 1 + 2k cos c) + L^2 sigma_throw^2,   k = L / (2R cos c),
+// and the pot drops when the line falls inside the pocket's window (PocketModel):
+//   P = Phi((hi - mu) / sigma) - Phi((lo - mu) / sigma),
+// mu being the line's planned offset. For a straight pot 1 m from the pocket, 0.2 mm
+// of vision error on each ball moves the line by about 5.5 mm at the mouth; 0.02 deg
+// of heading by about 1.6 mm with the cue ball 0.3 m back and 6 mm from 1 m back.
+// tests/planner/pot_estimate_test.cc checks it against Monte Carlo with the simulator.
+#pragma once
+
+#include <optional>
+
+#include "physics/core/types.h"
+#include "physics/table/table.h"
+#include "planner/geometry.h"
+#include "planner/pocket_model.h"
+#include "planner/throw_model.h"
+
+namespace snooker::planner {
+
+/// Standard deviations of the robot's execution and of vision (all independent,
+/// Gaussian, zero mean).
+struct NoiseModel {
+  /// Heading, rad.
+  double heading = 0.02 * physics::kPi / 180;
+  /// Speed, as a fraction of the speed.
+  double speed_fraction = 0.01;
+  /// Topspin and sidespin, rad/s.
+  double topspin = 2.0;
+  double sidespin = 2.0;
+  /// Vision: each ball centre, per axis, m (the API's default for every ball).
+  double position = 0.2e-3;
+};
+
+/// Standard normal cumulative distribution.
+double NormalCdf(double x);
+
+/// Probability that a Gaussian offset (mean `mean`, sigma `sigma`, m) falls in the window.
+double WindowProbability(double mean, double sigma, const PocketWindow& window);
+
+/// Lateral standard deviation at the mouth (m) of the object ball's line for a pot
+/// from cue ball `cue` (position sigma `cue_sigma`) onto `object` (`object_sigma`)
+/// along `heading` with cut `cut`, the object ball travelling `distance` (m) to the
+/// mouth; `contact_speed` (m/s) selects the throw sensitivities.
+double LateralSigma(const physics::Vec2& cue, const physics::Vec2& object, double heading,
+                    double cut, double distance, double contact_speed, double cue_sigma,
+                    double object_sigma, const NoiseModel& noise, const ThrowModel& throws,
+                    double radius);
+
+/// A pot judged from the geometry alone, aimed at the centre of the pocket's window.
+struct PotEstimate {
+  GhostAim aim;                  ///< cut, heading, ghost-ball position
+  double object_direction = 0;   ///< rad
+  double distance = 0;           ///< object ball to the mouth, m
+  double approach = 0;           ///< angle from the pocket's axis, rad
+  PocketWindow window;           ///< at the assumed arrival speed
+  double sigma = 0;              ///< lateral, m
+  double probability = 0;
+};
+
+/// The speed (m/s) at which a planned pot is assumed to reach the mouth when its
+/// actual speed is not known yet (the next shot of a position).
+inline constexpr double kTypicalArrivalSpeed = 0.5;
+
+/// Typical speed of the cue ball at contact for a pot over `distance` (m) with cut
+/// `cut` (rad): enough to bring the object ball to the mouth at kTypicalArrivalSpeed. m/s.
+double TypicalContactSpeed(double distance, double cut);
+
+/// The estimate for potting `object` into `pocket` from `cue`, or nullopt when the
+/// pocket cannot be reached at that angle or the cut is 90 deg or more. Only the
+/// geometry of the three points: paths blocked by other balls are the caller's.
+std::optional<PotEstimate> EstimatePot(const physics::Vec2& cue, const physics::Vec2& object,
+                                       physics::PocketId pocket, double cue_sigma,
+                                       double object_sigma, const NoiseModel& noise,
+                                       const PocketModel& pockets, const ThrowModel& throws,
+                                       double arrival_speed = kTypicalArrivalSpeed);
+
+}  // namespace snooker::planner

@@ -1,0 +1,104 @@
+#include "planner/robustness.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace snooker::planner {
+
+using physics::Vec2;
+
+void SampleTruePositions(const TableState& seen, const PotContext& ctx, Rng& rng,
+                         std::vector<Vec2>* out) {
+  const size_t n = seen.balls.size();
+  out->resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const double s = ctx.sigma_of(static_cast<int>(i));
+    (*out)[i] = seen.balls[i].position + s * Vec2(rng.Gaussian(), rng.Gaussian());
+  }
+  // Vision saw touching balls as touching or nearly so; the draw may overlap them.
+  // Push overlapping pairs apart symmetrically, and every ball back onto the bed;
+  // a few sweeps settle a cluster (capped).
+  const physics::TableModel& table = *ctx.table;
+  const double two_r = 2 * table.ball_radius() + 1e-8;
+  const double c = table.cushion_contact_distance() + 1e-9;
+  const double w = table.spec().width, l = table.spec().length;
+  for (int sweep = 0; sweep < 8; ++sweep) {
+    bool moved = false;
+    for (size_t i = 0; i < n; ++i) {
+      for (size_t j = i + 1; j < n; ++j) {
+        Vec2 d = (*out)[j] - (*out)[i];
+        const double dist = d.norm();
+        if (dist >= two_r) continue;
+        d = dist > 0 ? Vec2(d / dist) : Vec2(1, 0);
+        const double push = 0.5 * (two_r - dist);
+        (*out)[i] -= push * d;
+        (*out)[j] += push * d;
+        moved = true;
+      }
+    }
+    for (Vec2& p : *out) {
+      const Vec2 q(std::clamp(p.x(), c, w - c), std::clamp(p.y(), c, l - c));
+      if (q != p) moved = true;
+      p = q;
+    }
+    if (!moved) break;
+  }
+}
+
+physics::Shot SampleExecution(const physics::Shot& shot, const NoiseModel& noise, Rng& rng) {
+  physics::Shot s = shot;
+  s.speed = std::max(0.0, shot.speed * (1 + noise.speed_fraction * rng.Gaussian()));
+  s.heading = shot.heading + noise.heading * rng.Gaussian();
+  s.topspin = shot.topspin + noise.topspin * rng.Gaussian();
+  s.sidespin = shot.sidespin + noise.sidespin * rng.Gaussian();
+  return s;
+}
+
+void MonteCarloTally::Add(const MonteCarloTally& o) {
+  samples += o.samples;
+  successes += o.successes;
+  score_sum += o.score_sum;
+  position_sum += o.position_sum;
+  interrupted = interrupted || o.interrupted;
+}
+
+MonteCarloTally RunSamples(const TableState& table, BallOn on, int object, physics::PocketId pocket,
+                           const physics::Shot& shot, const PotContext& ctx,
+                           const SearchSettings& settings, ShotSimulator& sim,
+                           const StopControl& stop, std::uint64_t seed, int count) {
+  MonteCarloTally tally;
+  Rng rng(seed);
+  const ShotSetup setup{&table, table.cue_index(), object, pocket, on};
+  const physics::Interrupt interrupt = stop.AsInterrupt();
+  const int value = Value(table.balls[static_cast<size_t>(object)].kind);
+  PotContext after_ctx = ctx;
+  after_ctx.position_sigma.clear();
+  std::vector<Vec2> truth, finals;
+  for (int k = 0; k < count; ++k) {
+    if (stop.Due()) {
+      tally.interrupted = true;
+      break;
+    }
+    SampleTruePositions(table, ctx, rng, &truth);
+    const physics::Shot played = SampleExecution(shot, ctx.noise, rng);
+    const ShotOutcome& out = sim.Run(setup, played, truth, ShotSimulator::Mode::kDecide, interrupt);
+    if (out.status == physics::SimStatus::kInterrupted) {
+      tally.interrupted = true;
+      break;
+    }
+    ++tally.samples;
+    if (!out.success) continue;
+    ++tally.successes;
+    finals.clear();
+    for (const physics::BallState& b : sim.final_balls()) finals.push_back(b.r);
+    const TableState after = ApplyShot(table, on, finals, out.potted, false, *ctx.table);
+    const auto next_on = NextBallOn(on, table.balls[static_cast<size_t>(object)].kind, after);
+    PositionValue pos;
+    if (next_on) pos = EvaluatePosition(after, *next_on, after_ctx, settings.position);
+    tally.score_sum += ShotScore(1.0, value, pos, settings.position_play);
+    tally.position_sum += pos.value;
+  }
+  return tally;
+}
+
+}  // namespace snooker::planner

@@ -1,0 +1,391 @@
+#include "planner/search.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <nlopt.hpp>
+#include <vector>
+
+#include "physics/motion/motion.h"
+#include "physics/sim/resolve.h"
+#include "planner/geometry.h"
+
+namespace snooker::planner {
+namespace {
+
+using physics::Vec2;
+
+// Objective of a shot that cannot be played at all (no heading realises the cut,
+// or the cue has no room): below every simulated failure (-1 + P/2 >= -1).
+constexpr double kUnplayable = -2.0;
+
+// The cue ball's state when it has travelled `distance` (m) along its heading, or
+// nullopt if it stops (or draws back) first. Straight-line motion (geometry.h).
+std::optional<physics::BallState> CueAfter(const physics::BallState& start, double distance,
+                                           const physics::SimParams& params) {
+  const Vec2 u = Vec2(start.v.x(), start.v.y()).normalized();
+  physics::BallState s = physics::Settle(start, params.ball);  // classify the struck ball
+  double remaining = distance;
+  for (int phase = 0; phase < 3; ++phase) {  // sliding, rolling, (spinning: stopped)
+    if (s.s != physics::MotionState::kSliding && s.s != physics::MotionState::kRolling) break;
+    const physics::PositionPoly p = physics::PositionPolynomial(s, params.ball, params.cloth);
+    const double T = physics::TransitionTime(s, params.ball, params.cloth);
+    const double b = p.b.dot(u), a = p.a.dot(u);
+    // Distance along u: f(t) = b t + a t^2, largest at t* = -b / (2a) when a < 0.
+    const double t_peak = a < 0 ? -b / (2 * a) : std::numeric_limits<double>::infinity();
+    const double t_max = std::min(T, t_peak);
+    const double f_max = std::isfinite(t_max) ? b * t_max + a * t_max * t_max
+                                              : std::numeric_limits<double>::infinity();
+    if (f_max >= remaining) {
+      const double disc = b * b + 4 * a * remaining;
+      if (disc < 0 || b <= 0) return std::nullopt;
+      const double t = 2 * remaining / (b + std::sqrt(disc));
+      return physics::Evolve(s, t, params.ball, params.cloth);
+    }
+    if (!std::isfinite(T) || t_peak < T) return std::nullopt;  // drew back or stopped
+    remaining -= b * T + a * T * T;
+    s = physics::Evolve(s, T, params.ball, params.cloth);
+  }
+  return std::nullopt;
+}
+
+// The object ball's rolling direction after a cut `cut` from `cue` along `heading`
+// (rad), the cue ball struck with `shot`'s speed and spins; nullopt when the cue
+// ball does not arrive or the impact fails.
+std::optional<double> ObjectDirection(const Vec2& cue, const Vec2& object, double heading,
+                                      double cut, const physics::Shot& shot,
+                                      const physics::SimParams& params) {
+  const double r = params.ball.radius;
+  const Vec2 u(std::cos(heading), std::sin(heading));
+  const double travel = u.dot(object - cue) - 2 * r * std::cos(cut);
+  if (!(travel >= 0)) return std::nullopt;
+  physics::Shot s = shot;
+  s.heading = heading;
+  const auto at = CueAfter(physics::StruckBall(s, cue), travel, params);
+  if (!at) return std::nullopt;
+  physics::BallState c = *at;
+  const Vec2 n(std::cos(heading + cut), std::sin(heading + cut));
+  c.r = object - 2 * r * n;
+  physics::BallState o;
+  o.r = object;
+  const physics::BallBallResolution res = physics::ResolveBallBallOnTable(
+      c, o, params.ball, params.ball_ball, params.cloth, params.ball_ball_solver);
+  if (res.status != physics::ImpactStatus::kOk) return std::nullopt;
+  physics::BallState ob = res.b;
+  if (ob.s == physics::MotionState::kSliding) {
+    ob = physics::Evolve(ob, physics::TransitionTime(ob, params.ball, params.cloth), params.ball,
+                         params.cloth);
+  }
+  const Vec2 v(ob.v.x(), ob.v.y());
+  if (!(v.norm() > 0)) return std::nullopt;
+  return Direction(v);
+}
+
+class Search {
+ public:
+  Search(const TableState& table, BallOn on, const Candidate& cand, const PotContext& ctx,
+         const SearchSettings& settings, ShotSimulator& sim, const StopControl& stop)
+      : table_(table), on_(on), cand_(cand), ctx_(ctx), settings_(settings), sim_(sim),
+        stop_(stop), interrupt_(stop.AsInterrupt()) {
+    cue_ = table.cue_index();
+    setup_ = {&table_, cue_, cand.object, cand.pocket, on};
+    std::tie(v_lo_, v_hi_) = SpeedRange(table, cue_, cand, settings.limits, sim.params());
+    value_ = Value(table.balls[static_cast<size_t>(cand.object)].kind);
+    after_.balls.reserve(table.balls.size());
+    // The next shot is seen afresh by vision: every ball with the default sigma
+    // (the balls' indices change once some drop).
+    after_ctx_ = ctx;
+    after_ctx_.position_sigma.clear();
+    final_positions_.reserve(table.balls.size());
+  }
+
+  SearchResult Run() {
+    // Global stage over (speed, topspin, sidespin), the cut at its prediction.
+    std::vector<double> x = {0.5, 0.5, 0.5, 0.5};
+    if (settings_.global_evaluations > 0 && !Stopped()) {
+      nlopt::opt opt(nlopt::GN_DIRECT_L, 3);
+      Configure(opt, settings_.global_evaluations);
+      std::vector<double> x3 = {0.5, 0.5, 0.5};
+      Optimize(opt, x3, "global");
+      if (best_x_valid_) std::copy(best_x_.begin(), best_x_.begin() + 3, x.begin());
+    }
+    // Local stage over all four from the best point so far.
+    if (settings_.local_evaluations > 0 && settings_.local != LocalAlgorithm::kNone && !Stopped()) {
+      if (best_x_valid_) x = best_x_;
+      const nlopt::algorithm alg = settings_.local == LocalAlgorithm::kSubplex ? nlopt::LN_SBPLX
+                                   : settings_.local == LocalAlgorithm::kCobyla ? nlopt::LN_COBYLA
+                                                                                 : nlopt::LN_BOBYQA;
+      nlopt::opt opt(alg, 4);
+      Configure(opt, settings_.local_evaluations);
+      // First steps: a tenth of the speed and spin ranges, a quarter of the cut's.
+      opt.set_initial_step(std::vector<double>{0.1, 0.1, 0.1, 0.25});
+      Optimize(opt, x, "local");
+    }
+    result_.status = interrupted_ ? SearchStatus::kInterrupted
+                     : failed_    ? SearchStatus::kFailed
+                                  : SearchStatus::kConverged;
+    return result_;
+  }
+
+ private:
+  bool Stopped() { return interrupted_ || (interrupted_ = stop_.Due()); }
+
+  void Configure(nlopt::opt& opt, int max_evaluations) {
+    opt.set_lower_bounds(std::vector<double>(opt.get_dimension(), 0.0));
+    opt.set_upper_bounds(std::vector<double>(opt.get_dimension(), 1.0));
+    opt.set_max_objective(&Search::Trampoline, this);
+    opt.set_maxeval(max_evaluations);
+    opt.set_xtol_abs(settings_.x_tolerance);
+    opt.set_ftol_abs(1e-6);
+    const auto left = stop_.deadline - std::chrono::steady_clock::now();
+    if (stop_.deadline != std::chrono::steady_clock::time_point::max()) {
+      opt.set_maxtime(std::max(1e-4, std::chrono::duration<double>(left).count()));
+    }
+    opt_ = &opt;
+  }
+
+  void Optimize(nlopt::opt& opt, std::vector<double>& x, const char* stage) {
+    double f = 0;
+    std::string what = stage;
+    try {
+      const nlopt::result r = opt.optimize(x, f);
+      what += " " + std::to_string(static_cast<int>(r));
+    } catch (const nlopt::forced_stop&) {
+      what += " stopped";
+    } catch (const nlopt::roundoff_limited&) {
+      what += " roundoff";  // converged as far as doubles allow: not a failure
+    } catch (const std::exception& e) {
+      failed_ = true;
+      what += std::string(" error: ") + e.what();
+    }
+    opt_ = nullptr;
+    if (!result_.detail.empty()) result_.detail += "; ";
+    result_.detail += what;
+    if (pending_) {  // an exception of ours, caught in the trampoline
+      std::exception_ptr p = pending_;
+      pending_ = nullptr;
+      std::rethrow_exception(p);
+    }
+  }
+
+  // NLopt 2.7's C++ API takes a function pointer and void* (no lambda): this
+  // trampoline catches every exception, stops the optimiser and keeps the
+  // exception for Optimize to rethrow once NLopt has unwound.
+  static double Trampoline(unsigned n, const double* x, double* grad, void* data) {
+    (void)grad;  // derivative-free algorithms only
+    auto* self = static_cast<Search*>(data);
+    try {
+      return self->Objective(n, x);
+    } catch (...) {
+      self->pending_ = std::current_exception();
+      if (self->opt_ != nullptr) self->opt_->force_stop();
+      return -std::numeric_limits<double>::max();
+    }
+  }
+
+  double Objective(unsigned n, const double* x) {
+    if (Stopped()) {
+      if (opt_ != nullptr) opt_->force_stop();
+      return kUnplayable;
+    }
+    ++result_.evaluations;
+    std::array<double, 4> u = {x[0], x[1], x[2], n > 3 ? x[3] : 0.5};
+    for (double& c : u) c = std::clamp(c, 0.0, 1.0);
+    const double r = ctx_.table->ball_radius();
+    const RobotLimits& lim = settings_.limits;
+    physics::Shot shot;
+    shot.speed = v_lo_ + u[0] * (v_hi_ - v_lo_);
+    shot.topspin = (2 * u[1] - 1) * lim.max_topspin_fraction * shot.speed / r;
+    shot.sidespin = (2 * u[2] - 1) * lim.max_sidespin_fraction * shot.speed / r;
+    const Vec2 cue = table_.balls[static_cast<size_t>(cue_)].position;
+    const Vec2 object = table_.balls[static_cast<size_t>(cand_.object)].position;
+    const auto predicted =
+        settings_.predict_throw
+            ? PredictCut(cue, object, cand_.estimate.object_direction, shot.speed, shot.topspin,
+                         shot.sidespin, sim_.params())
+            : std::nullopt;
+    const double cut = predicted.value_or(cand_.estimate.aim.cut) +
+                       (2 * u[3] - 1) * settings_.max_cut_correction;
+    const auto heading = HeadingForCut(cue, object, cut, r);
+    if (!heading || CueMargin(table_, cue_, *heading, lim.cue, *ctx_.table) < 0) {
+      return Keep(u, kUnplayable);
+    }
+    shot.heading = *heading;
+    ++result_.simulations;
+    const ShotOutcome& out = sim_.Run(setup_, shot, {}, ShotSimulator::Mode::kDecide, interrupt_);
+    if (out.status == physics::SimStatus::kInterrupted) {
+      interrupted_ = true;
+      if (opt_ != nullptr) opt_->force_stop();
+      return kUnplayable;
+    }
+    const double p = PotProbability(out, cue, object, *heading, cut);
+    if (!out.success) return Keep(u, -1 + 0.5 * p);
+    // The table the shot leaves, by the rules, and the ball on then.
+    final_positions_.clear();
+    for (const physics::BallState& b : sim_.final_balls()) final_positions_.push_back(b.r);
+    after_ = ApplyShot(table_, on_, final_positions_, out.potted, false, *ctx_.table);
+    const auto next_on = NextBallOn(on_, table_.balls[static_cast<size_t>(cand_.object)].kind, after_);
+    PositionValue pos;
+    if (next_on) pos = EvaluatePosition(after_, *next_on, after_ctx_, settings_.position);
+    const double score = ShotScore(p, value_, pos, settings_.position_play);
+    if (!result_.best || score > result_.best->score) {
+      ShotCandidate c;
+      c.shot = shot;
+      c.cut = cut;
+      c.score = score;
+      c.pot_estimate = p;
+      c.position = pos;
+      c.cue_end = final_positions_[static_cast<size_t>(cue_)];
+      result_.best = c;
+    }
+    return Keep(u, score);
+  }
+
+  // The pot probability of this shot from its simulated object-ball line.
+  double PotProbability(const ShotOutcome& out, const Vec2& cue, const Vec2& object,
+                        double heading, double cut) const {
+    if (!out.line.valid) return 0;
+    const PocketWindow w =
+        ctx_.pockets->Window(cand_.pocket, out.line.direction, out.line.arrival_speed);
+    const Vec2 u(std::cos(out.line.direction), std::sin(out.line.direction));
+    const double distance =
+        std::max(0.0, (ctx_.table->pocket(cand_.pocket).mouth_centre - object).dot(u));
+    const double sigma = LateralSigma(cue, object, heading, cut, distance, out.line.contact_speed,
+                                      ctx_.sigma_of(cue_), ctx_.sigma_of(cand_.object), ctx_.noise,
+                                      *ctx_.throws, ctx_.table->ball_radius());
+    return WindowProbability(out.line.offset, sigma, w);
+  }
+
+  double Keep(const std::array<double, 4>& u, double f) {
+    if (!best_x_valid_ || f > best_f_) {
+      best_f_ = f;
+      best_x_ = {u[0], u[1], u[2], u[3]};
+      best_x_valid_ = true;
+    }
+    return f;
+  }
+
+  const TableState& table_;
+  BallOn on_;
+  const Candidate& cand_;
+  const PotContext& ctx_;
+  const SearchSettings& settings_;
+  ShotSimulator& sim_;
+  const StopControl& stop_;
+  physics::Interrupt interrupt_;
+  ShotSetup setup_;
+  int cue_ = -1;
+  int value_ = 0;
+  double v_lo_ = 0, v_hi_ = 0;
+  nlopt::opt* opt_ = nullptr;
+  std::exception_ptr pending_;
+  bool interrupted_ = false, failed_ = false;
+  std::vector<double> best_x_ = std::vector<double>(4, 0.5);
+  double best_f_ = 0;
+  bool best_x_valid_ = false;
+  SearchResult result_;
+  TableState after_;
+  PotContext after_ctx_;
+  std::vector<Vec2> final_positions_;
+};
+
+}  // namespace
+
+const char* ToString(LocalAlgorithm a) {
+  switch (a) {
+    case LocalAlgorithm::kBobyqa: return "LN_BOBYQA";
+    case LocalAlgorithm::kSubplex: return "LN_SBPLX";
+    case LocalAlgorithm::kCobyla: return "LN_COBYLA";
+    case LocalAlgorithm::kNone: return "none";
+  }
+  return "unknown";
+}
+
+bool StopControl::Due() const {
+  if (cancelled != nullptr && cancelled->load(std::memory_order_relaxed)) return true;
+  return deadline != std::chrono::steady_clock::time_point::max() &&
+         std::chrono::steady_clock::now() >= deadline;
+}
+
+physics::Interrupt StopControl::AsInterrupt() const {
+  physics::Interrupt i;
+  i.deadline = deadline;
+  i.cancelled = cancelled;
+  return i;
+}
+
+std::pair<double, double> SpeedRange(const TableState& table, int cue, const Candidate& cand,
+                                     const RobotLimits& limits, const physics::SimParams& params) {
+  const double decel = params.cloth.mu_r * params.cloth.g;
+  const Vec2 c = table.balls[static_cast<size_t>(cue)].position;
+  const double travel = (cand.estimate.aim.ghost - c).norm();
+  // The object ball leaves sliding and rolls on at 5/7 of its speed; it should
+  // reach the mouth at a crawl (0.05 m/s) at least. It gets about 0.9 cos(cut) of
+  // the cue ball's speed at contact.
+  const double object_start =
+      std::sqrt(0.05 * 0.05 + 2 * decel * cand.estimate.distance) / (5.0 / 7.0);
+  const double contact = object_start / (0.9 * std::max(std::cos(cand.estimate.aim.cut), 0.2));
+  const double lo = std::clamp(0.9 * std::sqrt(contact * contact + 2 * decel * travel),
+                               limits.min_speed, limits.max_speed);
+  const double hi = std::clamp(lo + 3.0, lo, limits.max_speed);
+  return {lo, hi};
+}
+
+std::optional<double> PredictCut(const Vec2& cue, const Vec2& object, double object_direction,
+                                 double speed, double topspin, double sidespin,
+                                 const physics::SimParams& params) {
+  const double r = params.ball.radius;
+  const auto aim = AimAlong(cue, object, object_direction, r);
+  if (!aim) return std::nullopt;
+  double cut = aim->cut;
+  const double d = (object - cue).norm();
+  const physics::Shot shot{speed, 0, topspin, sidespin};
+  for (int iter = 0; iter < 3; ++iter) {
+    const auto h = HeadingForCut(cue, object, cut, r);
+    if (!h) return std::nullopt;
+    const auto dir = ObjectDirection(cue, object, *h, cut, shot, params);
+    if (!dir) return std::nullopt;
+    const double err = WrapAngle(object_direction - *dir);
+    // d(direction)/d(cut) = 1 + dh/dc, dh/dc = -2R cos c / (d cos(phi0 - h)).
+    const double phi = WrapAngle(Direction(object - cue) - *h);
+    const double slope = 1 - 2 * r * std::cos(cut) / (d * std::max(std::cos(phi), 1e-3));
+    cut += err / std::max(slope, 0.1);
+    if (std::abs(err) < 1e-7) break;
+  }
+  if (!(std::abs(cut) < physics::kPi / 2)) return std::nullopt;
+  return cut;
+}
+
+std::optional<physics::Shot> RollingPotShot(const Vec2& cue, const Vec2& object,
+                                            const PotEstimate& estimate,
+                                            const physics::SimParams& params) {
+  const double r = params.ball.radius;
+  const double decel = params.cloth.mu_r * params.cloth.g;
+  const double contact = TypicalContactSpeed(estimate.distance, estimate.aim.cut);
+  const double travel = (estimate.aim.ghost - cue).norm();
+  physics::Shot shot;
+  shot.speed = std::sqrt(contact * contact + 2 * decel * travel);
+  shot.topspin = shot.speed / r;
+  const auto cut = PredictCut(cue, object, estimate.object_direction, shot.speed, shot.topspin, 0, params);
+  if (!cut) return std::nullopt;
+  const auto heading = HeadingForCut(cue, object, *cut, r);
+  if (!heading) return std::nullopt;
+  shot.heading = *heading;
+  return shot;
+}
+
+double ShotScore(double pot_probability, int value, const PositionValue& position,
+                 bool position_play) {
+  return pot_probability * (value + (position_play ? position.expected_points : 0.0));
+}
+
+SearchResult SearchCandidate(const TableState& table, BallOn on, const Candidate& cand,
+                             const PotContext& ctx, const SearchSettings& settings,
+                             ShotSimulator& sim, const StopControl& stop) {
+  Search search(table, on, cand, ctx, settings, sim, stop);
+  return search.Run();
+}
+
+}  // namespace snooker::planner

@@ -1,0 +1,158 @@
+// The NLopt search of one candidate pot (one object ball into one pocket) over the
+// four numbers of a shot: cue speed, topspin, sidespin and cut angle.
+//
+// Parametrisation (all searched in the unit cube, so every step is in proportion
+// to the robot's range):
+//   speed    in [v_lo, v_hi]: v_lo just brings the object ball to the mouth, v_hi
+//            caps a positional shot within the robot's largest speed;
+//   topspin  in [-1, 1] x max_topspin_fraction x v / R (draw to follow);
+//   sidespin in [-1, 1] x max_sidespin_fraction x v / R;
+//   cut      = the aim that the collision model predicts will send the object ball
+//            along the planned line (the ghost-ball cut corrected for the throw of
+//            this speed and spin: ThrowModel's impact solve of the cue ball as it
+//            arrives), + a correction in [-max_cut_correction, +max_cut_correction]
+//            that the search sets from the full simulation (what the prediction
+//            misses: the object ball's slip, the cue ball's state at contact).
+// Throw is the correction that matters: a rolling cue ball throws the object ball
+// 0.5 deg at a 10 deg cut and 2.8 deg at 80 deg (Mathavan et al.'s friction),
+// more than the pocket's tolerance on any pot longer than about 30 cm.
+//
+// Objective (maximised): a shot that succeeds in its (cheaper, early-stopping)
+// simulation scores P x (value + position), P being this shot's pot probability
+// under noise (pot_estimate.h, from the simulated object-ball line), value the
+// ball's points and position the expected points of the position left
+// (position.h; omitted in pot-only mode). A failed shot scores -1 + P/2: below
+// every success, and still graded towards a centred object-ball line, so the
+// constraints (object ball drops, cue ball does not, first ball hit is the object
+// ball) act as a barrier the search can climb out of. The best succeeding shot
+// seen is kept apart from NLopt's iterate: the search is anytime.
+//
+// Algorithms (derivative-free: the objective is a simulation with discontinuities
+// where a ball starts to hit another or a jaw):
+//  * global: GN_DIRECT_L over speed, topspin and sidespin (cut at its predicted
+//    value). DIRECT-L (Gablonsky & Kelley) is deterministic (no random seed to
+//    manage across threads), needs only bounds, and at a few dozen evaluations in
+//    three dimensions samples the box evenly while refining the best regions:
+//    the position a shot leaves is multi-modal in speed and spin (stun, follow,
+//    screw), which a local method from one start would miss.
+//  * local: LN_BOBYQA (Powell) over all four from the best global point: a
+//    quadratic model fits the smooth part of the objective (the Gaussian pot
+//    probability and the position's slow change) in few evaluations, which is
+//    what centring the cut on its narrow ridge needs. Measured against LN_SBPLX
+//    and LN_COBYLA at equal work (docs/planner.md, "Search choices"): the three
+//    score alike there, while the global stage and the throw prediction each add
+//    measurably; BOBYQA stays for its bound handling and its cheap steps.
+// Both have bounds, tolerances, an evaluation cap and a time limit.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <optional>
+#include <string>
+
+#include "physics/core/shot.h"
+#include "planner/candidates.h"
+#include "planner/position.h"
+#include "planner/shot_sim.h"
+
+namespace snooker::planner {
+
+/// What the robot can play.
+struct RobotLimits {
+  /// Cue-ball speed range, m/s.
+  double min_speed = 0.3;
+  double max_speed = 6.0;
+  /// Largest |topspin| and |sidespin| as a fraction of the rolling spin v / R at
+  /// the shot's speed v (a tip offset of half the radius gives about 1.25).
+  double max_topspin_fraction = 1.0;
+  double max_sidespin_fraction = 0.5;
+  /// Room the cue needs behind the cue ball.
+  CueClearance cue;
+};
+
+/// Local optimiser of the second stage.
+enum class LocalAlgorithm : std::uint8_t { kBobyqa, kSubplex, kCobyla, kNone };
+const char* ToString(LocalAlgorithm a);
+
+struct SearchSettings {
+  RobotLimits limits;
+  /// Evaluations of the global and the local stage (each evaluation is one
+  /// simulation). 0 skips a stage.
+  int global_evaluations = 24;
+  int local_evaluations = 24;
+  LocalAlgorithm local = LocalAlgorithm::kBobyqa;
+  /// Aim by the collision model's predicted throw (false: the geometric ghost-ball
+  /// cut, for the comparison in docs/planner.md).
+  bool predict_throw = true;
+  /// Largest correction of the predicted cut, rad.
+  double max_cut_correction = 0.6 * physics::kPi / 180;
+  /// Stop a stage when a step changes no variable by more than this (unit cube).
+  double x_tolerance = 1e-3;
+  /// Score the position left (false: pot only, P x value).
+  bool position_play = true;
+  PositionOptions position;
+};
+
+/// One evaluated shot.
+struct ShotCandidate {
+  physics::Shot shot;
+  double cut = 0;               ///< rad
+  double score = 0;             ///< the objective
+  double pot_estimate = 0;      ///< P of the objective
+  PositionValue position;       ///< of the position left (position play or not)
+  physics::Vec2 cue_end = physics::Vec2::Zero();
+};
+
+enum class SearchStatus : std::uint8_t {
+  kConverged,    ///< both stages ended by tolerance or their evaluation caps
+  kInterrupted,  ///< the deadline passed or the cancel flag was set
+  kFailed,       ///< NLopt reported an error (the best shot found is still valid)
+};
+
+struct SearchResult {
+  std::optional<ShotCandidate> best;  ///< the best succeeding shot, if any
+  int evaluations = 0;
+  int simulations = 0;
+  SearchStatus status = SearchStatus::kConverged;
+  std::string detail;                 ///< NLopt's results or error, for reports
+};
+
+/// What stops a search from outside.
+struct StopControl {
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+  const std::atomic<bool>* cancelled = nullptr;
+  bool Due() const;
+  physics::Interrupt AsInterrupt() const;
+};
+
+/// The speed range [v_lo, v_hi] searched for a candidate (see above). m/s.
+std::pair<double, double> SpeedRange(const TableState& table, int cue, const Candidate& cand,
+                                     const RobotLimits& limits, const physics::SimParams& params);
+
+/// The cut (rad) that the collision model predicts sends the object ball along
+/// `object_direction` for a shot of this speed and spin from `cue` onto `object`
+/// (three Newton steps on the throw); nullopt when the cue ball cannot reach it.
+std::optional<double> PredictCut(const physics::Vec2& cue, const physics::Vec2& object,
+                                 double object_direction, double speed, double topspin,
+                                 double sidespin, const physics::SimParams& params);
+
+/// The plain shot behind a fast estimate: the cue ball struck rolling, fast enough
+/// to reach the contact at TypicalContactSpeed, aimed by PredictCut along the
+/// estimate's object-ball line. What the estimate assumes the robot plays (tests
+/// and reports compare it with Monte Carlo). nullopt if no cut realises it.
+std::optional<physics::Shot> RollingPotShot(const physics::Vec2& cue, const physics::Vec2& object,
+                                            const PotEstimate& estimate,
+                                            const physics::SimParams& params);
+
+/// Searches one candidate. `sim` runs at the search's fidelity.
+SearchResult SearchCandidate(const TableState& table, BallOn on, const Candidate& cand,
+                             const PotContext& ctx, const SearchSettings& settings,
+                             ShotSimulator& sim, const StopControl& stop);
+
+/// The score of an evaluated succeeding shot, as the search computes it (for the
+/// verification and the Monte Carlo of the planner). `after` is the table the
+/// shot left (rules applied), `next_on` the ball on then (nullopt: cleared).
+double ShotScore(double pot_probability, int value, const PositionValue& position,
+                 bool position_play);
+
+}  // namespace snooker::planner

@@ -1,0 +1,156 @@
+// Tests of Plan at the API edge (server/plan_api.h, server/plan_convert.h):
+// validation names each bad field and value, units are converted at the edge, and
+// the answer carries the table's ids.
+#include "server/plan_api.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "server/plan_convert.h"
+
+namespace snooker::server {
+namespace {
+
+void AddBall(v1::PlanRequest* r, const std::string& id, v1::BallKind kind, double x, double y) {
+  v1::Ball* b = r->mutable_table()->add_balls();
+  b->set_id(id);
+  b->set_kind(kind);
+  b->mutable_position()->set_x(x);
+  b->mutable_position()->set_y(y);
+}
+
+// A red 40 cm before the top-right pocket on its axis, the cue ball 40 cm behind it.
+v1::PlanRequest ObviousPot() {
+  const physics::Pocket& p = physics::DefaultTable().pocket(physics::PocketId::kTopRight);
+  const physics::Vec2 red = p.mouth_centre - 0.4 * p.axis;
+  const physics::Vec2 cue = red - 0.4 * p.axis;
+  v1::PlanRequest r;
+  AddBall(&r, "white", v1::CUE, cue.x(), cue.y());
+  AddBall(&r, "r7", v1::RED, red.x(), red.y());
+  const physics::Vec2 black = physics::DefaultTable().spot(physics::Colour::kBlack);
+  AddBall(&r, "the-black", v1::BLACK, black.x(), black.y());
+  r.set_max_simulations(300);
+  r.set_time_budget_ms(30000);
+  r.set_monte_carlo_samples(16);
+  return r;
+}
+
+std::vector<std::string> Fields(const std::vector<FieldError>& errors) {
+  std::vector<std::string> f;
+  for (const FieldError& e : errors) f.push_back(e.field);
+  return f;
+}
+
+TEST(ValidatePlanRequestTest, AcceptsAGoodRequest) {
+  EXPECT_TRUE(ValidatePlanRequest(ObviousPot(), physics::DefaultTable()).empty());
+}
+
+TEST(ValidatePlanRequestTest, NamesEveryBadField) {
+  v1::PlanRequest r = ObviousPot();
+  r.set_ball_on(v1::BALL_ON_PINK);
+  r.mutable_limits()->set_min_speed(3);
+  r.mutable_limits()->set_max_speed(2);
+  r.mutable_limits()->set_max_topspin_fraction(-1);
+  r.mutable_noise()->set_heading_sigma_deg(NAN);
+  r.mutable_noise()->set_position_sigma_mm(100);
+  (*r.mutable_noise()->mutable_ball_position_sigma_mm())["nobody"] = 0.3;
+  r.set_time_budget_ms(0);
+  r.set_max_shots(0);
+  r.set_monte_carlo_samples(-3);
+  const std::vector<FieldError> errors = ValidatePlanRequest(r, physics::DefaultTable());
+  EXPECT_EQ(Fields(errors),
+            (std::vector<std::string>{"ball_on", "limits.max_speed", "limits.max_topspin_fraction",
+                                      "noise.heading_sigma_deg", "noise.position_sigma_mm",
+                                      "noise.ball_position_sigma_mm[\"nobody\"]", "time_budget_ms",
+                                      "max_shots", "monte_carlo_samples"}));
+  EXPECT_NE(Describe(errors).find("ball_on = BALL_ON_PINK (no such ball on the table)"), std::string::npos)
+      << Describe(errors);
+  // The message lists the first few problems and counts the rest; each error still
+  // carries its value.
+  EXPECT_NE(Describe(errors).find("and 4 more"), std::string::npos) << Describe(errors);
+  EXPECT_EQ(errors[6].value, "0");
+}
+
+TEST(ValidatePlanRequestTest, MoreBallsOfAKindThanSnookerHas) {
+  v1::PlanRequest r = ObviousPot();
+  AddBall(&r, "black-2", v1::BLACK, 0.3, 0.3);
+  for (int i = 0; i < 15; ++i) AddBall(&r, "x" + std::to_string(i), v1::RED, 0.2 + 0.1 * i, 1.0);
+  const std::string d = Describe(ValidatePlanRequest(r, physics::DefaultTable()));
+  EXPECT_NE(d.find("16 RED balls (at most 15)"), std::string::npos) << d;
+  EXPECT_NE(d.find("2 BLACK balls"), std::string::npos) << d;
+}
+
+TEST(ValidatePlanRequestTest, TheTableIsCheckedAsSimulateChecksIt) {
+  v1::PlanRequest r = ObviousPot();
+  r.mutable_table()->mutable_balls(1)->mutable_position()->set_x(-1);  // off the table
+  AddBall(&r, "white", v1::CUE, 0.5, 0.5);                              // a second cue, same id
+  const std::string d = Describe(ValidatePlanRequest(r, physics::DefaultTable()));
+  EXPECT_NE(d.find("table.balls[3].id = \"white\""), std::string::npos) << d;
+  EXPECT_NE(d.find("2 CUE balls"), std::string::npos) << d;
+  EXPECT_NE(d.find("r7"), std::string::npos) << d;
+}
+
+TEST(PlanRequestFromTest, ConvertsUnitsAtTheEdge) {
+  v1::PlanRequest r = ObviousPot();
+  r.mutable_noise()->set_heading_sigma_deg(0.05);
+  r.mutable_noise()->set_position_sigma_mm(0.5);
+  (*r.mutable_noise()->mutable_ball_position_sigma_mm())["r7"] = 1.5;
+  r.set_time_budget_ms(250);
+  r.set_ball_on(v1::BALL_ON_COLOUR);
+  const planner::PlanRequest p = PlanRequestFrom(r);
+  EXPECT_DOUBLE_EQ(p.noise.heading, physics::DegToRad(0.05));
+  EXPECT_DOUBLE_EQ(p.noise.position, 0.5e-3);
+  ASSERT_EQ(p.position_sigma.size(), 3u);
+  EXPECT_DOUBLE_EQ(p.position_sigma[0], 0.5e-3);
+  EXPECT_DOUBLE_EQ(p.position_sigma[1], 1.5e-3);
+  EXPECT_DOUBLE_EQ(p.time_budget, 0.25);
+  EXPECT_EQ(p.ball_on, planner::BallOn::kAnyColour);
+  EXPECT_EQ(p.table.balls[2].kind, planner::BallKind::kBlack);
+  // Unset fields keep the planner's defaults.
+  const planner::PlanRequest d = PlanRequestFrom(v1::PlanRequest{});
+  EXPECT_EQ(d.time_budget, planner::PlanRequest{}.time_budget);
+  EXPECT_EQ(d.limits.max_speed, planner::RobotLimits{}.max_speed);
+  EXPECT_FALSE(d.ball_on.has_value());
+}
+
+TEST(PlanTest, AnswersWithTheTablesIds) {
+  v1::PlanResponse resp;
+  int progress = 0;
+  PlanControl control;
+  control.on_progress = [&](const v1::PlanResponse& best) {
+    ++progress;
+    EXPECT_EQ(best.shots_size(), 1);
+  };
+  const ApiStatus st = Plan(ObviousPot(), &resp, control);
+  ASSERT_TRUE(st.ok()) << st.message;
+  ASSERT_GT(resp.shots_size(), 0) << resp.reason();
+  const v1::PlannedShot& s = resp.shots(0);
+  EXPECT_EQ(s.object_ball(), "r7");
+  EXPECT_EQ(s.pocket(), "top-right");
+  EXPECT_EQ(s.next_ball(), "the-black");
+  EXPECT_GT(s.pot_probability(), 0.9);
+  ASSERT_GT(s.events_size(), 0);
+  EXPECT_EQ(s.events(0).kind(), v1::BALL_BALL);
+  EXPECT_EQ(s.events(0).balls(0), "white");
+  bool potted = false;
+  for (const v1::Event& e : s.events()) potted = potted || (e.kind() == v1::POCKET && e.pocket() == "top-right");
+  EXPECT_TRUE(potted);
+  EXPECT_GT(resp.simulations(), 0);
+  EXPECT_GT(resp.elapsed_ms(), 0);
+  EXPECT_GT(progress, 0);
+}
+
+TEST(PlanTest, BadRequestIsInvalidArgument) {
+  v1::PlanRequest r = ObviousPot();
+  r.set_max_shots(99);
+  v1::PlanResponse resp;
+  const ApiStatus st = Plan(r, &resp);
+  EXPECT_EQ(st.code, ApiStatus::Code::kInvalidArgument);
+  EXPECT_NE(st.message.find("max_shots = 99"), std::string::npos) << st.message;
+}
+
+}  // namespace
+}  // namespace snooker::server

@@ -1,0 +1,206 @@
+// `snooker plan` and `snooker selfplay` as a user (or a tool outside the project)
+// runs them: the JSON field names of issue 8 are a contract, a planned shot can be
+// fed straight back to `snooker simulate`, and bad input names the value.
+#include <google/protobuf/struct.pb.h>
+#include <google/protobuf/util/json_util.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cctype>
+#include <cstdio>
+#include <fstream>
+#include <ostream>
+#include <set>
+#include <sstream>
+#include <string>
+
+namespace snooker {
+namespace {
+
+using google::protobuf::Struct;
+using google::protobuf::Value;
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+RunResult RunCli(const std::string& args) {
+  static int calls = 0;
+  const std::string err_file = testing::TempDir() + "snooker_plan_stderr_" +
+                               std::to_string(getpid()) + "_" + std::to_string(++calls) + ".txt";
+  const std::string cmd = std::string(SNOOKER_CLI_PATH) + " " + args + " 2>" + err_file;
+  RunResult r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (p == nullptr) return r;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+  const int status = pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream f(err_file);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  r.err = ss.str();
+  std::remove(err_file.c_str());
+  return r;
+}
+
+std::string WriteFile(const std::string& name, const std::string& text) {
+  const std::string path = testing::TempDir() + name + "_" + std::to_string(getpid()) + ".json";
+  std::ofstream(path) << text;
+  return path;
+}
+
+// The cue ball 40 cm behind a red 40 cm before the top-right pocket, on its axis
+// (the pocket's mouth centre is at (1.7476, 3.5386)).
+constexpr const char* kTable = R"({"balls": [
+  {"id": "cue", "kind": "CUE", "position": {"x": 1.1819, "y": 2.9729}},
+  {"id": "red-1", "kind": "RED", "position": {"x": 1.4648, "y": 3.2558}},
+  {"id": "black", "kind": "BLACK", "position": {"x": 0.889, "y": 3.245}},
+  {"id": "red-2", "kind": "RED", "position": {"x": 0.4, "y": 1.5}}]})";
+
+std::set<std::string> Keys(const Struct& s) {
+  std::set<std::string> k;
+  for (const auto& [name, value] : s.fields()) k.insert(name);
+  return k;
+}
+
+TEST(CliPlanTest, JsonHasExactlyTheContractedNames) {
+  const std::string table = WriteFile("plan_table", kTable);
+  const RunResult r = RunCli("plan --table " + table + " --json --max-simulations 300 --budget-ms 30000");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  Struct json;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &json).ok()) << r.out;
+  EXPECT_EQ(Keys(json), (std::set<std::string>{"shots", "reason", "simulations", "evaluations", "elapsedMs"}));
+  const auto& shots = json.fields().at("shots").list_value();
+  ASSERT_GT(shots.values_size(), 0);
+  const Struct& s = shots.values(0).struct_value();
+  EXPECT_EQ(Keys(s), (std::set<std::string>{"speed", "headingDeg", "topspin", "sidespin", "cutDeg",
+                                            "objectBall", "pocket", "potProbability", "positionValue",
+                                            "nextBall", "cueBallEnd", "events"}));
+  EXPECT_EQ(Keys(s.fields().at("cueBallEnd").struct_value()), (std::set<std::string>{"x", "y"}));
+  EXPECT_EQ(s.fields().at("objectBall").string_value(), "red-1");
+  EXPECT_EQ(s.fields().at("pocket").string_value(), "top-right");
+  EXPECT_GT(json.fields().at("simulations").number_value(), 0);
+
+  // The shot fed straight back to `snooker simulate` pots the red.
+  Struct shot;
+  for (const char* k : {"speed", "headingDeg", "topspin", "sidespin"}) {
+    (*shot.mutable_fields())[k] = s.fields().at(k);
+  }
+  std::string shot_json;
+  ASSERT_TRUE(google::protobuf::util::MessageToJsonString(shot, &shot_json).ok());
+  const std::string shot_path = WriteFile("plan_shot", shot_json);
+  const RunResult sim = RunCli("simulate --table " + table + " --shot " + shot_path + " --json");
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  Struct result;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(sim.out, &result).ok());
+  bool potted = false;
+  for (const Value& b : result.fields().at("finalBalls").list_value().values()) {
+    const auto& f = b.struct_value().fields();
+    if (f.at("id").string_value() == "red-1") {
+      potted = f.at("pocketed").bool_value() && f.at("pocket").string_value() == "top-right";
+    }
+  }
+  EXPECT_TRUE(potted) << sim.out;
+  std::remove(table.c_str());
+  std::remove(shot_path.c_str());
+}
+
+TEST(CliPlanTest, ReadableAnswerAndSvg) {
+  const std::string table = WriteFile("plan_table2", kTable);
+  const std::string svg = testing::TempDir() + "plan_" + std::to_string(getpid()) + ".svg";
+  const RunResult r = RunCli("plan --table " + table + " --svg " + svg + " --max-simulations 300 --budget-ms 30000");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("#1  red-1 into top-right"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("simulations"), std::string::npos);
+  std::ifstream f(svg);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  EXPECT_NE(ss.str().find("<svg"), std::string::npos);
+  EXPECT_NE(ss.str().find("<polyline"), std::string::npos);
+  std::remove(table.c_str());
+  std::remove(svg.c_str());
+}
+
+struct BadInput {
+  const char* args;
+  const char* must_mention;
+};
+
+// Readable in test listings (ctest shows the parameter).
+void PrintTo(const BadInput& b, std::ostream* os) { *os << "snooker " << b.args; }
+
+class CliPlanBadInputTest : public testing::TestWithParam<BadInput> {};
+
+TEST_P(CliPlanBadInputTest, ExitsNonZeroNamingTheValue) {
+  const std::string table = WriteFile("plan_bad", kTable);
+  std::string args = GetParam().args;
+  const size_t at = args.find("TABLE");
+  if (at != std::string::npos) args.replace(at, 5, table);
+  const RunResult r = RunCli(args);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(GetParam().must_mention), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  std::remove(table.c_str());
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, CliPlanBadInputTest,
+    testing::Values(BadInput{"plan", "--table is required"},
+                    BadInput{"plan --table /nonexistent.json", "cannot read '/nonexistent.json'"},
+                    BadInput{"plan --table TABLE --on PURPLE", "--on 'PURPLE'"},
+                    BadInput{"plan --table TABLE --on YELLOW", "ball_on = BALL_ON_YELLOW"},
+                    BadInput{"plan --table TABLE --budget-ms 0", "time_budget_ms = 0"},
+                    BadInput{"plan --table TABLE --budget-ms soon", "--budget-ms 'soon'"},
+                    BadInput{"plan --table TABLE --shots 50", "--shots 50 is out of range"},
+                    BadInput{"plan --table TABLE --noise-spin -2", "noise.topspin_sigma = -2"},
+                    BadInput{"plan --table TABLE --max-speed 0.1 --min-speed 0.5", "limits.max_speed = 0.1"},
+                    BadInput{"selfplay --seed 1", "--frames is required"},
+                    BadInput{"selfplay --frames 0 --seed 1", "--frames 0 is out of range"},
+                    BadInput{"selfplay --frames 1 --seed 1 --noise-position-mm -1", "--noise-position-mm -1"}),
+    [](const testing::TestParamInfo<BadInput>& param) {
+      // The command line itself, as a name: "plan_on_PURPLE", "selfplay_frames_0_seed_1".
+      std::string name;
+      for (const char c : std::string(param.param.args)) {
+        if (std::isalnum(static_cast<unsigned char>(c))) {
+          name += c;
+        } else if (!name.empty() && name.back() != '_') {
+          name += '_';
+        }
+      }
+      while (!name.empty() && name.back() == '_') name.pop_back();
+      const std::string table = "table_TABLE_";
+      if (const size_t at = name.find(table); at != std::string::npos) name.erase(at, table.size());
+      return name;
+    });
+
+TEST(CliSelfPlayTest, JsonHasExactlyTheContractedNames) {
+  const std::string records = testing::TempDir() + "frames_" + std::to_string(getpid()) + ".jsonl";
+  const RunResult r = RunCli("selfplay --frames 1 --seed 4 --json --max-simulations 100 --budget-ms 30000 --samples 8 --records " + records);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  Struct json;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &json).ok()) << r.out;
+  EXPECT_EQ(Keys(json), (std::set<std::string>{"meanBreak", "maxBreak", "potRate", "planMsP50",
+                                               "planMsP99", "frames", "shots"}));
+  EXPECT_EQ(json.fields().at("frames").number_value(), 1);
+  EXPECT_GE(json.fields().at("potRate").number_value(), 0);
+  EXPECT_LE(json.fields().at("potRate").number_value(), 1);
+  // One record per frame, agreeing with the summary.
+  std::ifstream f(records);
+  std::string line;
+  ASSERT_TRUE(std::getline(f, line));
+  Struct rec;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(line, &rec).ok()) << line;
+  EXPECT_EQ(Keys(rec), (std::set<std::string>{"frame", "reds", "points", "attempts", "pots", "end"}));
+  EXPECT_EQ(rec.fields().at("points").number_value(), json.fields().at("meanBreak").number_value());
+  EXPECT_EQ(rec.fields().at("attempts").number_value(), json.fields().at("shots").number_value());
+  EXPECT_FALSE(std::getline(f, line));
+  std::remove(records.c_str());
+}
+
+}  // namespace
+}  // namespace snooker

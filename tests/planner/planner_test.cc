@@ -1,0 +1,268 @@
+// Tests of the planner facade (planner/planner.h) on hand-made and seeded tables:
+// the obvious pot is found and leaves a pottable next ball, no pot gives an empty
+// answer with a reason, every shot is within the robot's limits and pots in the
+// planner's own full simulation, the same seed gives the same answer, progress,
+// cancellation and deadlines, and bad requests name the field.
+#include "planner/planner.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "planner/selfplay.h"
+
+namespace snooker::planner {
+namespace {
+
+using physics::PocketId;
+using physics::Vec2;
+
+const physics::TableModel& Table() { return physics::DefaultTable(); }
+constexpr double kR = 0.02625;
+
+// Deterministic work: a simulation cap that binds long before the (generous) time
+// budget, even under the sanitizers.
+PlanRequest Request(const TableState& t, std::int64_t sims = 400) {
+  PlanRequest r;
+  r.table = t;
+  r.time_budget = 30;
+  r.max_simulations = sims;
+  r.monte_carlo_samples = 16;
+  return r;
+}
+
+// A red 40 cm in front of the top-right pocket with the cue ball 40 cm straight
+// behind it, the black on its spot, a red near the blue spot.
+TableState ObviousPot() {
+  const physics::Pocket& p = Table().pocket(PocketId::kTopRight);
+  const Vec2 red = p.mouth_centre - 0.4 * p.axis;
+  TableState t;
+  t.balls = {{BallKind::kCue, red - 0.4 * p.axis},
+             {BallKind::kRed, red},
+             {BallKind::kBlack, Table().spot(physics::Colour::kBlack)},
+             {BallKind::kPink, Table().spot(physics::Colour::kPink)},
+             {BallKind::kRed, Vec2(0.4, 1.5)}};
+  return t;
+}
+
+// Simulates a planned shot on the table exactly as planned (no noise, full
+// fidelity, a fresh simulator): the planner's promise.
+ShotOutcome Replay(const TableState& t, BallOn on, const PlannedShot& s, std::vector<Vec2>* finals = nullptr) {
+  ShotSimulator sim(Table(), physics::SimParams{});
+  const ShotSetup setup{&t, t.cue_index(), s.object_ball, s.pocket, on};
+  ShotOutcome out = sim.Run(setup, s.shot, {}, ShotSimulator::Mode::kFull, {});
+  if (finals != nullptr) {
+    finals->clear();
+    for (const auto& b : sim.final_balls()) finals->push_back(b.r);
+  }
+  return out;
+}
+
+TEST(PlannerTest, PotsTheObviousRedAndLeavesAColour) {
+  const TableState t = ObviousPot();
+  const PlanAnswer a = Planner::Default().Plan(Request(t));
+  ASSERT_EQ(a.status, PlanStatus::kOk) << a.reason;
+  ASSERT_FALSE(a.shots.empty());
+  const PlannedShot& best = a.shots.front();
+  EXPECT_EQ(best.object_ball, 1);
+  EXPECT_EQ(best.pocket, PocketId::kTopRight);
+  std::vector<Vec2> finals;
+  const ShotOutcome out = Replay(t, BallOn::kRed, best, &finals);
+  EXPECT_TRUE(out.success);
+  EXPECT_EQ(out.object_pocket, static_cast<int>(PocketId::kTopRight));
+  EXPECT_EQ(finals[0], best.cue_ball_end);
+  // The cue ball ends where the next ball on (a colour) is pottable.
+  ASSERT_GE(best.next_ball, 0);
+  EXPECT_TRUE(IsColour(t.balls[static_cast<size_t>(best.next_ball)].kind));
+  EXPECT_GT(best.position_value, 0.6);
+  TableState after = ApplyShot(t, BallOn::kRed, finals, out.potted, false, Table());
+  const PositionValue v = EvaluatePosition(after, BallOn::kAnyColour,
+                                           Planner::Default().ContextFor(Request(after)), {});
+  EXPECT_GT(v.next_probability, 0.6);
+  EXPECT_GT(best.pot_probability, 0.9);
+  EXPECT_GT(a.simulations, 0);
+  EXPECT_GT(a.evaluations, 0);
+}
+
+TEST(PlannerTest, NoPossiblePotGivesAnEmptyAnswerWithAReason) {
+  // The only red is surrounded by colours: every path to it is blocked.
+  const Vec2 red(0.9, 2.0);
+  TableState t;
+  t.balls = {{BallKind::kCue, Vec2(0.9, 0.5)}, {BallKind::kRed, red}};
+  const BallKind ring[] = {BallKind::kYellow, BallKind::kGreen, BallKind::kBrown,
+                           BallKind::kBlue, BallKind::kPink, BallKind::kBlack};
+  for (int k = 0; k < 6; ++k) {
+    const double a = k * physics::kPi / 3 + physics::kPi / 6;
+    t.balls.push_back({ring[k], red + (2 * kR + 0.0005) * Vec2(std::cos(a), std::sin(a))});
+  }
+  const PlanAnswer a = Planner::Default().Plan(Request(t));
+  EXPECT_EQ(a.status, PlanStatus::kNoPot);
+  EXPECT_TRUE(a.shots.empty());
+  EXPECT_NE(a.reason.find("no pot"), std::string::npos) << a.reason;
+  EXPECT_NE(a.reason.find("path blocked"), std::string::npos) << a.reason;
+}
+
+// Seeded random mid-frame tables (the self-play's), one per test: every returned
+// shot is within the robot's (tightened) limits and pots in a fresh full simulation.
+class PlannerTableTest : public testing::TestWithParam<int> {};
+
+TEST_P(PlannerTableTest, ShotsAreWithinLimitsAndPotWhenReplayed) {
+  Rng rng(DeriveSeed(1234, static_cast<std::uint64_t>(GetParam())));
+  const TableState t = RandomFrame(rng, 6 + GetParam() % 5, Table());
+  PlanRequest r = Request(t, 300);
+  r.limits.min_speed = 0.5;
+  r.limits.max_speed = 3.0;
+  r.limits.max_topspin_fraction = 0.6;
+  r.limits.max_sidespin_fraction = 0.3;
+  r.max_shots = 4;
+  const PlanAnswer a = Planner::Default().Plan(r);
+  ASSERT_TRUE(a.status == PlanStatus::kOk || a.status == PlanStatus::kNoPot) << a.reason;
+  EXPECT_EQ(a.shots.empty(), a.status == PlanStatus::kNoPot);
+  EXPECT_LE(static_cast<int>(a.shots.size()), r.max_shots);
+  for (const PlannedShot& s : a.shots) {
+    const double rolling = s.shot.speed / kR;
+    EXPECT_GE(s.shot.speed, r.limits.min_speed);
+    EXPECT_LE(s.shot.speed, r.limits.max_speed);
+    EXPECT_LE(std::abs(s.shot.topspin), r.limits.max_topspin_fraction * rolling * (1 + 1e-12));
+    EXPECT_LE(std::abs(s.shot.sidespin), r.limits.max_sidespin_fraction * rolling * (1 + 1e-12));
+    EXPECT_GE(CueMargin(t, t.cue_index(), s.shot.heading, r.limits.cue, Table()), 0);
+    EXPECT_TRUE(IsLegalTarget(BallOn::kRed, t.balls[static_cast<size_t>(s.object_ball)].kind));
+    EXPECT_TRUE(Replay(t, BallOn::kRed, s).success);
+    EXPECT_GE(s.pot_probability, 0);
+    EXPECT_LE(s.pot_probability, 1);
+    EXPECT_FALSE(s.events.empty());
+  }
+  for (size_t i = 1; i < a.shots.size(); ++i) EXPECT_GE(a.shots[i - 1].score, a.shots[i].score);
+}
+
+INSTANTIATE_TEST_SUITE_P(SeededFrames, PlannerTableTest, testing::Range(0, 6),
+                         [](const testing::TestParamInfo<int>& param) {
+                           return "frame_" + std::to_string(param.param);
+                         });
+
+TEST(PlannerTest, TheSameSeedGivesTheSameAnswer) {
+  Rng rng(77);
+  const TableState t = RandomFrame(rng, 8, Table());
+  PlanRequest r = Request(t, 300);
+  r.max_shots = 3;
+  const PlanAnswer a = Planner::Default().Plan(r);
+  const PlanAnswer b = Planner::Default().Plan(r);
+  r.threads = 1;  // the work partition does not depend on the threads
+  const PlanAnswer c = Planner::Default().Plan(r);
+  ASSERT_FALSE(a.shots.empty());
+  for (const PlanAnswer* other : {&b, &c}) {
+    ASSERT_EQ(a.shots.size(), other->shots.size());
+    EXPECT_EQ(a.simulations, other->simulations);
+    for (size_t i = 0; i < a.shots.size(); ++i) {
+      EXPECT_EQ(a.shots[i].shot.speed, other->shots[i].shot.speed);
+      EXPECT_EQ(a.shots[i].shot.heading, other->shots[i].shot.heading);
+      EXPECT_EQ(a.shots[i].shot.topspin, other->shots[i].shot.topspin);
+      EXPECT_EQ(a.shots[i].shot.sidespin, other->shots[i].shot.sidespin);
+      EXPECT_EQ(a.shots[i].pot_probability, other->shots[i].pot_probability);
+    }
+  }
+}
+
+struct Progress {
+  std::vector<double> scores;
+  std::vector<std::chrono::steady_clock::time_point> times;
+};
+
+TEST(PlannerTest, ProgressReportsEachImprovementOfTheBestShot) {
+  PlanRequest r = Request(ObviousPot());
+  Progress progress;
+  r.progress = [](const PlannedShot& best, void* ctx) {
+    auto* p = static_cast<Progress*>(ctx);
+    p->scores.push_back(best.score);
+    p->times.push_back(std::chrono::steady_clock::now());
+    EXPECT_GE(best.object_ball, 0);
+  };
+  r.progress_context = &progress;
+  const auto start = std::chrono::steady_clock::now();
+  const PlanAnswer a = Planner::Default().Plan(r);
+  const auto end = std::chrono::steady_clock::now();
+  ASSERT_FALSE(a.shots.empty());
+  ASSERT_FALSE(progress.scores.empty());
+  for (size_t i = 1; i < progress.scores.size(); ++i) EXPECT_GT(progress.scores[i], progress.scores[i - 1]);
+  EXPECT_LT(progress.times.front(), end);
+  EXPECT_GT(progress.times.front(), start);
+}
+
+TEST(PlannerTest, CancellingStopsThePlan) {
+  Rng rng(5);
+  PlanRequest r;
+  r.table = RandomFrame(rng, 10, Table());
+  r.time_budget = 30;  // far more than the test will wait
+  std::atomic<bool> cancel{false};
+  r.cancel = &cancel;
+  std::thread stopper([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    cancel.store(true);
+  });
+  const PlanAnswer a = Planner::Default().Plan(r);
+  stopper.join();
+  EXPECT_EQ(a.status, PlanStatus::kCancelled) << a.reason;
+  EXPECT_LT(a.elapsed, 10.0);  // far below the budget: it stopped
+}
+
+TEST(PlannerTest, ADeadlineInThePastReturnsAtOnce) {
+  PlanRequest r = Request(ObviousPot());
+  r.deadline = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+  const PlanAnswer a = Planner::Default().Plan(r);
+  EXPECT_TRUE(a.shots.empty());
+  EXPECT_EQ(a.status, PlanStatus::kDeadline) << a.reason;
+  EXPECT_LT(a.elapsed, 5.0);
+}
+
+TEST(PlannerTest, PotOnlyAndColoursOn) {
+  PlanRequest r = Request(ObviousPot());
+  r.position_play = false;
+  const PlanAnswer pot_only = Planner::Default().Plan(r);
+  ASSERT_FALSE(pot_only.shots.empty());
+  EXPECT_TRUE(Replay(r.table, BallOn::kRed, pot_only.shots.front()).success);
+  // With a colour on the planner chooses (nominates) a colour.
+  r.ball_on = BallOn::kAnyColour;
+  r.position_play = true;
+  const PlanAnswer colour = Planner::Default().Plan(r);
+  ASSERT_FALSE(colour.shots.empty()) << colour.reason;
+  for (const PlannedShot& s : colour.shots) {
+    EXPECT_TRUE(IsColour(r.table.balls[static_cast<size_t>(s.object_ball)].kind));
+    EXPECT_TRUE(Replay(r.table, BallOn::kAnyColour, s).success);
+  }
+}
+
+TEST(PlannerTest, BadRequestsNameTheField) {
+  const Planner& p = Planner::Default();
+  PlanRequest r = Request(ObviousPot());
+  r.table.balls.push_back({BallKind::kCue, Vec2(1.5, 0.3)});
+  PlanAnswer a = p.Plan(r);
+  EXPECT_EQ(a.status, PlanStatus::kInvalidRequest);
+  EXPECT_NE(a.reason.find("table.balls"), std::string::npos) << a.reason;
+  r = Request(ObviousPot());
+  r.ball_on = BallOn::kYellow;
+  EXPECT_NE(p.Validate(r).find("ball_on = yellow"), std::string::npos) << p.Validate(r);
+  r = Request(ObviousPot());
+  r.limits.max_speed = std::nan("");
+  EXPECT_NE(p.Validate(r).find("limits.max_speed"), std::string::npos);
+  r = Request(ObviousPot());
+  r.noise.heading = -1;
+  EXPECT_NE(p.Validate(r).find("noise.heading"), std::string::npos);
+  r = Request(ObviousPot());
+  r.time_budget = 0;
+  EXPECT_NE(p.Validate(r).find("time_budget"), std::string::npos);
+  r = Request(ObviousPot());
+  r.table.balls[1].position = r.table.balls[0].position;  // overlapping
+  EXPECT_NE(p.Validate(r).find("overlaps"), std::string::npos) << p.Validate(r);
+  r = Request(ObviousPot());
+  r.position_sigma = {0.001};
+  EXPECT_NE(p.Validate(r).find("position_sigma"), std::string::npos);
+  EXPECT_EQ(p.Validate(Request(ObviousPot())), "");
+}
+
+}  // namespace
+}  // namespace snooker::planner

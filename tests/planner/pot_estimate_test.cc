@@ -1,0 +1,160 @@
+// Tests of the fast pot-probability estimate (planner/pot_estimate.h): its lateral
+// spread against sampled ghost-ball geometry, and its probability against Monte
+// Carlo with the full simulator on a set of positions.
+#include "planner/pot_estimate.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "planner/candidates.h"
+#include "planner/planner.h"
+#include "planner/random.h"
+#include "planner/robustness.h"
+#include "planner/search.h"
+
+namespace snooker::planner {
+namespace {
+
+using physics::Vec2;
+
+constexpr double kR = 0.02625;
+
+TEST(PotEstimateTest, WindowProbabilityIsTheGaussianMassInside) {
+  PocketWindow w;
+  w.empty = false;
+  w.lo = -0.01;
+  w.hi = 0.01;
+  EXPECT_NEAR(WindowProbability(0, 0.01, w), 0.682689492, 1e-8);  // +-1 sigma
+  EXPECT_NEAR(WindowProbability(0.01, 0.01, w), 0.477249868, 1e-8);
+  EXPECT_EQ(WindowProbability(0.005, 0, w), 1.0);
+  EXPECT_EQ(WindowProbability(0.02, 0, w), 0.0);
+  w.empty = true;
+  EXPECT_EQ(WindowProbability(0, 0.01, w), 0.0);
+}
+
+// The object ball's line at the mouth when the balls really are at cue/object and
+// the cue ball runs along `heading`: its offset from `mouth` (left of its travel).
+double GeometricOffset(const Vec2& cue, const Vec2& object, double heading, const Vec2& mouth) {
+  const Vec2 u(std::cos(heading), std::sin(heading));
+  const double b = Cross(u, object - cue);
+  const double s = u.dot(object - cue) - std::sqrt(4 * kR * kR - b * b);
+  const Vec2 n = (object - (cue + s * u)) / (2 * kR);
+  return (object - mouth).dot(Left(n));
+}
+
+// The first-order spread matches sampled exact geometry (heading and vision noise,
+// no throw) within 3 % (the sampling error of 20000 draws is 0.5 %).
+TEST(PotEstimateTest, LateralSigmaMatchesSampledGeometry) {
+  NoiseModel noise;
+  noise.topspin = noise.sidespin = noise.speed_fraction = 0;
+  struct Pot { Vec2 cue, object, mouth; double cut_deg; };
+  const std::vector<Pot> pots = {
+      {Vec2(0.5, 0.5), Vec2(0.6, 1.6), Vec2(0.03, 3.54), 0},
+      {Vec2(1.2, 0.8), Vec2(0.7, 1.8), Vec2(0.03, 3.54), 35},
+      {Vec2(0.3, 2.9), Vec2(0.9, 3.0), Vec2(1.75, 3.54), -60}};
+  Rng rng(3);
+  for (const Pot& p : pots) {
+    const Vec2 to_mouth = p.mouth - p.object;
+    const auto aim = AimAlong(p.cue, p.object, Direction(to_mouth), kR);
+    ASSERT_TRUE(aim);
+    const double nominal = GeometricOffset(p.cue, p.object, aim->heading, p.mouth);
+    double sum2 = 0;
+    const int n = 20000;
+    for (int k = 0; k < n; ++k) {
+      const Vec2 c = p.cue + noise.position * Vec2(rng.Gaussian(), rng.Gaussian());
+      const Vec2 o = p.object + noise.position * Vec2(rng.Gaussian(), rng.Gaussian());
+      const double h = aim->heading + noise.heading * rng.Gaussian();
+      const double e = GeometricOffset(c, o, h, p.mouth) - nominal;
+      sum2 += e * e;
+    }
+    const double sampled = std::sqrt(sum2 / n);
+    const double sigma = LateralSigma(p.cue, p.object, aim->heading, aim->cut, to_mouth.norm(), 1.0,
+                                      noise.position, noise.position, noise,
+                                      ThrowModel::Default(), kR);
+    EXPECT_NEAR(sigma / sampled, 1.0, 0.03) << "cut " << physics::RadToDeg(aim->cut);
+  }
+}
+
+// Agreement with Monte Carlo: on seeded random two-ball positions (every pocket the
+// candidates keep, cuts up to 70 deg), the estimate for the plain rolling pot it
+// assumes (RollingPotShot) against 200 noisy full simulations of that shot. The
+// binomial error of 200 samples is at most 0.035; the estimate's own error is
+// larger on long cut pots (first-order spread, tabulated windows). Named
+// tolerances: each position within kEach, the mean within kMean.
+constexpr double kEach = 0.15;
+constexpr double kMean = 0.06;
+constexpr int kSamples = 200;
+
+TEST(PotEstimateTest, AgreesWithMonteCarloOnASetOfPositions) {
+  const Planner& planner = Planner::Default();
+  const physics::TableModel& table = physics::DefaultTable();
+  ShotSimulator sim(table, planner.config().full);
+  double sum_abs = 0;
+  int positions = 0;
+  for (int f = 0; f < 12; ++f) {
+    Rng rng(DeriveSeed(99, static_cast<std::uint64_t>(f)));
+    TableState t;
+    t.balls = {{BallKind::kCue, Vec2(rng.Uniform(0.1, 1.6), rng.Uniform(0.1, 3.4))},
+               {BallKind::kRed, Vec2(rng.Uniform(0.1, 1.6), rng.Uniform(0.1, 3.4))}};
+    PlanRequest req;
+    req.table = t;
+    const PotContext ctx = planner.ContextFor(req);
+    for (const Candidate& c : EnumerateCandidates(t, BallOn::kRed, ctx).candidates) {
+      if (std::abs(c.estimate.aim.cut) > physics::DegToRad(70)) continue;
+      const auto shot = RollingPotShot(t.balls[0].position, t.balls[1].position, c.estimate,
+                                       planner.config().full);
+      ASSERT_TRUE(shot);
+      const ShotSetup setup{&t, 0, 1, c.pocket, BallOn::kRed};
+      Rng mc(DeriveSeed(5, static_cast<std::uint64_t>(f), static_cast<std::uint64_t>(c.pocket)));
+      std::vector<Vec2> truth;
+      int dropped = 0;
+      for (int k = 0; k < kSamples; ++k) {
+        SampleTruePositions(t, ctx, mc, &truth);
+        // The estimate is of the object ball dropping (not of where the cue ball
+        // goes after): run to the end, count the object ball's drops.
+        const ShotOutcome& out = sim.Run(setup, SampleExecution(*shot, ctx.noise, mc), truth,
+                                         ShotSimulator::Mode::kFull, {});
+        dropped += out.first_hit == 1 && out.object_pocket == static_cast<int>(c.pocket);
+      }
+      const double rate = static_cast<double>(dropped) / kSamples;
+      EXPECT_NEAR(c.estimate.probability, rate, kEach)
+          << "position " << f << " " << physics::ToString(c.pocket);
+      sum_abs += std::abs(c.estimate.probability - rate);
+      ++positions;
+    }
+  }
+  ASSERT_GE(positions, 10);
+  EXPECT_LT(sum_abs / positions, kMean) << positions << " positions";
+  RecordProperty("mean_abs_difference", std::to_string(sum_abs / positions));
+}
+
+TEST(PotEstimateTest, LongerAndThinnerPotsAreHarder) {
+  const PocketModel& pockets = PocketModel::Default();
+  const ThrowModel& throws = ThrowModel::Default();
+  const NoiseModel noise;
+  const physics::Pocket& p = physics::DefaultTable().pocket(physics::PocketId::kTopRight);
+  const Vec2 object = p.mouth_centre - 0.5 * p.axis;
+  double last = 2;
+  for (const double back : {0.2, 0.6, 1.2, 2.0}) {  // straight, cue ball further back
+    const auto e = EstimatePot(object - back * p.axis, object, p.id, noise.position, noise.position,
+                               noise, pockets, throws);
+    ASSERT_TRUE(e);
+    EXPECT_LT(e->probability, last + 1e-12);
+    last = e->probability;
+  }
+  const Vec2 side(-p.axis.y(), p.axis.x());
+  last = 2;
+  for (const double deg : {0.0, 20.0, 40.0, 60.0}) {  // same distance, thinner cuts
+    const double a = physics::DegToRad(deg);
+    const Vec2 cue = object - 0.8 * (std::cos(a) * p.axis + std::sin(a) * side);
+    const auto e = EstimatePot(cue, object, p.id, noise.position, noise.position, noise, pockets, throws);
+    ASSERT_TRUE(e);
+    EXPECT_LT(e->probability, last + 1e-12) << deg;
+    last = e->probability;
+  }
+}
+
+}  // namespace
+}  // namespace snooker::planner

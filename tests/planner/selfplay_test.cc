@@ -1,0 +1,89 @@
+// Tests of self-play (planner/selfplay.h): the random frames are what issue 8
+// describes, and a short run's statistics are consistent with its frames.
+#include "planner/selfplay.h"
+
+#include <gtest/gtest.h>
+
+#include <numeric>
+
+namespace snooker::planner {
+namespace {
+
+using physics::Vec2;
+
+TEST(SelfPlayTest, RandomFramesAreValidMidFrameTables) {
+  const physics::TableModel& table = physics::DefaultTable();
+  Rng rng(8);
+  for (int k = 0; k < 50; ++k) {
+    const int reds = 6 + k % 5;
+    const TableState t = RandomFrame(rng, reds, table);
+    EXPECT_EQ(t.reds(), reds);
+    EXPECT_EQ(t.Count(BallKind::kCue), 1);
+    for (int c = 0; c < physics::kColourCount; ++c) {
+      const BallKind kind = KindOf(static_cast<physics::Colour>(c));
+      ASSERT_EQ(t.Count(kind), 1);
+      for (const Ball& b : t.balls) {
+        if (b.kind == kind) {
+          EXPECT_EQ(b.position, table.spot(static_cast<physics::Colour>(c)));
+        }
+      }
+    }
+    std::vector<physics::BallPlacement> placed;
+    for (const Ball& b : t.balls) placed.push_back({"", b.position});
+    EXPECT_EQ(table.ValidatePlacement(placed), "");
+    // Scattered reds touch nothing.
+    for (size_t i = 0; i < t.balls.size(); ++i) {
+      for (size_t j = i + 1; j < t.balls.size(); ++j) {
+        EXPECT_GT((t.balls[i].position - t.balls[j].position).norm(), 2 * table.ball_radius());
+      }
+    }
+  }
+}
+
+TEST(SelfPlayTest, PercentileIsNearestRank) {
+  const std::vector<double> v = {5, 1, 4, 2, 3};
+  EXPECT_EQ(Percentile(v, 0.5), 3);
+  EXPECT_EQ(Percentile(v, 0.99), 5);
+  EXPECT_EQ(Percentile(v, 0.0), 1);
+  EXPECT_EQ(Percentile({}, 0.5), 0);
+}
+
+TEST(SelfPlayTest, AShortRunIsConsistent) {
+  SelfPlayOptions o;
+  o.frames = 2;
+  o.seed = 3;
+  o.time_budget = 30;
+  o.max_simulations = 100;
+  o.monte_carlo_samples = 8;
+  o.max_shots_per_frame = 4;
+  const SelfPlayReport r = RunSelfPlay(Planner::Default(), o);
+  ASSERT_EQ(r.frames, 2);
+  ASSERT_EQ(r.records.size(), 2u);
+  int shots = 0, pots = 0, total = 0;
+  for (const FrameRecord& f : r.records) {
+    EXPECT_GE(f.reds, 6);
+    EXPECT_LE(f.reds, 10);
+    EXPECT_LE(f.pots, f.attempts);
+    // Reds and colours alternate: a break of n pots scores at least n.
+    EXPECT_GE(f.points, f.pots);
+    EXPECT_FALSE(f.end.empty());
+    shots += f.attempts;
+    pots += f.pots;
+    total += f.points;
+    EXPECT_GE(r.max_break, f.points);
+  }
+  EXPECT_EQ(r.shots, shots);
+  EXPECT_EQ(r.pots, pots);
+  EXPECT_DOUBLE_EQ(r.mean_break, total / 2.0);
+  EXPECT_GE(static_cast<int>(r.plan_ms.size()), shots);
+  EXPECT_LE(r.plan_ms_p50, r.plan_ms_p99);
+  // Same seed, same frames.
+  const SelfPlayReport again = RunSelfPlay(Planner::Default(), o);
+  for (size_t i = 0; i < r.records.size(); ++i) {
+    EXPECT_EQ(r.records[i].points, again.records[i].points);
+    EXPECT_EQ(r.records[i].end, again.records[i].end);
+  }
+}
+
+}  // namespace
+}  // namespace snooker::planner

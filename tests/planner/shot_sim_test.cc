@@ -1,0 +1,136 @@
+// Tests of the judged shot simulation (planner/shot_sim.h): stopping early never
+// changes the verdict, a reused simulator gives what a fresh one gives, a capped
+// run is a failure, and the object ball's measured line is where it goes.
+#include "planner/shot_sim.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "planner/geometry.h"
+#include "planner/random.h"
+#include "planner/selfplay.h"
+
+namespace snooker::planner {
+namespace {
+
+using physics::Vec2;
+
+struct Case {
+  TableState table;
+  ShotSetup setup;
+  physics::Shot shot;
+};
+
+// Random shots at random red-pocket pairs on random 8-red frames: mostly misses,
+// some pots, some fouls.
+std::vector<Case> RandomCases(int n) {
+  std::vector<Case> cases;
+  Rng rng(21);
+  for (int k = 0; k < n; ++k) {
+    Case c;
+    c.table = RandomFrame(rng, 8, physics::DefaultTable());
+    const int cue = c.table.cue_index();
+    int object = -1;
+    while (object < 0) {
+      const int i = static_cast<int>(rng.Uniform() * static_cast<double>(c.table.balls.size()));
+      if (c.table.balls[static_cast<size_t>(i)].kind == BallKind::kRed) object = i;
+    }
+    const Vec2 d = c.table.balls[static_cast<size_t>(object)].position - c.table.balls[static_cast<size_t>(cue)].position;
+    c.shot.speed = rng.Uniform(0.5, 4.0);
+    c.shot.heading = Direction(d) + rng.Uniform(-0.03, 0.03);
+    c.shot.topspin = rng.Uniform(-1, 1) * c.shot.speed / 0.02625;
+    c.shot.sidespin = rng.Uniform(-0.5, 0.5) * c.shot.speed / 0.02625;
+    c.setup = {nullptr, cue, object, static_cast<physics::PocketId>(static_cast<int>(rng.Uniform() * 6)), BallOn::kRed};
+    cases.push_back(std::move(c));
+  }
+  return cases;
+}
+
+TEST(ShotSimTest, StoppingEarlyNeverChangesTheVerdict) {
+  ShotSimulator decide(physics::DefaultTable(), physics::SimParams{});
+  ShotSimulator full(physics::DefaultTable(), physics::SimParams{});
+  int stopped = 0, successes = 0;
+  for (Case& c : RandomCases(150)) {
+    c.setup.table = &c.table;
+    const ShotOutcome a = decide.Run(c.setup, c.shot, {}, ShotSimulator::Mode::kDecide, {});
+    const ShotOutcome b = full.Run(c.setup, c.shot, {}, ShotSimulator::Mode::kFull, {});
+    EXPECT_EQ(a.success, b.success);
+    EXPECT_EQ(a.first_hit, b.first_hit);
+    if (a.success) {
+      ++successes;
+      EXPECT_EQ(a.potted, b.potted);
+      for (size_t i = 0; i < c.table.balls.size(); ++i) {
+        EXPECT_EQ(decide.final_balls()[i].r, full.final_balls()[i].r);
+      }
+    }
+    if (a.stopped_early) {
+      ++stopped;
+      EXPECT_LE(a.events, b.events);
+    }
+  }
+  EXPECT_GT(stopped, 50);  // the rule is exercised
+  EXPECT_GT(successes, 0);
+}
+
+TEST(ShotSimTest, AReusedSimulatorGivesWhatAFreshOneGives) {
+  ShotSimulator reused(physics::DefaultTable(), physics::SimParams{});
+  for (Case& c : RandomCases(40)) {
+    c.setup.table = &c.table;
+    const ShotOutcome a = reused.Run(c.setup, c.shot, {}, ShotSimulator::Mode::kDecide, {});
+    ShotSimulator fresh(physics::DefaultTable(), physics::SimParams{});
+    const ShotOutcome b = fresh.Run(c.setup, c.shot, {}, ShotSimulator::Mode::kDecide, {});
+    EXPECT_EQ(a.success, b.success);
+    EXPECT_EQ(a.events, b.events);
+    EXPECT_EQ(a.foul, b.foul);
+    EXPECT_EQ(a.line.offset, b.line.offset);
+    for (size_t i = 0; i < c.table.balls.size(); ++i) {
+      EXPECT_EQ(reused.final_balls()[i].r, fresh.final_balls()[i].r);
+    }
+  }
+}
+
+TEST(ShotSimTest, AnEventCapIsAFailureNeverASuccess) {
+  const physics::Pocket& p = physics::DefaultTable().pocket(physics::PocketId::kTopRight);
+  TableState t;
+  const Vec2 red = p.mouth_centre - 0.4 * p.axis;
+  t.balls = {{BallKind::kCue, red - 0.5 * p.axis}, {BallKind::kRed, red}};
+  const ShotSetup setup{&t, 0, 1, p.id, BallOn::kRed};
+  const physics::Shot shot{1.5, Direction(p.axis), -1.5 / 0.02625, 0};  // screw back: no in-off
+  ShotSimulator normal(physics::DefaultTable(), physics::SimParams{});
+  ASSERT_TRUE(normal.Run(setup, shot, {}, ShotSimulator::Mode::kFull, {}).success);
+  physics::SimParams capped;
+  capped.max_events = 3;
+  ShotSimulator sim(physics::DefaultTable(), capped);
+  for (const auto mode : {ShotSimulator::Mode::kDecide, ShotSimulator::Mode::kFull}) {
+    const ShotOutcome& out = sim.Run(setup, shot, {}, mode, {});
+    EXPECT_EQ(out.status, physics::SimStatus::kEventLimit);
+    EXPECT_FALSE(out.success);
+    EXPECT_EQ(out.foul, Foul::kSimulationFailed);
+  }
+}
+
+TEST(ShotSimTest, TheMeasuredLineIsWhereTheObjectBallGoes) {
+  // A straight pot: the object ball's line passes the mouth centre.
+  const physics::Pocket& p = physics::DefaultTable().pocket(physics::PocketId::kBaulkLeft);
+  TableState t;
+  const Vec2 red = p.mouth_centre - 0.5 * p.axis;
+  t.balls = {{BallKind::kCue, red - 0.6 * p.axis}, {BallKind::kRed, red}};
+  const ShotSetup setup{&t, 0, 1, p.id, BallOn::kRed};
+  ShotSimulator sim(physics::DefaultTable(), physics::SimParams{});
+  const ShotOutcome& out = sim.Run(setup, {1.2, Direction(p.axis), 0, 0}, {}, ShotSimulator::Mode::kFull, {});
+  ASSERT_TRUE(out.line.valid);
+  EXPECT_NEAR(out.line.offset, 0, 1e-9);
+  EXPECT_NEAR(WrapAngle(out.line.direction - Direction(p.axis)), 0, 1e-9);
+  EXPECT_GT(out.line.arrival_speed, 0.1);
+  EXPECT_TRUE(out.success);
+  // Offset by 5 mm sideways: the line is 5 mm off (the cue ball and object ball both).
+  const Vec2 side(-p.axis.y(), p.axis.x());
+  for (Ball& b : t.balls) b.position += 0.005 * side;
+  const ShotOutcome& off = sim.Run(setup, {1.2, Direction(p.axis), 0, 0}, {}, ShotSimulator::Mode::kFull, {});
+  EXPECT_NEAR(off.line.offset, 0.005, 1e-9);
+}
+
+}  // namespace
+}  // namespace snooker::planner
