@@ -15,6 +15,7 @@ commands:
   collide    resolve one ball-ball collision (Mathavan et al. 2014)
   simulate   simulate a shot on a table until every ball is at rest
   serve      run the gRPC service (snooker.v1.ShotPlanner)
+  loadtest   load-test a server on this machine: throughput, latency, errors
   demo       start the service and use it on built-in examples
   help       this text
 
@@ -32,6 +33,7 @@ int Run(int argc, char** argv) {
   if (command == "collide") return RunCollide(args, std::cout, std::cerr);
   if (command == "simulate") return RunSimulate(args, std::cout, std::cerr);
   if (command == "serve") return RunServe(args, std::cout, std::cerr);
+  if (command == "loadtest") return RunLoadTest(args, std::cout, std::cerr);
   if (command == "demo") return RunDemo(args, std::cout, std::cerr);
   if (command == "help" || command == "--help" || command == "-h") {
     std::cout << kUsage;
