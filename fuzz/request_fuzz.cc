@@ -83,6 +83,7 @@ void Tame(v1::SimulateRequest* r) {
     o->set_max_events(3000);
   }
 }
+void Tame(v1::GetModelRequest*) {}
 void Tame(v1::CollideRequest* r) {
   v1::ImpulseSolverOptions* s = r->mutable_solver();
   if (s->has_steps() && s->steps() > 20'000 && s->steps() <= physics::limits::kMaxFixedSteps) {
