@@ -7,6 +7,8 @@
 // errors over the shots against a converged reference and reports them as counters:
 //   vel_err    max |error| of the post-impact velocities and R * spins, m/s
 //   angle_err  max |error| of both balls' exit angles after their slip, deg
+//   steps, rejected, rhs  mean accepted steps, rejected steps and right-hand-side
+//              evaluations per collision
 // Run: scripts/speed-error-report (writes docs/speed-vs-error.*), or
 //   build/bench/ball_ball_bench --benchmark_filter=... for a quick look.
 #include <benchmark/benchmark.h>
@@ -25,6 +27,7 @@ namespace {
 struct Outcome {
   ImpactState out;
   double cue_exit_deg, object_exit_deg;
+  ImpulseWork work;
 };
 
 Outcome Solve(const NamedShot& shot, const ImpulseSolverOptions& options) {
@@ -37,7 +40,7 @@ Outcome Solve(const NamedShot& shot, const ImpulseSolverOptions& options) {
   const Vec2 incoming(in.c.v.x(), in.c.v.y());
   return {r.out,
           RadToDeg(AngleBetween(SlipPhaseEnd(r.out.c, ball, cloth).velocity, incoming)),
-          RadToDeg(AngleBetween(SlipPhaseEnd(r.out.o, ball, cloth).velocity, incoming))};
+          RadToDeg(AngleBetween(SlipPhaseEnd(r.out.o, ball, cloth).velocity, incoming)), r.work};
 }
 
 // The reference: the adaptive integrator at tolerance 1e-14 (its agreement with
@@ -55,9 +58,12 @@ const std::vector<Outcome>& Reference() {
 
 void ReportErrors(benchmark::State& state, const ImpulseSolverOptions& options) {
   const double radius = BallParams{}.radius;
-  double vel = 0, angle = 0;
+  double vel = 0, angle = 0, steps = 0, rejected = 0, rhs = 0;
   for (size_t i = 0; i < kReportShots.size(); ++i) {
     const Outcome o = Solve(kReportShots[i], options);
+    steps += o.work.steps;
+    rejected += o.work.rejected_steps;
+    rhs += o.work.rhs_evals;
     const Outcome& r = Reference()[i];
     vel = std::max({vel, (o.out.c.v - r.out.c.v).cwiseAbs().maxCoeff(),
                     (o.out.o.v - r.out.o.v).cwiseAbs().maxCoeff(),
@@ -66,8 +72,12 @@ void ReportErrors(benchmark::State& state, const ImpulseSolverOptions& options) 
     angle = std::max({angle, std::abs(o.cue_exit_deg - r.cue_exit_deg),
                       std::abs(o.object_exit_deg - r.object_exit_deg)});
   }
+  const double n = static_cast<double>(kReportShots.size());
   state.counters["vel_err"] = vel;
   state.counters["angle_err"] = angle;
+  state.counters["steps"] = steps / n;
+  state.counters["rejected"] = rejected / n;
+  state.counters["rhs"] = rhs / n;
 }
 
 void Time(benchmark::State& state, const ImpulseSolverOptions& options) {

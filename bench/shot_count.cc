@@ -5,9 +5,12 @@
 //   cushions:  CushionsShot (the cue ball alone at 2-4 m/s: several cushions)
 //   break-off: RandomBreakOff with the reds 1e-4 m apart
 // SETTING: a fidelity tier (reference, default, search; physics/sim/fidelity.h) or a
-// number, both impact integrators' tolerance (default: SimParams's). --counts adds
-// a second, recorded pass that counts the impacts (not for instruction counting).
+// number, both impact integrators' tolerance (default: SimParams's). --passes P runs
+// the shots P times (default 1): the instructions of P = 2 less those of P = 1 are
+// the simulation's alone, without start-up and shot generation. --counts adds a
+// recorded pass that counts the impacts (not for instruction counting).
 #include <cstdio>
+#include <algorithm>
 #include <cstdlib>
 #include <random>
 #include <string>
@@ -18,18 +21,21 @@
 
 int main(int argc, char** argv) {
   using namespace snooker::physics;
-  if (argc < 3 || argc > 5) {
-    std::fprintf(stderr, "usage: shot_count planner|cushions|break-off SHOTS [SETTING] [--counts]\n");
+  if (argc < 3 || argc > 6) {
+    std::fprintf(stderr, "usage: shot_count planner|cushions|break-off SHOTS [SETTING] [--passes=P] [--counts]\n");
     return 2;
   }
   const std::string workload = argv[1];
   const int shots = std::atoi(argv[2]);
   SimParams params;
   bool counts = false;
+  int passes = 1;
   for (int a = 3; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg == "--counts") {
       counts = true;
+    } else if (arg.rfind("--passes=", 0) == 0) {
+      passes = std::max(1, std::atoi(arg.c_str() + 9));
     } else if (arg == "reference" || arg == "default" || arg == "search") {
       params = FidelityParams(arg == "reference" ? Fidelity::kReference
                               : arg == "default" ? Fidelity::kDefault
@@ -51,9 +57,11 @@ int main(int argc, char** argv) {
   }
   Simulator sim(DefaultTable(), params);
   long events = 0, bb = 0, cushion = 0;
-  for (const auto& balls : inputs) {
-    sim.Run(balls, RunOptions::Lean());
-    events += sim.event_count();
+  for (int pass = 0; pass < passes; ++pass) {
+    for (const auto& balls : inputs) {
+      sim.Run(balls, RunOptions::Lean());
+      events += sim.event_count();
+    }
   }
   // A recorded pass for the impact counts.
   for (const auto& balls : inputs) {

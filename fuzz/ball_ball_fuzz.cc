@@ -1,6 +1,6 @@
 // libFuzzer target for the ball-ball solver (physics/impact/ball_ball.h). Decodes any
 // bytes into an impact (both balls' velocities and spins, friction, restitution,
-// integrator and its setting) and checks what must hold for every input:
+// integrator and its setting, fidelity tier) and checks what must hold for every input:
 //  * the solver returns (within its step cap) one of its statuses;
 //  * an accepted impact gives finite output; energy does not rise (beyond the
 //    integrator's accuracy at the chosen setting); both balls' Z spins change by
@@ -74,6 +74,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   } else {
     options.tolerance = std::pow(10.0, -in.ConsumeFloatingPointInRange<double>(1, 15));
   }
+  // The fidelity tier, sometimes one the library does not know (must be rejected).
+  options.fidelity = static_cast<ImpulseFidelity>(in.ConsumeIntegralInRange<int>(0, 2));
   const BallParams ball;
 
   const ImpactResult r = ResolveImpact(s, ball, contact, mu_s, options);
@@ -88,9 +90,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       // adaptive integrator, the first-order error ~ 2/N for the fixed-step scheme
       // (the test suites check the law to rounding at tight settings).
       const double e0 = KineticEnergy(s, ball), e1 = KineticEnergy(o, ball);
-      const double slack = options.integrator == ImpulseIntegrator::kFixedStep
-                               ? 10.0 / options.steps
-                               : 20 * options.tolerance + 1e-11;
+      const ImpulseSolverOptions run = EffectiveOptions(options);  // what was solved
+      const double slack = run.integrator == ImpulseIntegrator::kFixedStep
+                               ? 10.0 / run.steps
+                               : 20 * run.tolerance + 1e-11;
       if (e1 > e0 * (1 + slack) + 1e-300) Fail("energy rose", e1, e0);
       const double dc = o.c.w.z() - s.c.w.z(), d_o = o.o.w.z() - s.o.w.z();
       if (std::abs(dc - d_o) > 1e-9 * (1 + std::abs(s.c.w.z()) + std::abs(s.o.w.z()))) {

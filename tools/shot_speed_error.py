@@ -53,34 +53,36 @@ def main():
         chk = data["reference_check"]
         out.append(f"## {title}")
         out.append("")
-        out.append(f"{data['shots']} shots. Reference convergence: at {chk['tolerance']:g} the final "
-                   f"positions are within {chk['err_mm_max']:.3g} mm of the reference, "
-                   f"{chk['pocket_changes']} pocket outcomes change.")
+        out.append(f"{data['shots']} shots, {data['ill_conditioned']} of them ill-conditioned (see below). "
+                   f"Reference convergence: at {chk['tolerance']:g} the final positions are within "
+                   f"{chk['err_mm_max']:.3g} mm of the reference ({chk['err_mm_max_well']:.3g} mm on the "
+                   f"well-conditioned shots), {chk['pocket_changes']} pocket outcomes change.")
         out.append("")
         out.append("| setting | instructions / shot | us / shot | events / shot | mean error (mm) | "
-                   "99th pct (mm) | max error (mm) | shots with a pocket outcome changed |")
-        out.append("|---|---:|---:|---:|---:|---:|---:|---:|")
-        xs, ys, labels = [], [], []
+                   "99th pct (mm) | max error (mm) | max, well-conditioned shots (mm) | "
+                   "shots with a pocket outcome changed |")
+        out.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+        xs, ys, ws, labels = [], [], [], []
         for s in data["settings"]:
             i = instr.get(s["name"])
-            out.append(f"| {s['name']} | {i:,.0f} | {s['us_per_shot']:.1f} | {s['events_per_shot']:.1f} | "
+            cost = f"{i:,.0f}" if i else "-"
+            out.append(f"| {s['name']} | {cost} | {s['us_per_shot']:.1f} | {s['events_per_shot']:.1f} | "
                        f"{s['err_mm_mean']:.2g} | {s['err_mm_p99']:.2g} | {s['err_mm_max']:.3g} | "
-                       f"{s['pocket_changes']} |" if i else
-                       f"| {s['name']} | - | {s['us_per_shot']:.1f} | {s['events_per_shot']:.1f} | "
-                       f"{s['err_mm_mean']:.2g} | {s['err_mm_p99']:.2g} | {s['err_mm_max']:.3g} | "
-                       f"{s['pocket_changes']} |")
+                       f"{s['err_mm_max_well']:.3g} | {s['pocket_changes']} |")
             if i and s["name"].startswith("tolerance"):
                 xs.append(i)
                 ys.append(max(s["err_mm_max"], 1e-9))
+                ws.append(max(s["err_mm_max_well"], 1e-9))
                 labels.append(s["name"].split()[1])
-        ax.loglog(xs, ys, "o-", color="tab:blue", label="tolerance sweep (max error)")
+        ax.loglog(xs, ys, "o-", color="tab:blue", label="tolerance sweep, max error")
+        ax.loglog(xs, ws, "^--", color="tab:green", label="max, well-conditioned shots")
         for x, y, lab in zip(xs, ys, labels):
             ax.annotate(lab, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=7)
         for s in data["settings"]:
             i = instr.get(s["name"])
             if i and s["name"].startswith("tier"):
-                ax.loglog([i], [max(s["err_mm_max"], 1e-9)], "s", markersize=9,
-                          label=s["name"])
+                ax.loglog([i], [max(s["err_mm_max_well"], 1e-9)], "s", markersize=9,
+                          label=s["name"] + " (well-cond.)")
         ax.axhline(1.0, color="gray", lw=0.8, ls="--")
         ax.set_title(workload)
         ax.set_xlabel("instructions per shot")
@@ -94,7 +96,31 @@ def main():
     out.append("The dashed line is 1 mm. Columns: *error*, over every ball left on the table in "
                "every shot, the distance between its final position and the reference's; *shots "
                "with a pocket outcome changed*, shots in which any ball drops where the reference's "
-               "does not, or the reverse.")
+               "does not, or the reverse. *Ill-conditioned*: a shot whose balls move by more than "
+               "1 um (or change pocket) when the cue ball's speed is changed by one part in 1e9 at "
+               "the reference's precision; such a shot decides something on a knife edge (a graze, "
+               "a jaw), so any numerical difference may flip it, and its error measures the shot, "
+               "not the integrator. The maximum over the other shots is the integrator's error.")
+    ba = os.path.join(data_dir, "shot-speed-error-before-after.txt")
+    if os.path.exists(ba):
+        rows = {}
+        for line in open(ba):
+            w, side, instr, us = line.split()
+            rows.setdefault(w, {})[side] = (float(instr), float(us))
+        out.append("")
+        out.append("## Before and after, at the default settings, in one run")
+        out.append("")
+        out.append("The base revision (before issue 9's engine work) built with the same shot drivers, "
+                   "both Release (-O3); instructions per shot from callgrind (two passes over the shots less "
+                   "one, so start-up and shot generation cancel), time per shot likewise from six passes "
+                   "less one (the fastest of five runs of each, before and after interleaved).")
+        out.append("")
+        out.append("| workload | instructions before | after | ratio | us before | after | ratio |")
+        out.append("|---|---:|---:|---:|---:|---:|---:|")
+        for w, _ in WORKLOADS:
+            if w in rows and "before" in rows[w] and "after" in rows[w]:
+                (ib, tb), (ia, ta) = rows[w]["before"], rows[w]["after"]
+                out.append(f"| {w} | {ib:,.0f} | {ia:,.0f} | {ib / ia:.2f}x | {tb:.1f} | {ta:.1f} | {tb / ta:.2f}x |")
     out.append("")
     out.append(f"Machine: {os.cpu_count()} cores, {platform.processor() or platform.machine()}, "
                f"{platform.platform()}.")

@@ -16,7 +16,7 @@ bool AllFinite(const ImpactState& s) {
 }
 
 bool OptionsValid(const ImpulseSolverOptions& o) {
-  if (o.max_steps <= 0) return false;
+  if (o.max_steps <= 0 || !FidelityValid(o.fidelity)) return false;
   if (o.integrator == ImpulseIntegrator::kFixedStep) return o.steps > 0;
   return limits::kTolerance.Contains(o.tolerance);
 }
@@ -78,16 +78,15 @@ std::string ValidateImpact(const ImpactState& in, const BallParams& ball,
   PutVec(out, "C angular velocity", in.c.w);
   PutVec(out, "O velocity", in.o.v);
   PutVec(out, "O angular velocity", in.o.w);
-  if (options.max_steps <= 0) {
-    add("max_steps = " + std::to_string(options.max_steps) + " (must be > 0)");
+  add(ValidateFidelity(options.fidelity));
+  const ImpulseSolverOptions o = EffectiveOptions(options);  // what the solver runs with
+  if (o.max_steps <= 0) add("max_steps = " + std::to_string(o.max_steps) + " (must be > 0)");
+  if (o.integrator == ImpulseIntegrator::kFixedStep && o.steps <= 0) {
+    add("steps = " + std::to_string(o.steps) + " (must be > 0)");
   }
-  if (options.integrator == ImpulseIntegrator::kFixedStep && options.steps <= 0) {
-    add("steps = " + std::to_string(options.steps) + " (must be > 0)");
-  }
-  if (options.integrator == ImpulseIntegrator::kAdaptive &&
-      !limits::kTolerance.Contains(options.tolerance)) {
+  if (o.integrator == ImpulseIntegrator::kAdaptive && !limits::kTolerance.Contains(o.tolerance)) {
     std::ostringstream m;
-    m << "tolerance = " << options.tolerance << " (must be in [" << limits::kTolerance.lo << ", "
+    m << "tolerance = " << o.tolerance << " (must be in [" << limits::kTolerance.lo << ", "
       << limits::kTolerance.hi << "])";
     add(m.str());
   }
@@ -99,7 +98,8 @@ ImpactResult ResolveImpact(const ImpactState& in, const BallParams& ball,
                            const ImpulseSolverOptions& options) {
   ImpactResult r;
   r.out = in;
-  if (!AllFinite(in) || !OptionsValid(options) || !ParamsValid(ball, contact, mu_s)) {
+  const ImpulseSolverOptions o = EffectiveOptions(options);
+  if (!AllFinite(in) || !OptionsValid(o) || !ParamsValid(ball, contact, mu_s)) {
     r.status = ImpactStatus::kInvalidInput;
     return r;
   }
@@ -108,9 +108,8 @@ ImpactResult ResolveImpact(const ImpactState& in, const BallParams& ball,
     return r;
   }
   const impulse::Model model(ball, contact, mu_s);
-  return options.integrator == ImpulseIntegrator::kFixedStep
-             ? detail::SolveFixedStep(in, model, options)
-             : detail::SolveAdaptive(in, model, options);
+  return o.integrator == ImpulseIntegrator::kFixedStep ? detail::SolveFixedStep(in, model, o)
+                                                      : detail::SolveAdaptive(in, model, o);
 }
 
 }  // namespace snooker::physics

@@ -7,15 +7,18 @@
 // restitution (eqs. 10, 15). Frame, signs and misprints: shared physics-notes.md and
 // physics/core/types.h. Summary of the frame: line of centres +Y, C at -Y, O at +Y, Z up.
 //
-// Two integrators solve the same impulse ODE:
+// Two integrators solve the same impulse ODE, the generic ones of physics/ode/ shared
+// with the cushion model (the model itself: ball_ball_hybrid.cc):
 //  * kFixedStep: the paper's scheme (eq. 14), explicit Euler in P_I with N steps,
 //    first order. The end of compression and the end of restitution are located
 //    inside the last step instead of overshooting it. Reproduces the paper.
-//  * kAdaptive: Dormand-Prince 5(4) with step control, the mode switches located as
-//    events (slip reaching zero at A, D or B; the vertical slip at A changing sign;
-//    an airborne ball landing; a stuck contact leaving its friction cone; the end of
-//    compression; the end of restitution) and the stick law applied when a slip
-//    reaches zero and the friction cone can hold it (physics-notes section 3).
+//  * kAdaptive: the hybrid integrator (physics/ode/hybrid_integrator.h,
+//    Dormand-Prince 5(4) with step control), the mode switches located as events on
+//    the dense output (slip reaching zero at A, D or B; the vertical slip at A
+//    changing sign; an airborne ball landing; a stuck contact leaving its friction
+//    cone; the end of compression; the end of restitution) and the stick law applied
+//    when a slip reaches zero and the friction cone can hold it (physics-notes
+//    section 3).
 //
 // Two extensions of the paper's wording, both needed for a well-posed model and
 // documented here (they change nothing in the paper's five shots):

@@ -1,9 +1,10 @@
-// The impulse ODE of Mathavan et al. (2014), shared by the fixed-step and the
-// adaptive integrator. Internal to physics/.
+// The impulse ODE of Mathavan et al. (2014), shared by the fixed-step and the hybrid
+// integrator (physics/ode/). Internal to physics/.
 //
-// Independent variable: the normal impulse P_I at A (N s). State (13 numbers):
-// v_C, w_C, v_O, w_O (collision frame) and the work W of the normal force (eq. 10a).
-// Derivatives are per unit P_I: dv/dP_I in (m/s)/(N s) and so on.
+// Independent variable: the normal impulse P_I at A (N s). State (14 numbers):
+// v_C, w_C, v_O, w_O (collision frame), the work W of the normal force (eq. 10a) and
+// P_I itself (so that the integrator may step in another clock). Derivatives are per
+// unit P_I: dv/dP_I in (m/s)/(N s) and so on.
 //
 // Forces per unit dP_I (paper Fig. 3, eqs. 3, 4, 6-8):
 //   on C at A: (f1, -1, f2), on O at A: (-f1, 1, -f2), where (f1, f2) = -mu_bb u_A/|u_A|
@@ -13,18 +14,23 @@
 //   N_C = max(0, -f2) (eq. 7a), N_O = max(0, f2) (eq. 7b); the other ball is airborne.
 //   Cloth friction on a supported ball (eq. 8): sliding -mu_s N u/|u| with u the slip
 //   at D (or B) (eq. 9), or, when stuck, the friction that keeps that slip at zero.
+// A sliding contact may have its direction held ("frozen", Mode::hold): the hybrid
+// integrator holds the direction of a slip that heads for zero along a ray, so that
+// the right-hand side stays smooth up to and through the zero it then locates.
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 
+#include "physics/impact/ball_ball.h"
 #include "physics/core/params.h"
 #include "physics/core/types.h"
 
 namespace snooker::physics::impulse {
 
-using State = Eigen::Matrix<double, 13, 1>;
+using State = Eigen::Matrix<double, 14, 1>;
 
 // Offsets into State.
 inline constexpr int kVC = 0;
@@ -32,6 +38,10 @@ inline constexpr int kWC = 3;
 inline constexpr int kVO = 6;
 inline constexpr int kWO = 9;
 inline constexpr int kWork = 12;
+inline constexpr int kP = 13;
+
+/// The contacts: A (ball-ball), D (C on the cloth), B (O on the cloth).
+enum Contact : int { kA = 0, kD = 1, kB = 2, kContacts = 3 };
 
 /// Friction law of one contact.
 enum class Law : std::uint8_t {
@@ -51,9 +61,15 @@ enum class Law : std::uint8_t {
 
 /// The discrete part of the hybrid system, held constant during a step.
 struct Mode {
-  Law a = Law::kSlide;  ///< ball-ball contact A (kSlide or kStick)
-  Law d = Law::kSlide;  ///< C on the cloth
-  Law b = Law::kSlide;  ///< O on the cloth
+  std::array<Law, kContacts> law{Law::kSlide, Law::kSlide, Law::kSlide};  // A, D, B
+  /// A sliding contact with frozen[c] slides along hold[c] whatever its slip.
+  std::array<bool, kContacts> frozen{false, false, false};
+  std::array<Vec2, kContacts> hold{Vec2::Zero(), Vec2::Zero(), Vec2::Zero()};
+  /// Direction a sliding cloth contact leaves zero slip along (its drive), used while
+  /// its slip is at most slip_zero. Zero: no friction at exactly zero slip (the
+  /// paper's rule, used by the fixed-step scheme).
+  std::array<Vec2, kContacts> dir0{Vec2::Zero(), Vec2::Zero(), Vec2::Zero()};
+  double slip_zero = 0;  ///< m/s
   bool c_on_cloth = true;
   bool o_on_cloth = true;
 };
@@ -64,6 +80,8 @@ struct Model {
   double radius = 0;       // R
   double r_over_i = 0;     // R/I
   double mu_s = 0;         // ball-cloth friction
+  double kz = 0;           // R^2 M / I (5/2 for a solid sphere)
+  double inv_k = 0;        // 1 / (1 + R^2 M / I) (2/7)
   BallBallParams contact;  // mu_bb, e, law
 
   Model(const BallParams& ball, const BallBallParams& c, double mu_s_in)
@@ -71,6 +89,8 @@ struct Model {
         radius(ball.radius),
         r_over_i(ball.radius / ball.Inertia()),
         mu_s(mu_s_in),
+        kz(ball.radius * ball.radius * ball.mass / ball.Inertia()),
+        inv_k(1.0 / (1.0 + ball.radius * ball.radius * ball.mass / ball.Inertia())),
         contact(c) {}
 };
 
@@ -81,6 +101,7 @@ inline State Pack(const ImpactState& s) {
   x.segment<3>(kVO) = s.o.v;
   x.segment<3>(kWO) = s.o.w;
   x[kWork] = 0;
+  x[kP] = 0;
   return x;
 }
 
@@ -106,13 +127,17 @@ inline Vec2 SlipD(const State& x, double R) {
 inline Vec2 SlipB(const State& x, double R) {
   return {x[kVO + 0] - R * x[kWO + 1], x[kVO + 1] + R * x[kWO + 0]};
 }
+/// Slip at contact c. Linear in the state, so it also maps a derivative to a rate.
+inline Vec2 Slip(int c, const State& x, double R) {
+  return c == kA ? SlipA(x, R) : c == kD ? SlipD(x, R) : SlipB(x, R);
+}
 /// Normal relative velocity at A, ydot_A (eq. 5c). Positive while approaching.
 inline double NormalSpeed(const State& x) { return x[kVC + 1] - x[kVO + 1]; }
 
 /// Unit vector along u, or zero when u is exactly zero.
 inline Vec2 Direction(const Vec2& u) {
-  const double n = u.norm();
-  return n > 0 ? Vec2(u / n) : Vec2::Zero();
+  const double n2 = u.squaredNorm();
+  return n2 > 0 ? Vec2(u / std::sqrt(n2)) : Vec2::Zero();
 }
 
 /// Forces of one evaluation, per unit dP_I, exposed for event guards.
@@ -128,30 +153,48 @@ struct Forces {
 
 /// The friction at A, given the mode.
 inline Vec2 FrictionA(const State& x, const Mode& m, const Model& p) {
-  if (m.a == Law::kStick) return Vec2::Zero();
+  if (m.law[kA] == Law::kStick) return Vec2::Zero();
   const Vec2 u = SlipA(x, p.radius);
-  const double s = u.norm();
-  return -BallBallFriction(p.contact, s) * Direction(u);
+  const bool marlow = p.contact.friction_law == BallBallFrictionLaw::kMarlow;
+  if (m.frozen[kA]) {
+    return -(marlow ? BallBallFriction(p.contact, u.norm()) : p.contact.mu_bb) * m.hold[kA];
+  }
+  const double s2 = u.squaredNorm();
+  if (!(s2 > 0)) return Vec2::Zero();
+  const double s = std::sqrt(s2);
+  return -((marlow ? BallBallFriction(p.contact, s) : p.contact.mu_bb) / s) * u;
 }
 
-/// Cloth friction at a contact with normal force n, slip u and stick friction
-/// `stick` (the friction that would hold the slip constant). `lag` is the slaved
-/// direction's lag behind the drive, rad.
-inline Vec2 ClothFriction(Law law, double n, const Vec2& u, const Vec2& stick, double mu_s,
-                          double lag = 0) {
+/// Direction of a sliding (kSlide) contact's slip in mode m: held if frozen, the
+/// leave direction dir0 while the slip is within slip_zero, else u/|u|.
+inline Vec2 SlideDirection(int c, const Vec2& u, const Mode& m) {
+  if (m.frozen[c]) return m.hold[c];
+  const double n2 = u.squaredNorm();
+  if (n2 <= m.slip_zero * m.slip_zero && (m.dir0[c].x() != 0 || m.dir0[c].y() != 0)) {
+    return m.dir0[c];
+  }
+  return n2 > 0 ? Vec2(u / std::sqrt(n2)) : Vec2::Zero();
+}
+
+/// Cloth friction at contact c (D or B) with normal force n, slip u and stick
+/// friction `stick` (the friction that would hold the slip constant). `lag` is the
+/// slaved direction's lag behind the drive, rad.
+inline Vec2 ClothFriction(int c, const Mode& m, double n, const Vec2& u, const Vec2& stick,
+                          double mu_s, double lag = 0) {
   if (!(n > 0)) return Vec2::Zero();
-  switch (law) {
+  switch (m.law[c]) {
     case Law::kStick: return stick;
     case Law::kSlideSlaved: {
       // The slip points along the drive -stick, rotated back by `lag`; friction
       // opposes it.
       const Vec2 d = Direction(stick);
-      const double c = std::cos(lag), s = std::sin(lag);
-      return mu_s * n * Vec2(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
+      if (lag == 0) return mu_s * n * d;
+      const double cl = std::cos(lag), sl = std::sin(lag);
+      return mu_s * n * Vec2(cl * d.x() + sl * d.y(), -sl * d.x() + cl * d.y());
     }
     case Law::kSlide: break;
   }
-  return -mu_s * n * Direction(u);
+  return -mu_s * n * SlideDirection(c, u, m);
 }
 
 /// Cloth forces on C (at D) and O (at B) given the friction at A.
@@ -164,15 +207,12 @@ inline Forces ComputeForces(const State& x, const Mode& m, const Model& p) {
   const double f1 = f.f_a.x();
   const double f2 = f.f_a.y();
   const double R = p.radius;
-  // (1/M + R^2/I) M = 1 + R r_over_i M = 7/2 for a solid sphere, kept general.
-  const double k = 1.0 + R * p.r_over_i / p.inv_mass;
-  const double kz = R * p.r_over_i / p.inv_mass;  // R^2 M / I = 5/2
   f.n_c = m.c_on_cloth ? std::max(0.0, -f2) : 0.0;
   f.n_o = m.o_on_cloth ? std::max(0.0, f2) : 0.0;
-  f.stick_d = Vec2(-f1, 1.0 - kz * f2) / k;
-  f.stick_b = Vec2(f1, -1.0 - kz * f2) / k;
-  f.f_d = ClothFriction(m.d, f.n_c, SlipD(x, R), f.stick_d, p.mu_s);
-  f.f_b = ClothFriction(m.b, f.n_o, SlipB(x, R), f.stick_b, p.mu_s);
+  f.stick_d = Vec2(-f1, 1.0 - p.kz * f2) * p.inv_k;
+  f.stick_b = Vec2(f1, -1.0 - p.kz * f2) * p.inv_k;
+  if (f.n_c > 0) f.f_d = ClothFriction(kD, m, f.n_c, SlipD(x, R), f.stick_d, p.mu_s);
+  if (f.n_o > 0) f.f_b = ClothFriction(kB, m, f.n_o, SlipB(x, R), f.stick_b, p.mu_s);
   return f;
 }
 
@@ -196,12 +236,13 @@ inline void DerivativeFromForces(const State& x, const Forces& f, const Model& p
   d[kWO + 1] = -f.f_b.x() * ri;
   d[kWO + 2] = -f1 * ri;
   d[kWork] = NormalSpeed(x);
+  d[kP] = 1.0;
 }
 
 /// Rate of change of the friction at A along the trajectory, per unit P_I, from the
 /// state's derivative dx.
 inline Vec2 FrictionARate(const State& x, const State& dx, const Mode& m, const Model& p) {
-  if (m.a == Law::kStick) return Vec2::Zero();
+  if (m.law[kA] == Law::kStick || m.frozen[kA]) return Vec2::Zero();
   const Vec2 u = SlipA(x, p.radius);
   const double s = u.norm();
   if (!(s > 0)) return Vec2::Zero();
@@ -218,13 +259,18 @@ inline Vec2 FrictionARate(const State& x, const State& dx, const Mode& m, const 
 /// Lag of a slaved slide's direction behind its drive: |u| (d angle/dP_I) / |drive|,
 /// with the drive -stick (M / k) and d(stick)/dP_I = dstick. Capped at 0.1 rad,
 /// beyond which the quasi-steady picture no longer holds (the solver hands over).
-inline double SlavedLag(const Vec2& u, const Vec2& stick, const Vec2& dstick, const Model& p,
-                        double k) {
-  const double n = stick.norm();
-  if (!(n > 0)) return 0;
-  const double turn = (stick.x() * dstick.y() - stick.y() * dstick.x()) / (n * n);  // rad/(N s)
-  const double drive = k * p.inv_mass * n;  // |drive| = k |stick| / M, (m/s)/(N s)
+inline double SlavedLag(const Vec2& u, const Vec2& stick, const Vec2& dstick, const Model& p) {
+  const double n2 = stick.squaredNorm();
+  if (!(n2 > 0)) return 0;
+  const double turn = (stick.x() * dstick.y() - stick.y() * dstick.x()) / n2;  // rad/(N s)
+  const double drive = p.inv_mass * std::sqrt(n2) / p.inv_k;  // |drive| = k |stick| / M
   return std::clamp(u.norm() * turn / drive, -0.1, 0.1);
+}
+
+/// d(stick friction at D or B)/dP_I from the rate of the friction at A.
+inline Vec2 StickRate(int c, const Vec2& dfa, const Model& p) {
+  return c == kD ? Vec2(-dfa.x() * p.inv_k, -p.kz * dfa.y() * p.inv_k)
+                 : Vec2(dfa.x() * p.inv_k, -p.kz * dfa.y() * p.inv_k);
 }
 
 /// Is a slaved slide with normal force n and stick friction `stick` in the stiff,
@@ -241,23 +287,21 @@ inline void Derivative(const State& x, const Mode& m, const Model& p, State* dx,
   Forces f = ComputeForces(x, m, p);
   DerivativeFromForces(x, f, p, dx);
   const bool slaved_d =
-      m.d == Law::kSlideSlaved && f.n_c > 0 && SlavedStiff(f.n_c, f.stick_d, p.mu_s);
+      m.law[kD] == Law::kSlideSlaved && f.n_c > 0 && SlavedStiff(f.n_c, f.stick_d, p.mu_s);
   const bool slaved_b =
-      m.b == Law::kSlideSlaved && f.n_o > 0 && SlavedStiff(f.n_o, f.stick_b, p.mu_s);
+      m.law[kB] == Law::kSlideSlaved && f.n_o > 0 && SlavedStiff(f.n_o, f.stick_b, p.mu_s);
   if (slaved_d || slaved_b) {
     const Vec2 dfa = FrictionARate(x, *dx, m, p);
-    const double k = 1.0 + p.radius * p.r_over_i / p.inv_mass;  // 7/2
-    const double kz = p.radius * p.r_over_i / p.inv_mass;       // 5/2
     const double R = p.radius;
-    if (slaved_d) {  // stick_d = (-f1, 1 - kz f2) / k
-      const Vec2 dstick(-dfa.x() / k, -kz * dfa.y() / k);
-      f.f_d = ClothFriction(m.d, f.n_c, SlipD(x, R), f.stick_d, p.mu_s,
-                            SlavedLag(SlipD(x, R), f.stick_d, dstick, p, k));
+    if (slaved_d) {
+      const Vec2 u = SlipD(x, R);
+      f.f_d = ClothFriction(kD, m, f.n_c, u, f.stick_d, p.mu_s,
+                            SlavedLag(u, f.stick_d, StickRate(kD, dfa, p), p));
     }
-    if (slaved_b) {  // stick_b = (f1, -1 - kz f2) / k
-      const Vec2 dstick(dfa.x() / k, -kz * dfa.y() / k);
-      f.f_b = ClothFriction(m.b, f.n_o, SlipB(x, R), f.stick_b, p.mu_s,
-                            SlavedLag(SlipB(x, R), f.stick_b, dstick, p, k));
+    if (slaved_b) {
+      const Vec2 u = SlipB(x, R);
+      f.f_b = ClothFriction(kB, m, f.n_o, u, f.stick_b, p.mu_s,
+                            SlavedLag(u, f.stick_b, StickRate(kB, dfa, p), p));
     }
     DerivativeFromForces(x, f, p, dx);
   }

@@ -34,12 +34,14 @@ void CheckVec(std::ostringstream& out, const char* name, const Vec3& v) {
 
 // The checks, without building messages (ResolveCushionImpact must not allocate).
 struct OptionChecks {
-  bool max_steps, steps, tolerance;
-  bool Ok() const { return max_steps && steps && tolerance; }
+  bool fidelity, max_steps, steps, tolerance;
+  bool Ok() const { return fidelity && max_steps && steps && tolerance; }
 };
 
-OptionChecks CheckOptions(const ImpulseSolverOptions& o) {
+OptionChecks CheckOptions(const ImpulseSolverOptions& given) {
+  const ImpulseSolverOptions o = EffectiveOptions(given);  // what the solver runs with
   OptionChecks k;
+  k.fidelity = FidelityValid(given.fidelity);
   k.max_steps = o.max_steps > 0;
   k.steps = o.integrator != ImpulseIntegrator::kFixedStep || o.steps > 0;
   k.tolerance = o.integrator != ImpulseIntegrator::kAdaptive ||
@@ -162,13 +164,13 @@ std::string ValidateCushionImpact(const BallMotion& in, const BallParams& ball,
   CheckVec(out, "velocity", in.v);
   CheckVec(out, "angular velocity", in.w);
   const OptionChecks k = CheckOptions(options);
-  if (!k.max_steps) {
-    Add(out, "max_steps = " + std::to_string(options.max_steps) + " (must be > 0)");
-  }
-  if (!k.steps) Add(out, "steps = " + std::to_string(options.steps) + " (must be > 0)");
+  const ImpulseSolverOptions o = EffectiveOptions(options);
+  Add(out, ValidateFidelity(options.fidelity));
+  if (!k.max_steps) Add(out, "max_steps = " + std::to_string(o.max_steps) + " (must be > 0)");
+  if (!k.steps) Add(out, "steps = " + std::to_string(o.steps) + " (must be > 0)");
   if (!k.tolerance) {
     std::ostringstream m;
-    m << "tolerance = " << options.tolerance << " (must be in [" << limits::kTolerance.lo << ", "
+    m << "tolerance = " << o.tolerance << " (must be in [" << limits::kTolerance.lo << ", "
       << limits::kTolerance.hi << "])";
     Add(out, m.str());
   }
@@ -216,9 +218,9 @@ CushionImpactResult ResolveCushionImpact(const BallMotion& in, const BallParams&
     r.status = ImpactStatus::kNotApproaching;
     return r;
   }
-  return options.integrator == ImpulseIntegrator::kFixedStep
-             ? cushion::SolveFixedStep(in, model, options)
-             : cushion::SolveAdaptive(in, model, options);
+  const ImpulseSolverOptions o = EffectiveOptions(options);
+  return o.integrator == ImpulseIntegrator::kFixedStep ? cushion::SolveFixedStep(in, model, o)
+                                                      : cushion::SolveAdaptive(in, model, o);
 }
 
 }  // namespace snooker::physics

@@ -26,15 +26,16 @@
 //    ydot cos th + zdot sin th reaches 0 (work W_c of the normal force); the impact
 //    ends at W = (1 - e_e^2) W_c.
 //
-// Two integrators of the impulse ODE (independent variable P_I), as for ball-ball
-// (ball_ball.h; shared types in impulse_solver.h): kFixedStep, the paper's explicit
-// Euler with N steps of
-// dP_I = (1 + e_e) M v_n / N (v_n the initial normal speed; the impact then takes
-// about N / cos^2 th steps without friction, 1.19 N at the default height) and the
-// two phase ends located inside the last step; kAdaptive, Dormand-Prince 5(4) with
-// step control (Rosenbrock 2(3) where a small slip makes the problem stiff), located
-// events and the stick law. Why the adaptive one looks as it does:
-// ball_cushion_adaptive.cc. The model and measured figures: docs/cushion-model.md.
+// Two integrators of the impulse ODE (independent variable P_I), the generic ones of
+// physics/ode/ shared with ball-ball (ball_ball.h; shared types in impulse_solver.h):
+// kFixedStep, the paper's explicit Euler with N steps of dP_I = (1 + e_e) M v_n / N
+// (v_n the initial normal speed; the impact then takes about N / cos^2 th steps
+// without friction, 1.19 N at the default height) and the two phase ends located
+// inside the last step; kAdaptive, the hybrid integrator (physics/ode/
+// hybrid_integrator.h: Dormand-Prince 5(4) with step control, Rosenbrock 2(3) where a
+// small slip makes the problem stiff, events located on the dense output) with this
+// model's witnesses and stick law (ball_cushion_hybrid.cc). The model and measured
+// figures: docs/cushion-model.md.
 //
 // Hot path: no allocation, no exception, no virtual call; every loop has a cap.
 #pragma once

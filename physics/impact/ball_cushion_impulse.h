@@ -1,9 +1,10 @@
 // The impulse ODE of the Mathavan et al. (2010) cushion model, shared by the fixed-step
-// and the adaptive integrator. Internal to physics/.
+// and the hybrid integrator (physics/ode/). Internal to physics/.
 //
-// Independent variable: the normal impulse P_I at I (N s). State (6 numbers, cushion
-// frame): xdot, ydot, w (3) and the work W of the normal force; zdot_G = 0 throughout.
-// Derivatives are per unit P_I.
+// Independent variable: the normal impulse P_I at I (N s). State (7 numbers, cushion
+// frame): xdot, ydot, w (3), the work W of the normal force and P_I itself (so that
+// the integrator may step in another clock); zdot_G = 0 throughout. Derivatives are
+// per unit P_I.
 //
 // Forces on the ball per unit dP_I (physics-notes section 8; s = sin th, c = cos th):
 //   normal at I:    -(0, c, s)
@@ -32,7 +33,7 @@
 
 namespace snooker::physics::cushion {
 
-using State = Eigen::Matrix<double, 6, 1>;
+using State = Eigen::Matrix<double, 7, 1>;
 
 // Offsets into State.
 inline constexpr int kVx = 0;
@@ -41,6 +42,7 @@ inline constexpr int kWx = 2;
 inline constexpr int kWy = 3;
 inline constexpr int kWz = 4;
 inline constexpr int kWork = 5;
+inline constexpr int kP = 6;
 
 enum Contact : int { kI = 0, kC = 1, kContacts = 2 };
 
@@ -53,10 +55,11 @@ struct Mode {
   /// direction in which the dynamics drive it away from zero). A zero vector means no
   /// friction at exactly zero slip (the paper's rule, used by the fixed-step scheme).
   std::array<Vec2, kContacts> dir0{Vec2::Zero(), Vec2::Zero()};
-  /// A frozen sliding contact slides along dir0 whatever its slip: the adaptive
+  /// A frozen sliding contact slides along hold whatever its slip: the hybrid
   /// integrator holds the direction of a slip that heads for zero along a fixed ray,
   /// so that the step stays smooth up to and through the zero it then locates.
   std::array<bool, kContacts> frozen{false, false};
+  std::array<Vec2, kContacts> hold{Vec2::Zero(), Vec2::Zero()};
   double slip_zero = 0;  ///< m/s
 };
 
@@ -84,7 +87,7 @@ struct Model {
 
 inline State Pack(const BallMotion& m) {
   State x;
-  x << m.v.x(), m.v.y(), m.w.x(), m.w.y(), m.w.z(), 0.0;
+  x << m.v.x(), m.v.y(), m.w.x(), m.w.y(), m.w.z(), 0.0, 0.0;
   return x;
 }
 
@@ -128,7 +131,7 @@ inline Vec2 Direction(const Vec2& u, const Vec2& fallback, double zero) {
 
 /// Direction of sliding friction's opposite at contact c in mode m.
 inline Vec2 SlideDirection(int c, const Vec2& u, const Mode& m) {
-  return m.frozen[c] ? m.dir0[c] : Direction(u, m.dir0[c], m.slip_zero);
+  return m.frozen[c] ? m.hold[c] : Direction(u, m.dir0[c], m.slip_zero);
 }
 
 /// Forces of one evaluation, per unit dP_I.
@@ -187,11 +190,12 @@ inline void Derivative(const State& x, const Mode& m, const Model& p, State* dx,
   d[kWy] = (p.s * f.x() - g.x()) * p.r_over_i;
   d[kWz] = -p.c * f.x() * p.r_over_i;
   d[kWork] = NormalSpeed(x, p);
+  d[kP] = 1.0;
   if (forces_out != nullptr) *forces_out = F;
 }
 
-/// Integrators behind ResolveCushionImpact. Both take validated input with a
-/// positive normal speed.
+/// Integrators behind ResolveCushionImpact (ball_cushion_hybrid.cc). Both take
+/// validated input with a positive normal speed.
 CushionImpactResult SolveFixedStep(const BallMotion& in, const Model& model,
                                    const ImpulseSolverOptions& options);
 CushionImpactResult SolveAdaptive(const BallMotion& in, const Model& model,

@@ -12,4 +12,23 @@ const char* ToString(ImpactStatus status) {
   return "unknown";
 }
 
+bool FidelityValid(ImpulseFidelity fidelity) {
+  return fidelity == ImpulseFidelity::kExact || fidelity == ImpulseFidelity::kSearch;
+}
+
+std::string ValidateFidelity(ImpulseFidelity fidelity) {
+  if (FidelityValid(fidelity)) return "";
+  return "fidelity = " + std::to_string(static_cast<int>(fidelity)) +
+         " (must be kExact (0) or kSearch (1))";
+}
+
+ImpulseSolverOptions EffectiveOptions(const ImpulseSolverOptions& options) {
+  ImpulseSolverOptions o = options;
+  if (o.fidelity == ImpulseFidelity::kSearch) {
+    o.integrator = ImpulseIntegrator::kAdaptive;
+    o.tolerance = kSearchTolerance;
+  }
+  return o;
+}
+
 }  // namespace snooker::physics

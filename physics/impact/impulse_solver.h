@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 namespace snooker::physics {
 
@@ -12,7 +13,25 @@ enum class ImpulseIntegrator : std::uint8_t {
   kAdaptive,   ///< Dormand-Prince 5(4), step control, located events, stick law.
 };
 
+/// How much precision an impact is solved to (issue 9: fidelity is a parameter).
+enum class ImpulseFidelity : std::uint8_t {
+  /// The integrator exactly as configured (`integrator`, `tolerance`, `steps`).
+  kExact,
+  /// For a planner's search, where thousands of candidate shots are simulated and
+  /// the chosen ones are verified with kExact: the adaptive integrator at
+  /// kSearchTolerance, whatever `integrator` and `tolerance` say. Measured on the
+  /// benchmark shot sets (docs/impact-speed.md): at most 3e-6 m/s (ball-ball) and
+  /// 2e-5 m/s (cushion) from a converged answer, for about a quarter of the work of
+  /// the default tolerance.
+  kSearch,
+};
+
+/// The tolerance of ImpulseFidelity::kSearch (chosen in docs/impact-speed.md).
+inline constexpr double kSearchTolerance = 1e-6;
+
 struct ImpulseSolverOptions {
+  /// kSearch overrides `integrator` and `tolerance` (see ImpulseFidelity).
+  ImpulseFidelity fidelity = ImpulseFidelity::kExact;
   ImpulseIntegrator integrator = ImpulseIntegrator::kAdaptive;
   /// kFixedStep: N of eq. 14, the step being dP_I = (1 + e) M ydot_A(0) / N.
   std::int32_t steps = 1000;
@@ -38,6 +57,15 @@ enum class ImpactStatus : std::uint8_t {
 };
 
 const char* ToString(ImpactStatus status);
+
+/// The options a solver runs with: `options` with its fidelity applied (kSearch sets
+/// the adaptive integrator at kSearchTolerance).
+ImpulseSolverOptions EffectiveOptions(const ImpulseSolverOptions& options);
+
+/// True for a fidelity this library knows (an enum read from outside may not be).
+bool FidelityValid(ImpulseFidelity fidelity);
+/// Empty for a known fidelity; otherwise a message naming the bad value.
+std::string ValidateFidelity(ImpulseFidelity fidelity);
 
 /// How often a contact changed its regime during the impact (adaptive integrator).
 struct ContactTransitions {

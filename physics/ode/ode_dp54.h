@@ -3,8 +3,8 @@
 // root finder and Hairer's PI step-size controller. Internal to physics/.
 //
 // Header-only templates over a fixed-size Eigen vector: no allocation, no exception,
-// no virtual call, every loop capped. Used by both impact integrators
-// (ball_ball_adaptive.cc, ball_cushion_adaptive.cc).
+// no virtual call, every loop capped. Used by the hybrid impulse integrator
+// (hybrid_integrator.h).
 //
 // Reference: Hairer, Norsett & Wanner, Solving ODEs I: II.5 (tableau, FSAL, local
 // extrapolation), II.6 (dense output), IV.2 (the PI controller for DOPRI5).
@@ -44,17 +44,32 @@ struct Dp54Result {
   Y y1;               ///< 5th-order solution at the end of the step
   Y k7;               ///< derivative at y1 (the next step's first stage, FSAL)
   Y err;              ///< 5th- minus embedded 4th-order solution: local error estimate
-  /// Coefficients r2..r5 of the 4th-order dense output (Dp54DenseAt).
-  std::array<Y, 4> dense;
   bool valid = true;  ///< false if a derivative was undefined or y1 is not finite
+  /// Stages for the dense output, which is built only when asked for (Dp54Dense):
+  /// most steps never need it.
+  std::array<Y, 5> k;  // k1, k3, k4, k5, k6
+  double h = 0;
 };
 
-/// The state at the fraction t in [0, 1] of a step from `y0` (DOPRI5's continuous
-/// extension, order 4: as accurate as the step's own error estimate).
+/// Coefficients r2..r5 of DOPRI5's continuous extension for step s from y0.
 template <class Y>
-Y Dp54DenseAt(const Y& y0, const Dp54Result<Y>& s, double t) {
-  return y0 + t * (s.dense[0] + (1 - t) * (s.dense[1] + t * (s.dense[2] + (1 - t) * s.dense[3])));
-}
+struct Dp54Dense {
+  std::array<Y, 4> r;
+  Dp54Dense() = default;
+  Dp54Dense(const Y& y0, const Dp54Result<Y>& s) {
+    using namespace dp54;
+    const std::array<Y, 5>& k = s.k;
+    r[0] = s.y1 - y0;
+    r[1] = s.h * k[0] - r[0];
+    r[2] = r[0] - s.h * s.k7 - r[1];
+    r[3] = s.h * (kD1 * k[0] + kD3 * k[1] + kD4 * k[2] + kD5 * k[3] + kD6 * k[4] + kD7 * s.k7);
+  }
+  /// The state at the fraction t in [0, 1] of the step (order 4: as accurate as the
+  /// step's own error estimate).
+  Y At(const Y& y0, double t) const {
+    return y0 + t * (r[0] + (1 - t) * (r[1] + t * (r[2] + (1 - t) * r[3])));
+  }
+};
 
 /// One step of length `h` from `y0`, whose derivative is `k1`.
 /// `rhs(const Y& y, Y* dy) -> bool` evaluates the derivative and returns false where
@@ -85,10 +100,8 @@ void Dp54Step(const Y& y0, const Y& k1, double h, Rhs&& rhs, Observe&& observe,
   observe(out->y1);
   ok &= rhs(out->y1, &out->k7);
   out->err = h * (kE1 * k1 + kE3 * k3 + kE4 * k4 + kE5 * k5 + kE6 * k6 + kE7 * out->k7);
-  out->dense[0] = out->y1 - y0;
-  out->dense[1] = h * k1 - out->dense[0];
-  out->dense[2] = out->dense[0] - h * out->k7 - out->dense[1];
-  out->dense[3] = h * (kD1 * k1 + kD3 * k3 + kD4 * k4 + kD5 * k5 + kD6 * k6 + kD7 * out->k7);
+  out->k = {k1, k3, k4, k5, k6};
+  out->h = h;
   out->valid = ok && out->y1.allFinite();
 }
 
@@ -142,9 +155,9 @@ class PiStepControl {
   }
   /// Factor for the next step after a step accepted with error norm `err`.
   double Accepted(double err) {
-    err = std::max(err, kErrFloor);
-    const double f = kSafety * std::pow(err, -kAlpha) * std::pow(err_prev_, kBeta);
-    err_prev_ = std::max(err, 1e-4);
+    const double log_err = std::log(std::max(err, kErrFloor));
+    const double f = kSafety * std::exp(-kAlpha * log_err + kBeta * log_err_prev_);
+    log_err_prev_ = std::max(log_err, kLogErrPrevFloor);
     return std::clamp(f, kMinShrink, kMaxGrow);
   }
 
@@ -155,7 +168,8 @@ class PiStepControl {
   static constexpr double kMinShrink = 0.2;
   static constexpr double kMaxGrow = 5.0;
   static constexpr double kErrFloor = 1e-10;
-  double err_prev_ = 1e-4;
+  static constexpr double kLogErrPrevFloor = -9.210340371976182;  // ln 1e-4
+  double log_err_prev_ = kLogErrPrevFloor;
 };
 
 }  // namespace snooker::physics::ode

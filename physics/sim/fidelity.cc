@@ -13,15 +13,19 @@ const char* ToString(Fidelity f) {
 
 SimParams FidelityParams(Fidelity f, SimParams base) {
   const SimParams defaults;
-  double tolerance = defaults.cushion_solver.tolerance;
-  switch (f) {
-    case Fidelity::kReference: tolerance = 1e-12; break;
-    case Fidelity::kDefault: break;
-    // docs/shot-speed-vs-error.md: the loosest tolerance that keeps the planner
-    // workload's final positions within about a millimetre of the reference.
-    case Fidelity::kSearch: tolerance = 1e-7; break;
+  for (ImpulseSolverOptions* o : {&base.ball_ball_solver, &base.cushion_solver}) {
+    switch (f) {
+      case Fidelity::kReference:
+        o->fidelity = ImpulseFidelity::kExact;
+        o->tolerance = 1e-12;
+        break;
+      case Fidelity::kDefault:
+        o->fidelity = ImpulseFidelity::kExact;
+        o->tolerance = defaults.ball_ball_solver.tolerance;
+        break;
+      case Fidelity::kSearch: o->fidelity = ImpulseFidelity::kSearch; break;
+    }
   }
-  base.ball_ball_solver.tolerance = base.cushion_solver.tolerance = tolerance;
   return base;
 }
 

@@ -14,12 +14,14 @@ namespace snooker::physics {
 enum class Fidelity : std::uint8_t {
   /// Converged: impact integrators at 1e-12. For references and tests.
   kReference,
-  /// What SimParams defaults to: final positions within a fraction of a millimetre
-  /// of the reference on the planner's workload (the measured figure is in the doc).
+  /// SimParams' own: impact integrators at SimParams::kShotTolerance, set from the
+  /// final positions it gives (within 0.12 mm of the reference on well-conditioned
+  /// shots).
   kDefault,
-  /// The cheapest setting whose final positions stay within about a millimetre of the
-  /// reference on the planner's workload: for a search whose answers are checked at
-  /// kDefault before anyone sees them.
+  /// For a search whose answers are checked at kDefault before anyone sees them: the
+  /// impact solvers' ImpulseFidelity::kSearch (tolerance 1e-6, about half the
+  /// instructions of kDefault per shot; final positions within about 2 mm on the
+  /// planner's workload, a few cm after several cushions).
   kSearch,
 };
 

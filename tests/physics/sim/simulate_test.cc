@@ -274,8 +274,13 @@ TEST_F(SimulateTest, RandomShotsKeepTheInvariants) {
 //  * Issue 9: quadratic gaps (cushion noses, jaw walls) are solved in closed form
 //    instead of by the general root finder; event times differ by rounding, which
 //    the break-off's many impacts amplify into a new final state.
-constexpr std::uint64_t kBreakOffHash = 0xbb02a8a410ceadcfULL;
-constexpr std::uint64_t kPairwiseBreakOffHash = 0x20d65b2848f39ff3ULL;
+//  * Issue 9: the hybrid impulse integrator (same model and tolerance, a different
+//    step sequence; alone it moved every final position by less than 1e-8 m).
+//  * Issue 9: the simulation's impact tolerance, set from measured final positions
+//    (SimParams::kShotTolerance, 1e-10 -> 1e-9): on the break-offs of
+//    docs/shot-speed-vs-error.md that moves well-conditioned balls by at most 6 um.
+constexpr std::uint64_t kBreakOffHash = 0xa8fc69c579244801ULL;
+constexpr std::uint64_t kPairwiseBreakOffHash = 0xfff74af25ad2ac79ULL;
 
 std::uint64_t HashFinalState(const Simulator& sim, int n) {
   std::uint64_t h = 1469598103934665603ULL;  // FNV-1a over the exact bits
