@@ -40,8 +40,8 @@ simulate, every ball of the table answered once, finite, on or near the table,
 events in time order naming the table's balls, and each vision repair within the
 server's tolerance (GetModel). A health check (grpc.health.v1) runs before and after.
 
-Exit status 0 only when every call was sent, answered OK and checked without a
-problem; 1 otherwise; 2 for bad usage.
+Exit status 0 only when the server was SERVING before and after, and every call
+was sent, answered OK and checked without a problem; 1 otherwise; 2 for bad usage.
 
   --target HOST:PORT   the server; loopback only (127.0.0.0/8, ::1, localhost)
   --concurrency C      client threads, 1 to 256
@@ -175,6 +175,11 @@ int RunLoadTest(const std::vector<std::string>& argv, std::ostream& out, std::os
         << StatusCodeName(st.error_code()) << ": " << st.error_message() << "\n";
     return kExitFailure;
   }
+  if (health_before != "SERVING") {
+    err << command << ": " << client.target << " reports " << health_before
+        << " for snooker.v1.ShotPlanner: no load sent\n";
+    return kExitFailure;
+  }
   v1::GetModelResponse model;
   {
     grpc::ClientContext context;
@@ -265,7 +270,7 @@ int RunLoadTest(const std::vector<std::string>& argv, std::ostream& out, std::os
   for (double l : latencies) mean += l;
   mean = latencies.empty() ? 0 : mean / static_cast<double>(latencies.size());
   const double throughput = elapsed > 0 ? static_cast<double>(completed) / elapsed : 0;
-  const bool clean = completed == n && errors == 0 && bad == 0;
+  const bool clean = completed == n && errors == 0 && bad == 0 && health_after == "SERVING";
 
   if (args.Switch("json")) {
     google::protobuf::Struct j;
