@@ -16,6 +16,7 @@ inline constexpr int kExitUsage = 2;
 int RunCollide(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int RunSimulate(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int RunServe(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int RunLoadTest(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int RunDemo(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int RunPlan(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int RunSelfPlay(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);

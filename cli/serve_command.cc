@@ -7,6 +7,8 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/read_file.h"
+#include "server/convert.h"
 #include "server/limits.h"
 #include "server/server.h"
 
@@ -15,14 +17,25 @@ namespace {
 
 std::string Help() {
   namespace lim = server::limits;
+  auto num = [](double x) { return server::FormatNumber(x); };
   std::ostringstream h;
-  h << "usage: snooker serve [--address HOST:PORT] [--max-call-ms MS] [--shutdown-grace-ms MS]\n"
-       "                     [--workers N] [--max-queued N]\n\n"
+  h << "usage: snooker serve [--address HOST:PORT] [--tls-cert CERT.pem --tls-key KEY.pem\n"
+       "                     [--tls-client-ca CA.pem] | --insecure] [--max-call-ms MS]\n"
+       "                     [--shutdown-grace-ms MS] [--workers N] [--max-queued N]\n"
+       "                     [--max-plans N] [--default-budget-ms MS] [--max-budget-ms MS]\n"
+       "                     [--vision-tolerance-mm MM]\n\n"
        "Serves snooker.v1.ShotPlanner (proto/snooker/v1/service.proto) with the gRPC\n"
        "health service and reflection until SIGINT or SIGTERM. One line per call on\n"
-       "stderr: method, peer, status, latency, request and response bytes.\n\n"
+       "stderr: method, peer, status, latency, simulations, request and response bytes.\n\n"
        "  --address HOST:PORT      where to listen (default 127.0.0.1:50051; port 0 picks\n"
-       "                           a free port, printed on start)\n"
+       "                           a free port, printed on start). An address that is not\n"
+       "                           loopback (127.0.0.0/8, ::1, localhost, unix:) needs TLS\n"
+       "                           or --insecure\n"
+       "  --tls-cert CERT.pem      serve TLS with this certificate (chain), PEM\n"
+       "  --tls-key KEY.pem        and its private key, PEM\n"
+       "  --tls-client-ca CA.pem   require client certificates signed by this CA (mutual TLS)\n"
+       "  --insecure               allow plaintext on an address that is not loopback (a\n"
+       "                           trusted network, or a TLS-terminating proxy in front)\n"
        "  --max-call-ms MS         longest wall time of one call, ms: a call ends at its\n"
        "                           client's deadline or after MS, whichever is first, with\n"
        "                           DEADLINE_EXCEEDED (default "
@@ -38,16 +51,51 @@ std::string Help() {
     << ")\n"
        "  --max-queued N           calls waiting for a worker; more are refused with\n"
        "                           RESOURCE_EXHAUSTED (default "
-    << lim::kDefaultMaxQueued << ", at most " << lim::kMaxQueuedLimit << ")\n";
+    << lim::kDefaultMaxQueued << ", at most " << lim::kMaxQueuedLimit
+    << ")\n"
+       "  --max-plans N            plans in the server at once (running or waiting); more\n"
+       "                           are refused at once with RESOURCE_EXHAUSTED (default "
+    << lim::kDefaultMaxPlans << ",\n                           at most " << lim::kMaxPlansLimit
+    << ")\n"
+       "  --default-budget-ms MS   a plan's time budget when its request gives none, ms\n"
+       "                           (default "
+    << num(lim::kDefaultPlanBudgetMs)
+    << ")\n"
+       "  --max-budget-ms MS       the largest budget a plan may ask for, ms (default "
+    << num(lim::kDefaultMaxPlanBudgetMs) << ",\n                           "
+    << num(lim::kPlanBudgetMs.lo) << " to " << num(lim::kPlanBudgetMs.hi)
+    << ")\n"
+       "  --vision-tolerance-mm MM balls overlapping, or past a cushion, by at most MM are\n"
+       "                           moved apart or back with a warning; more is an error\n"
+       "                           (default "
+    << num(lim::kDefaultVisionToleranceMm) << ", " << num(lim::kVisionToleranceMm.lo) << " to "
+    << num(lim::kVisionToleranceMm.hi) << "; 0: no repair)\n";
   return h.str();
+}
+
+// Reads a PEM file for a TLS flag; false with the reason on `err`.
+bool ReadPem(const std::string& flag, const std::string& path, std::string* pem, std::ostream& err) {
+  std::string why;
+  if (!ReadInputFile(path, pem, &why)) {
+    err << "snooker serve: --" << flag << " cannot read '" << path << "': " << why << "\n";
+    return false;
+  }
+  if (pem->find("-----BEGIN ") == std::string::npos) {
+    err << "snooker serve: --" << flag << " '" << path << "' is not a PEM file\n";
+    return false;
+  }
+  return true;
 }
 
 }  // namespace
 
 int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
   namespace lim = server::limits;
-  Args args(argv, {"address", "max-call-ms", "shutdown-grace-ms", "workers", "max-queued"},
-            {"help"});
+  Args args(argv,
+            {"address", "max-call-ms", "shutdown-grace-ms", "workers", "max-queued", "tls-cert",
+             "tls-key", "tls-client-ca", "max-plans", "default-budget-ms", "max-budget-ms",
+             "vision-tolerance-mm"},
+            {"help", "insecure"});
   if (args.error().empty() && args.Switch("help")) {
     out << Help();
     return kExitOk;
@@ -59,6 +107,27 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
                                   lim::kMaxShutdownGraceMs);
   const auto workers = args.Integer("workers", 0, 1, lim::kMaxWorkers);
   const auto queued = args.Integer("max-queued", lim::kDefaultMaxQueued, 0, lim::kMaxQueuedLimit);
+  const auto plans = args.Integer("max-plans", lim::kDefaultMaxPlans, 1, lim::kMaxPlansLimit);
+  const auto budget = args.Number("default-budget-ms", lim::kDefaultPlanBudgetMs);
+  const auto max_budget = args.Number("max-budget-ms", lim::kDefaultMaxPlanBudgetMs);
+  const auto tolerance = args.Number("vision-tolerance-mm", lim::kDefaultVisionToleranceMm);
+  const auto cert = args.Text("tls-cert", "");
+  const auto key = args.Text("tls-key", "");
+  const auto client_ca = args.Text("tls-client-ca", "");
+  if (args.error().empty()) {
+    if (cert->empty() != key->empty()) {
+      err << "snooker serve: --tls-cert and --tls-key go together\n";
+      return kExitUsage;
+    }
+    if (!client_ca->empty() && cert->empty()) {
+      err << "snooker serve: --tls-client-ca needs --tls-cert and --tls-key\n";
+      return kExitUsage;
+    }
+    if (!cert->empty() && args.Switch("insecure")) {
+      err << "snooker serve: --insecure and TLS (--tls-cert) exclude each other\n";
+      return kExitUsage;
+    }
+  }
   if (!args.error().empty()) {
     err << "snooker serve: " << args.error() << "\n(see snooker serve --help)\n";
     return kExitUsage;
@@ -68,7 +137,25 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   options.shutdown_grace = std::chrono::milliseconds(*grace);
   options.workers = static_cast<int>(*workers);
   options.max_queued = static_cast<int>(*queued);
+  options.max_plans = static_cast<int>(*plans);
+  options.default_plan_budget_ms = *budget;
+  options.max_plan_budget_ms = *max_budget;
+  options.vision_tolerance_mm = *tolerance;
+  options.allow_insecure = args.Switch("insecure");
   options.log = &err;
+  if (const std::string bad = server::ValidateServiceOptions(options); !bad.empty()) {
+    err << "snooker serve: " << bad << "\n(see snooker serve --help)\n";
+    return kExitUsage;
+  }
+  if (!cert->empty()) {
+    server::TlsOptions tls;
+    if (!ReadPem("tls-cert", *cert, &tls.cert_chain_pem, err) ||
+        !ReadPem("tls-key", *key, &tls.private_key_pem, err) ||
+        (!client_ca->empty() && !ReadPem("tls-client-ca", *client_ca, &tls.client_ca_pem, err))) {
+      return kExitUsage;
+    }
+    options.tls = std::move(tls);
+  }
   // Block the stop signals before gRPC starts its threads, then wait for one here:
   // the shutdown then runs on this thread, not inside a signal handler.
   sigset_t stop;
@@ -83,7 +170,10 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
     return kExitFailure;
   }
   out << "snooker: serving snooker.v1.ShotPlanner on port " << server->port() << " ("
-      << *address << ")" << std::endl;
+      << *address << ", "
+      << (!options.tls ? "plaintext"
+                       : options.tls->client_ca_pem.empty() ? "TLS" : "TLS with client certificates")
+      << ")" << std::endl;
   int signal = 0;
   sigwait(&stop, &signal);
   const server::CallCounts at_signal = server->counts();

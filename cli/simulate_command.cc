@@ -6,21 +6,27 @@
 #include <fstream>
 #include <iomanip>
 #include <new>
+#include <set>
 #include <sstream>
 
 #include "cli/args.h"
+#include "cli/client.h"
 #include "cli/commands.h"
 #include "cli/json.h"
 #include "cli/read_file.h"
 #include "cli/svg.h"
 #include "server/api.h"
 #include "server/convert.h"
+#include "server/limits.h"
+#include "snooker/v1/service.grpc.pb.h"
 
 namespace snooker::cli {
 namespace {
 
 constexpr const char* kHelp = R"(usage: snooker simulate --table T.json --shot S.json [--json] [--svg out.svg]
-                        [--tolerance X] [--max-events N]
+                        [--tolerance X] [--max-events N] [--vision-tolerance-mm MM]
+                        [--server HOST:PORT [--tls-ca CA.pem] [--tls-cert C --tls-key K]
+                        [--tls-server-name N] [--deadline-ms MS]]
 
 Simulates a shot on a full-size snooker table until every ball is at rest or
 pocketed, and prints the events and where every ball ended.
@@ -46,6 +52,10 @@ ball centres in metres.
   --tolerance X    impact integrators' local error tolerance, 1e-15 to 0.1
                    (default 1e-10)
   --max-events N   cap on events (default 5000)
+  --vision-tolerance-mm MM
+                   balls overlapping, or past a cushion, by at most MM are moved
+                   apart or back first, each with a warning; more is an error
+                   (default 1 here, the server's own with --server; 0: no repair)
   --help           this text
 )";
 
@@ -73,6 +83,8 @@ int ReadJson(const std::string& path, google::protobuf::Message* msg, std::ostre
 }
 
 void PrintReadable(const v1::SimulateResponse& r, std::ostream& out) {
+  for (const v1::Warning& w : r.warnings()) out << "warning: " << w.message() << "\n";
+  if (r.warnings_size() > 0) out << "\n";
   out << "status: " << r.status() << ", " << std::fixed << std::setprecision(3) << r.duration_s()
       << " s, " << r.events_size() << " events\n\n";
   for (const v1::Event& e : r.events()) {
@@ -97,9 +109,12 @@ void PrintReadable(const v1::SimulateResponse& r, std::ostream& out) {
 }  // namespace
 
 int RunSimulate(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
-  Args args(argv, {"table", "shot", "svg", "tolerance", "max-events"}, {"json", "help"});
+  std::set<std::string> valued = {"table", "shot", "svg", "tolerance", "max-events",
+                                  "vision-tolerance-mm"};
+  for (const std::string& flag : ClientFlags()) valued.insert(flag);
+  Args args(argv, valued, {"json", "help"});
   if (args.error().empty() && args.Switch("help")) {
-    out << kHelp;
+    out << kHelp << "\n" << ClientFlagsHelp();
     return kExitOk;
   }
   const auto table_path = args.Text("table", std::nullopt);
@@ -113,6 +128,15 @@ int RunSimulate(const std::vector<std::string>& argv, std::ostream& out, std::os
       req.mutable_options()->set_max_events(static_cast<int>(*n));
     }
   }
+  const auto vision = args.Number("vision-tolerance-mm", server::limits::kDefaultVisionToleranceMm);
+  ClientOptions client;
+  if (!ClientOptionsFrom(args, "snooker simulate", "server", 30'000, &client, err)) return kExitUsage;
+  if (args.error().empty() && !server::limits::kVisionToleranceMm.Contains(*vision)) {
+    err << "snooker simulate: --vision-tolerance-mm " << server::FormatNumber(*vision)
+        << " is outside [0, " << server::FormatNumber(server::limits::kVisionToleranceMm.hi)
+        << "]\n";
+    return kExitUsage;
+  }
   if (!args.error().empty()) {
     err << "snooker simulate: " << args.error() << "\n(see snooker simulate --help)\n";
     return kExitUsage;
@@ -122,14 +146,33 @@ int RunSimulate(const std::vector<std::string>& argv, std::ostream& out, std::os
   const auto svg_path = args.Text("svg", "");
   req.mutable_options()->set_include_paths(!svg_path->empty());
   v1::SimulateResponse resp;
-  const server::ApiStatus status = server::Simulate(req, &resp);
-  if (!status.ok()) {
-    err << "snooker simulate: " << status.message << "\n";
-    return status.code == server::ApiStatus::Code::kInvalidArgument ? kExitUsage : kExitFailure;
+  if (!client.target.empty()) {
+    // The same request to a server: its vision tolerance unless one is asked for here.
+    if (args.Has("vision-tolerance-mm")) req.set_vision_tolerance_mm(*vision);
+    auto stub = v1::ShotPlanner::NewStub(MakeChannel(client));
+    grpc::ClientContext context;
+    context.set_deadline(std::chrono::system_clock::now() + client.deadline);
+    const grpc::Status st = stub->Simulate(&context, req, &resp);
+    if (!st.ok()) return ReportCallError("snooker simulate", client.target, st, err);
+  } else {
+    server::CallLimits limits;
+    limits.vision_tolerance_mm = *vision;
+    const server::ApiStatus status = server::Simulate(req, &resp, limits);
+    if (!status.ok()) {
+      err << "snooker simulate: " << status.message << "\n";
+      return status.code == server::ApiStatus::Code::kInvalidArgument ? kExitUsage : kExitFailure;
+    }
   }
   if (!svg_path->empty()) {
+    // Drawn from the table the simulation started from (after any vision repair).
+    v1::TableState drawn = req.table();
+    for (const v1::Warning& w : resp.warnings()) {
+      for (v1::Ball& b : *drawn.mutable_balls()) {
+        if (b.id() == w.ball_id()) *b.mutable_position() = w.to();
+      }
+    }
     std::ofstream f(*svg_path);
-    f << ShotSvg(physics::DefaultTable(), req.table(), resp, physics::BallParams{}.radius);
+    f << ShotSvg(physics::DefaultTable(), drawn, resp, physics::BallParams{}.radius);
     if (!f) {
       err << "snooker simulate: cannot write '" << *svg_path << "'\n";
       return kExitFailure;

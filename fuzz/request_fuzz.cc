@@ -9,10 +9,13 @@
 //  * a status that is not OK has a reason, every message is within
 //    limits::kMaxMessageBytes, and no input is INTERNAL (a broken invariant, e.g. an
 //    event before the current time);
-//  * an answer has only finite numbers and fits limits::kMaxResponseBytes.
+//  * an answer has only finite numbers and fits limits::kMaxResponseBytes;
+//  * a vision repair moved each ball at most the tolerance, and what it left is a
+//    valid placement.
 // A broken property aborts (libFuzzer then saves the input as a crash-* file).
 //
-// A method is one entry of kMethods: Plan adds its own when it exists.
+// A method is one entry of kMethods (0 Collide, 1 Simulate, 2 GetModel): Plan adds
+// its own when it exists.
 #include <fuzzer/FuzzedDataProvider.h>
 #include <google/protobuf/descriptor.h>
 #include <google/protobuf/message.h>
@@ -80,11 +83,39 @@ void Tame(v1::SimulateRequest* r) {
     o->set_max_events(3000);
   }
 }
+void Tame(v1::GetModelRequest*) {}
 void Tame(v1::CollideRequest* r) {
   v1::ImpulseSolverOptions* s = r->mutable_solver();
   if (s->has_steps() && s->steps() > 20'000 && s->steps() <= physics::limits::kMaxFixedSteps) {
     s->set_steps(20'000);
   }
+}
+
+// Method-specific properties of an answer.
+void CheckAnswer(const v1::CollideRequest&, const v1::CollideResponse&) {}
+void CheckAnswer(const v1::GetModelRequest&, const v1::GetModelResponse&) {}
+void CheckAnswer(const v1::SimulateRequest& request, const v1::SimulateResponse& response) {
+  const double tolerance_mm = request.has_vision_tolerance_mm()
+                                  ? request.vision_tolerance_mm()
+                                  : server::limits::kDefaultVisionToleranceMm;
+  // Where every ball started after the repair.
+  std::vector<v1::Ball> balls(request.table().balls().begin(), request.table().balls().end());
+  for (const v1::Warning& w : response.warnings()) {
+    if (!(w.moved_mm() > 0 && w.moved_mm() <= tolerance_mm * (1 + 1e-9) + 1e-9)) {
+      Fail("a ball moved " + std::to_string(w.moved_mm()) + " mm, tolerance " +
+           std::to_string(tolerance_mm) + " mm");
+    }
+    if (w.message().empty()) Fail("a warning without a message");
+    for (v1::Ball& b : balls) {
+      if (b.id() == w.ball_id()) *b.mutable_position() = w.to();
+    }
+  }
+  std::vector<physics::BallPlacement> placed;
+  for (const v1::Ball& b : balls) {
+    placed.push_back({b.id(), physics::Vec2(b.position().x(), b.position().y())});
+  }
+  const std::string bad = physics::DefaultTable().ValidatePlacement(placed);
+  if (!bad.empty()) Fail("the repaired table is not valid: " + bad);
 }
 
 template <typename Request, typename Response,
@@ -106,6 +137,7 @@ void Exercise(std::string_view bytes, const char* method) {
   if (!st.ok()) return;
   CheckFinite(response);
   if (response.ByteSizeLong() > limits.max_response_bytes) Fail("an answer above the response limit");
+  CheckAnswer(request, response);
 }
 
 // Mostly values inside or near the bounds, sometimes anything (NaN, inf, huge, tiny).
@@ -161,13 +193,16 @@ double Coordinate(FuzzedDataProvider& in, double length) { return Value(in, -0.1
 
 // A ball's position: anywhere near the table, or in a resting contact (issue 7): its
 // centre exactly the cushion contact distance from a cushion, or exactly 2R from the
-// previous ball (touching it), which the engine must handle as ordinary states.
+// previous ball (touching it), which the engine must handle as ordinary states; or,
+// as vision reports them, a little past a cushion or into the previous ball (up to
+// 1.5 mm: within the vision repair's tolerance or just beyond it).
 physics::Vec2 Position(FuzzedDataProvider& in, const physics::Vec2* previous) {
   const physics::TableModel& table = physics::DefaultTable();
   const double w = table.spec().width, l = table.spec().length;
-  const double c = table.cushion_contact_distance();
+  const double vision_error = in.ConsumeBool() ? in.ConsumeFloatingPointInRange<double>(0, 1.5e-3) : 0;
+  const double c = table.cushion_contact_distance() - vision_error;
   switch (in.ConsumeIntegralInRange<int>(0, 3)) {
-    case 1: {  // frozen to a cushion
+    case 1: {  // frozen to a cushion (or a hair past it)
       const double along = in.ConsumeProbability<double>();
       switch (in.ConsumeIntegralInRange<int>(0, 3)) {
         case 0: return {c, along * l};
@@ -176,10 +211,11 @@ physics::Vec2 Position(FuzzedDataProvider& in, const physics::Vec2* previous) {
         default: return {along * w, l - c};
       }
     }
-    case 2:  // touching the previous ball
+    case 2:  // touching the previous ball (or overlapping it a little)
       if (previous != nullptr) {
         const double a = 2 * physics::kPi * in.ConsumeProbability<double>();
-        return *previous + 2 * table.ball_radius() * physics::Vec2(std::cos(a), std::sin(a));
+        return *previous +
+               (2 * table.ball_radius() - vision_error) * physics::Vec2(std::cos(a), std::sin(a));
       }
       [[fallthrough]];
     default: return {Coordinate(in, w), Coordinate(in, l)};
@@ -210,7 +246,12 @@ std::string BuildSimulate(FuzzedDataProvider& in) {
   if (in.ConsumeBool()) o->set_tolerance(Value(in, 1e-16, 0.2));
   o->set_include_paths(in.ConsumeBool());
   if (in.ConsumeBool()) o->set_path_sample_s(Value(in, 1e-5, 2));
+  if (in.ConsumeBool()) r.set_vision_tolerance_mm(Value(in, -0.1, 1.2));
   return Serialized(r);
+}
+
+std::string BuildGetModel(FuzzedDataProvider& in) {
+  return in.ConsumeRandomLengthString(64);  // unknown fields, or bytes that do not parse
 }
 
 struct Method {
@@ -222,6 +263,7 @@ struct Method {
 const Method kMethods[] = {
     {"Collide", &Exercise<v1::CollideRequest, v1::CollideResponse, &server::Collide>, &BuildCollide},
     {"Simulate", &Exercise<v1::SimulateRequest, v1::SimulateResponse, &server::Simulate>, &BuildSimulate},
+    {"GetModel", &Exercise<v1::GetModelRequest, v1::GetModelResponse, &server::GetModel>, &BuildGetModel},
 };
 
 }  // namespace

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdint>
 #include <sstream>
+#include <thread>
+#include <utility>
 
 #include "physics/impact/ball_ball.h"
 #include "physics/motion/slip_phase.h"
@@ -25,6 +27,9 @@ const char* ToString(ApiStatus::Code code) {
 }
 
 namespace {
+
+// Sampling interval of paths when a request sets none, s (simulate.proto).
+constexpr double kDefaultPathSampleS = 0.02;
 
 std::string Num(double x, int digits = 6) {
   std::ostringstream s;
@@ -157,9 +162,19 @@ ApiStatus TooLarge(std::size_t limit, const std::string& what, v1::SimulateRespo
 ApiStatus Simulate(const v1::SimulateRequest& request, v1::SimulateResponse* response,
                    const CallLimits& limits) {
   const physics::TableModel& table = physics::DefaultTable();
-  const std::vector<FieldError> errors = ValidateSimulateRequest(request, table);
+  std::vector<FieldError> errors;
+  const std::optional<double> tolerance = VisionTolerance(
+      request.has_vision_tolerance_mm() ? std::optional<double>(request.vision_tolerance_mm())
+                                        : std::nullopt,
+      limits.vision_tolerance_mm, "vision_tolerance_mm", &errors);
+  // A bad tolerance is reported alone: the table is checked with the server's.
+  TableCheck check = CheckTable(request.table(), table,
+                                tolerance.value_or(limits.vision_tolerance_mm * 1e-3));
+  errors.insert(errors.begin(), check.errors.begin(), check.errors.end());
+  const std::vector<FieldError> more = ValidateShotAndOptions(request);
+  errors.insert(errors.end(), more.begin(), more.end());
   if (!errors.empty()) return ApiStatus::Invalid(Describe(errors));
-  const v1::TableState& state = request.table();
+  const v1::TableState& state = check.repaired ? *check.repaired : request.table();
   const bool paths = request.options().include_paths();
   const std::vector<physics::BallState> balls = BallStatesFrom(state, request.shot());
   physics::Simulator sim(table, SimParamsFrom(request.options()));
@@ -187,6 +202,10 @@ ApiStatus Simulate(const v1::SimulateRequest& request, v1::SimulateResponse* res
   }
 
   ByteBudget budget(limits.max_response_bytes);
+  for (v1::Warning& w : check.warnings) {
+    budget.Add(w.ByteSizeLong());
+    *response->add_warnings() = std::move(w);
+  }
   response->set_status(physics::ToString(status));
   response->set_duration_s(sim.end_time());
   auto id = [&](int i) -> const std::string& { return state.balls(i).id(); };
@@ -231,7 +250,7 @@ ApiStatus Simulate(const v1::SimulateRequest& request, v1::SimulateResponse* res
     // Samples every dt between the knots (each knot is a point too); dt grows so that
     // the samples of all balls stay within limits::kMaxPathPoints.
     const double asked =
-        request.options().has_path_sample_s() ? request.options().path_sample_s() : 0.02;
+        request.options().has_path_sample_s() ? request.options().path_sample_s() : kDefaultPathSampleS;
     const double n = static_cast<double>(state.balls_size());
     const double dt =
         std::max(asked, sim.end_time() * n / static_cast<double>(limits::kMaxPathPoints));
@@ -273,6 +292,103 @@ ApiStatus Simulate(const v1::SimulateRequest& request, v1::SimulateResponse* res
     return TooLarge(limits.max_response_bytes,
                     std::to_string(response->ByteSizeLong()) + " bytes", response);
   }
+  return ApiStatus::Ok();
+}
+
+v1::ServiceLimits DefaultServiceLimits(const CallLimits& limits) {
+  v1::ServiceLimits out;
+  out.set_vision_tolerance_mm(limits.vision_tolerance_mm);
+  out.set_max_call_ms(limits::kDefaultMaxCall.count());
+  out.set_default_plan_budget_ms(limits.default_plan_budget_ms);
+  out.set_max_plan_budget_ms(limits.max_plan_budget_ms);
+  out.set_max_plans(limits::kDefaultMaxPlans);
+  out.set_workers(static_cast<std::int32_t>(std::max(1u, std::thread::hardware_concurrency())));
+  out.set_max_queued(limits::kDefaultMaxQueued);
+  out.set_max_request_bytes(static_cast<std::int64_t>(limits::kMaxRequestBytes));
+  out.set_max_response_bytes(static_cast<std::int64_t>(limits.max_response_bytes));
+  out.set_max_balls(physics::limits::kMaxBalls);
+  out.set_max_id_bytes(static_cast<std::int32_t>(physics::limits::kMaxIdBytes));
+  out.set_max_shot_speed(physics::limits::kShotSpeed.hi);
+  out.set_max_spin(physics::limits::kMaxSpin);
+  return out;
+}
+
+ApiStatus GetModel(const v1::GetModelRequest& /*request*/, v1::GetModelResponse* response,
+                   const CallLimits& limits) {
+  const physics::TableModel& table = physics::DefaultTable();
+  const physics::SimParams sim;  // what Simulate uses for unset options
+  v1::TableGeometry* g = response->mutable_table();
+  g->set_width_m(table.spec().width);
+  g->set_length_m(table.spec().length);
+  g->set_baulk_line_m(table.spec().baulk_line);
+  g->set_d_radius_m(table.spec().d_radius);
+  g->set_cushion_height_m(table.spec().cushion_height);
+  g->set_cushion_contact_distance_m(table.cushion_contact_distance());
+  for (const physics::CushionSegment& seg : table.segments()) {
+    v1::CushionSegment* out = g->add_segments();
+    out->set_name(seg.name);
+    out->set_kind(seg.kind == physics::SegmentKind::kCushion ? "cushion" : "jaw wall");
+    ToProto(seg.p0, out->mutable_p0());
+    ToProto(seg.p1, out->mutable_p1());
+    ToProto(seg.normal, out->mutable_normal());
+    out->set_pocket(physics::ToString(seg.pocket));
+  }
+  for (const physics::JawCircle& jaw : table.jaws()) {
+    v1::Knuckle* out = g->add_knuckles();
+    ToProto(jaw.centre, out->mutable_centre());
+    out->set_radius_m(jaw.radius);
+    out->set_pocket(physics::ToString(jaw.pocket));
+  }
+  for (const physics::Pocket& pocket : table.pockets()) {
+    v1::Pocket* out = g->add_pockets();
+    out->set_name(physics::ToString(pocket.id));
+    ToProto(pocket.mouth_centre, out->mutable_mouth_centre());
+    ToProto(pocket.axis, out->mutable_axis());
+    ToProto(pocket.capture_centre, out->mutable_capture_centre());
+    out->set_capture_radius_m(pocket.capture_radius);
+  }
+  const std::pair<physics::Colour, v1::BallKind> colours[] = {
+      {physics::Colour::kYellow, v1::YELLOW}, {physics::Colour::kGreen, v1::GREEN},
+      {physics::Colour::kBrown, v1::BROWN},   {physics::Colour::kBlue, v1::BLUE},
+      {physics::Colour::kPink, v1::PINK},     {physics::Colour::kBlack, v1::BLACK}};
+  for (const auto& [colour, kind] : colours) {
+    v1::Spot* out = g->add_spots();
+    out->set_kind(kind);
+    ToProto(table.spot(colour), out->mutable_position());
+  }
+  for (const physics::Vec2& red : table.reds()) ToProto(red, g->add_red_triangle());
+
+  v1::BallModel* ball = response->mutable_ball();
+  ball->set_mass_kg(sim.ball.mass);
+  ball->set_radius_m(sim.ball.radius);
+  ball->set_inertia_kg_m2(sim.ball.Inertia());
+  v1::ClothModel* cloth = response->mutable_cloth();
+  cloth->set_mu_s(sim.cloth.mu_s);
+  cloth->set_mu_r(sim.cloth.mu_r);
+  cloth->set_spin_decel(sim.cloth.spin_decel);
+  cloth->set_gravity(sim.cloth.g);
+  v1::BallBallModel* bb = response->mutable_ball_ball();
+  bb->set_mu_bb(sim.ball_ball.mu_bb);
+  bb->set_restitution(sim.ball_ball.e);
+  bb->set_friction_law(sim.ball_ball.friction_law == physics::BallBallFrictionLaw::kMarlow ? "marlow"
+                                                                                           : "constant");
+  v1::CushionModel* cushion = response->mutable_cushion();
+  cushion->set_mu_w(sim.cushion.mu_w);
+  cushion->set_mu_s(sim.cushion.mu_s);
+  cushion->set_contact_height_m(table.spec().cushion_height);  // the simulator uses the table's
+  for (int i = 0; i < sim.cushion.restitution_curve.points; ++i) {
+    cushion->add_restitution_speed(sim.cushion.restitution_curve.speed[static_cast<std::size_t>(i)]);
+    cushion->add_restitution(sim.cushion.restitution_curve.e[static_cast<std::size_t>(i)]);
+  }
+  cushion->set_constant_restitution(sim.cushion.e_e);
+  v1::SimulationDefaults* d = response->mutable_simulation();
+  d->set_max_events(sim.max_events);
+  d->set_max_time_s(sim.max_time);
+  d->set_tolerance(sim.ball_ball_solver.tolerance);
+  d->set_path_sample_s(kDefaultPathSampleS);
+  d->set_rest_speed(sim.rest_speed);
+  *response->mutable_service() =
+      limits.service != nullptr ? *limits.service : DefaultServiceLimits(limits);
   return ApiStatus::Ok();
 }
 

@@ -16,6 +16,7 @@
 #include "server/api_status.h"
 #include "server/limits.h"
 #include "snooker/v1/collide.pb.h"
+#include "snooker/v1/model.pb.h"
 #include "snooker/v1/simulate.pb.h"
 
 namespace snooker::server {
@@ -28,6 +29,15 @@ struct CallLimits {
   physics::Interrupt interrupt;
   /// A response that would be larger is refused with RESOURCE_EXHAUSTED.
   std::size_t max_response_bytes = limits::kMaxResponseBytes;
+  /// The vision repair's tolerance, mm: the default of a request that sets none and
+  /// the most one may ask for (0: no repair).
+  double vision_tolerance_mm = limits::kDefaultVisionToleranceMm;
+  /// A plan's time budget when its request sets none, and the largest it may ask for, ms.
+  double default_plan_budget_ms = limits::kDefaultPlanBudgetMs;
+  double max_plan_budget_ms = limits::kDefaultMaxPlanBudgetMs;
+  /// What GetModel reports as the server's bounds (workers, queue, ...); nullptr:
+  /// the defaults of server/limits.h and the fields above.
+  const v1::ServiceLimits* service = nullptr;
 };
 
 /// One ball-ball collision (Mathavan et al. 2014) and the slip phases after it.
@@ -37,8 +47,20 @@ ApiStatus Collide(const v1::CollideRequest& request, v1::CollideResponse* respon
                   const CallLimits& limits = {});
 
 /// A shot on a table, simulated until every ball is at rest or pocketed (or a cap is
-/// reached); the interrupt is checked every interrupt.check_every events.
+/// reached); the interrupt is checked every interrupt.check_every events. Small
+/// overlaps and cushion overshoots are repaired first (the vision tolerance), each
+/// moved ball reported in the response's warnings.
 ApiStatus Simulate(const v1::SimulateRequest& request, v1::SimulateResponse* response,
                    const CallLimits& limits = {});
+
+/// The model the server works with: the default table's geometry, the default
+/// ball, cloth, ball-ball and cushion parameters, the simulation defaults, and the
+/// server's bounds (limits.service, or the defaults).
+ApiStatus GetModel(const v1::GetModelRequest& request, v1::GetModelResponse* response,
+                   const CallLimits& limits = {});
+
+/// The ServiceLimits of a server with these call limits and the defaults of
+/// server/limits.h for the rest (workers 0: one per hardware thread).
+v1::ServiceLimits DefaultServiceLimits(const CallLimits& limits);
 
 }  // namespace snooker::server

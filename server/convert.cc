@@ -11,6 +11,7 @@
 
 #include <google/protobuf/descriptor.h>
 
+#include "physics/table/placement_repair.h"
 #include "server/limits.h"
 
 namespace snooker::server {
@@ -152,18 +153,70 @@ std::vector<FieldError> ValidateCollideRequest(const v1::CollideRequest& r) {
   return errors;
 }
 
-std::vector<FieldError> ValidateSimulateRequest(const v1::SimulateRequest& r,
-                                                const physics::TableModel& table) {
-  std::vector<FieldError> errors;
-  const v1::TableState& t = r.table();
+namespace {
+
+std::string Mm(double metres) {
+  std::ostringstream s;
+  s.precision(3);
+  s << metres * 1e3;
+  return s.str();
+}
+
+std::string Point(const physics::Vec2& p) {
+  std::ostringstream s;
+  s.precision(6);
+  s << "(" << p.x() << ", " << p.y() << ")";
+  return s.str();
+}
+
+// Why ball i of `before` needed moving: the balls it overlapped and the cushions it
+// was past, with by how much.
+std::string WhyMoved(const std::vector<physics::BallPlacement>& before, std::size_t i,
+                     const physics::TableModel& table) {
+  std::vector<std::string> reasons;
+  const double r2 = 2 * table.ball_radius();
+  for (std::size_t j = 0; j < before.size(); ++j) {
+    if (j == i) continue;
+    const double overlap = r2 - (before[i].r - before[j].r).norm();
+    if (overlap > physics::TableModel::kPlacementTolerance) {
+      reasons.push_back("it overlapped " + std::string(before[j].name) + " by " + Mm(overlap) + " mm");
+    }
+  }
+  const double c = table.cushion_contact_distance();
+  const physics::Vec2& p = before[i].r;
+  const struct {
+    double past;
+    const char* cushion;
+  } cushions[] = {{c - p.x(), "left"},
+                  {p.x() - (table.spec().width - c), "right"},
+                  {c - p.y(), "baulk"},
+                  {p.y() - (table.spec().length - c), "top"}};
+  for (const auto& k : cushions) {
+    if (k.past > physics::TableModel::kPlacementTolerance) {
+      reasons.push_back("its centre was " + Mm(k.past) + " mm past where a ball touches the " +
+                        k.cushion + " cushion");
+    }
+  }
+  if (reasons.empty()) return "the balls it touches were moved";
+  std::string out;
+  for (const std::string& r : reasons) out += (out.empty() ? "" : ", and ") + r;
+  return out;
+}
+
+}  // namespace
+
+TableCheck CheckTable(const v1::TableState& t, const physics::TableModel& table,
+                      double vision_tolerance_m) {
+  TableCheck check;
+  std::vector<FieldError>& errors = check.errors;
   const int n = t.balls_size();
   if (n == 0) errors.push_back({"table.balls", "[]", "must list at least the cue ball"});
   if (n > plim::kMaxBalls) {
     // Refused before any ball is looked at: everything below is at least linear in
-    // the balls, the placement check quadratic.
+    // the balls, the placement check and repair quadratic.
     errors.push_back({"table.balls", std::to_string(n) + " balls",
                       "at most " + std::to_string(plim::kMaxBalls)});
-    return errors;
+    return check;
   }
   std::set<std::string_view> ids;
   int cues = 0;
@@ -195,18 +248,71 @@ std::vector<FieldError> ValidateSimulateRequest(const v1::SimulateRequest& r,
   if (n > 0 && cues != 1) {
     errors.push_back({"table.balls", std::to_string(cues) + " CUE balls", "must have exactly one"});
   }
-  if (placeable) {
-    std::vector<physics::BallPlacement> placed;
-    placed.reserve(static_cast<std::size_t>(n));
-    for (const v1::Ball& b : t.balls()) {
-      // Names in the placement message are ids, cut like QuoteId cuts them.
-      const std::string_view id(b.id());
-      placed.push_back({id.substr(0, Utf8Prefix(id, slim::kMaxQuotedIdBytes)),
-                        physics::Vec2(b.position().x(), b.position().y())});
-    }
-    const std::string msg = table.ValidatePlacement(placed, slim::kMaxReportedProblems);
-    if (!msg.empty()) errors.push_back({"table.balls", "positions", msg});
+  if (!placeable) return check;
+  std::vector<physics::BallPlacement> placed;
+  placed.reserve(static_cast<std::size_t>(n));
+  for (const v1::Ball& b : t.balls()) {
+    // Names in the placement messages are ids, cut like QuoteId cuts them.
+    const std::string_view id(b.id());
+    placed.push_back({id.substr(0, Utf8Prefix(id, slim::kMaxQuotedIdBytes)),
+                      physics::Vec2(b.position().x(), b.position().y())});
   }
+  if (vision_tolerance_m > 0) {
+    std::vector<physics::BallPlacement> repaired = placed;
+    const physics::PlacementRepair repair =
+        physics::RepairPlacement(table, repaired, vision_tolerance_m);
+    if (!repair.error.empty()) {
+      errors.push_back({"table.balls", "positions",
+                        BoundMessage("beyond the vision tolerance of " + Mm(vision_tolerance_m) +
+                                     " mm, which repairs smaller errors only: " + repair.error)});
+      return check;
+    }
+    if (!repair.moved.empty()) {
+      check.repaired = t;
+      for (const physics::RepairedBall& m : repair.moved) {
+        v1::Ball* b = check.repaired->mutable_balls(static_cast<int>(m.index));
+        ToProto(m.to, b->mutable_position());
+        v1::Warning& w = check.warnings.emplace_back();
+        w.set_message("moved " + std::string(placed[m.index].name) + " by " + Mm(m.distance) +
+                      " mm from " + Point(m.from) + " to " + Point(m.to) + ": " +
+                      WhyMoved(placed, m.index, table));
+        w.set_ball_id(b->id());
+        ToProto(m.from, w.mutable_from());
+        ToProto(m.to, w.mutable_to());
+        w.set_moved_mm(m.distance * 1e3);
+      }
+      placed = std::move(repaired);
+    }
+  }
+  // Also after a repair: it promises what ValidatePlacement accepts; this checks it.
+  const std::string msg = table.ValidatePlacement(placed, slim::kMaxReportedProblems);
+  if (!msg.empty()) errors.push_back({"table.balls", "positions", msg});
+  return check;
+}
+
+std::optional<double> VisionTolerance(std::optional<double> requested_mm, double server_mm,
+                                      const char* field, std::vector<FieldError>* errors) {
+  if (!requested_mm) return server_mm * 1e-3;
+  const physics::Range allowed{0, server_mm};
+  if (!allowed.Contains(*requested_mm)) {
+    errors->push_back({field, Num(*requested_mm),
+                       RangeText(allowed, "mm") +
+                           ": the server's vision tolerance is the largest a request may ask for"});
+    return std::nullopt;
+  }
+  return *requested_mm * 1e-3;
+}
+
+std::vector<FieldError> ValidateSimulateRequest(const v1::SimulateRequest& r,
+                                                const physics::TableModel& table) {
+  std::vector<FieldError> errors = CheckTable(r.table(), table, 0).errors;
+  std::vector<FieldError> more = ValidateShotAndOptions(r);
+  errors.insert(errors.end(), more.begin(), more.end());
+  return errors;
+}
+
+std::vector<FieldError> ValidateShotAndOptions(const v1::SimulateRequest& r) {
+  std::vector<FieldError> errors;
   const v1::Shot& shot = r.shot();
   CheckRange(&errors, shot.speed(), "shot.speed", plim::kShotSpeed, "m/s");
   CheckRange(&errors, shot.heading_deg(), "shot.heading_deg", slim::kHeadingDeg, "deg");

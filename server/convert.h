@@ -3,6 +3,7 @@
 // each bad value by its API field name, with the rule it breaks.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -53,12 +54,38 @@ physics::ClothParams ClothParamsFrom(const v1::CollisionParameters& p);
 physics::BallBallParams BallBallParamsFrom(const v1::CollisionParameters& p);
 physics::ImpulseSolverOptions SolverOptionsFrom(const v1::ImpulseSolverOptions& o);
 
-/// Checks the table (ball count first, before anything that grows with it; ids not
-/// empty, unique and at most limits::kMaxIdBytes; kinds; one cue ball; placement on
-/// `table`), the shot and the options; each error names the ball id or field and its
-/// value.
+/// What CheckTable found, and what it changed.
+struct TableCheck {
+  std::vector<FieldError> errors;
+  /// Set when the vision repair moved a ball: the table state with the moved
+  /// positions (everything else as given).
+  std::optional<v1::TableState> repaired;
+  /// One per moved ball, in table order.
+  std::vector<v1::Warning> warnings;
+};
+
+/// Checks a table state: the ball count first, before anything that grows with it;
+/// ids not empty, unique and at most limits::kMaxIdBytes; kinds; one cue ball;
+/// finite positions; then the placement on `table`. With vision_tolerance_m > 0,
+/// overlaps and cushion overshoots up to it are repaired (physics::RepairPlacement:
+/// the least displacement) and reported as warnings, larger ones are errors naming
+/// the balls; with 0, every overlap and overshoot is an error (ValidatePlacement).
+TableCheck CheckTable(const v1::TableState& state, const physics::TableModel& table,
+                      double vision_tolerance_m);
+
+/// The vision tolerance a request asks for (`requested_mm`, unset: the server's), m;
+/// an error naming `field` when it is outside [0, server_mm].
+std::optional<double> VisionTolerance(std::optional<double> requested_mm, double server_mm,
+                                      const char* field, std::vector<FieldError>* errors);
+
+/// Checks the table (CheckTable without repair), the shot and the options; each
+/// error names the ball id or field and its value.
 std::vector<FieldError> ValidateSimulateRequest(const v1::SimulateRequest& request,
                                                 const physics::TableModel& table);
+
+/// The shot and the options of a Simulate request (ValidateSimulateRequest's checks
+/// besides the table).
+std::vector<FieldError> ValidateShotAndOptions(const v1::SimulateRequest& request);
 
 /// The balls of a (validated) table state, in its order, all at rest; the cue ball
 /// gets the shot: v = speed (cos h, sin h), w = topspin (z x heading) + sidespin z.

@@ -7,6 +7,7 @@
 #include <thread>
 #include <vector>
 
+#include "server/convert.h"
 #include "server/decode.h"
 
 namespace snooker::server {
@@ -41,14 +42,21 @@ const char* StatusName(grpc::StatusCode code) {
   return i < std::size(kNames) ? kNames[i] : "UNKNOWN";
 }
 
+// Simulations a call ran, from its answer.
+std::int64_t SimulationsOf(const v1::CollideResponse&) { return 0; }
+std::int64_t SimulationsOf(const v1::SimulateResponse&) { return 1; }
+std::int64_t SimulationsOf(const v1::GetModelResponse&) { return 0; }
+
 // Parse, run, serialise: one method of the service on raw bytes.
 template <typename Request, typename Response,
           ApiStatus (*Operation)(const Request&, Response*, const CallLimits&)>
-ApiStatus RunMethod(std::string_view bytes, const CallLimits& limits, grpc::ByteBuffer* out) {
+ApiStatus RunMethod(std::string_view bytes, const CallLimits& limits, grpc::ByteBuffer* out,
+                    ShotPlannerService::Work* work) {
   Request request;
   if (ApiStatus st = ParseRequest(bytes, &request); !st.ok()) return st;
   Response response;
   if (ApiStatus st = Operation(request, &response, limits); !st.ok()) return st;
+  work->simulations = SimulationsOf(response);
   bool own = false;
   const grpc::Status st = grpc::SerializationTraits<Response>::Serialize(response, out, &own);
   if (!st.ok()) return {ApiStatus::Code::kInternal, "cannot serialise the response: " + st.error_message()};
@@ -59,6 +67,8 @@ constexpr ShotPlannerService::Method kCollide{
     "Collide", &RunMethod<v1::CollideRequest, v1::CollideResponse, &server::Collide>};
 constexpr ShotPlannerService::Method kSimulate{
     "Simulate", &RunMethod<v1::SimulateRequest, v1::SimulateResponse, &server::Simulate>};
+constexpr ShotPlannerService::Method kGetModel{
+    "GetModel", &RunMethod<v1::GetModelRequest, v1::GetModelResponse, &server::GetModel>};
 
 // The call's deadline on the steady clock: the client's, or arrival + max_call when
 // that is earlier (or the client set none).
@@ -111,11 +121,54 @@ struct ShotPlannerService::Call {
   std::size_t request_bytes = 0;
 };
 
+std::string ValidateServiceOptions(const ServiceOptions& o) {
+  std::string out;
+  auto check = [&](bool ok, const std::string& what) {
+    if (!ok) out += (out.empty() ? "" : "; ") + what;
+  };
+  check(o.max_call.count() >= 1 && o.max_call.count() <= limits::kMaxCallMsLimit,
+        "max_call " + std::to_string(o.max_call.count()) + " ms is outside [1, " +
+            std::to_string(limits::kMaxCallMsLimit) + "] ms");
+  check(o.workers >= 0 && o.workers <= limits::kMaxWorkers,
+        "workers " + std::to_string(o.workers) + " is outside [0, " +
+            std::to_string(limits::kMaxWorkers) + "]");
+  check(o.max_queued >= 0 && o.max_queued <= limits::kMaxQueuedLimit,
+        "max_queued " + std::to_string(o.max_queued) + " is outside [0, " +
+            std::to_string(limits::kMaxQueuedLimit) + "]");
+  check(limits::kVisionToleranceMm.Contains(o.vision_tolerance_mm),
+        "vision_tolerance_mm " + FormatNumber(o.vision_tolerance_mm) + " is outside [" +
+            FormatNumber(limits::kVisionToleranceMm.lo) + ", " +
+            FormatNumber(limits::kVisionToleranceMm.hi) + "] mm");
+  check(limits::kPlanBudgetMs.Contains(o.max_plan_budget_ms),
+        "max_plan_budget_ms " + FormatNumber(o.max_plan_budget_ms) + " is outside [" +
+            FormatNumber(limits::kPlanBudgetMs.lo) + ", " + FormatNumber(limits::kPlanBudgetMs.hi) +
+            "] ms");
+  check(limits::kPlanBudgetMs.Contains(o.default_plan_budget_ms) &&
+            o.default_plan_budget_ms <= o.max_plan_budget_ms,
+        "default_plan_budget_ms " + FormatNumber(o.default_plan_budget_ms) + " is outside [" +
+            FormatNumber(limits::kPlanBudgetMs.lo) + ", max_plan_budget_ms " +
+            FormatNumber(o.max_plan_budget_ms) + "] ms");
+  check(o.max_plans >= 1 && o.max_plans <= limits::kMaxPlansLimit,
+        "max_plans " + std::to_string(o.max_plans) + " is outside [1, " +
+            std::to_string(limits::kMaxPlansLimit) + "]");
+  return out;
+}
+
 ShotPlannerService::ShotPlannerService(const ServiceOptions& options)
     : options_(options),
       pool_(options.workers > 0 ? options.workers
                                 : static_cast<int>(std::max(1u, std::thread::hardware_concurrency())),
-            options.max_queued) {}
+            options.max_queued) {
+  CallLimits limits;
+  limits.vision_tolerance_mm = options.vision_tolerance_mm;
+  limits.default_plan_budget_ms = options.default_plan_budget_ms;
+  limits.max_plan_budget_ms = options.max_plan_budget_ms;
+  service_limits_ = DefaultServiceLimits(limits);
+  service_limits_.set_max_call_ms(options.max_call.count());
+  service_limits_.set_max_plans(options.max_plans);
+  service_limits_.set_workers(pool_.threads());
+  service_limits_.set_max_queued(options.max_queued);
+}
 
 ShotPlannerService::~ShotPlannerService() { pool_.Stop(); }
 
@@ -129,6 +182,12 @@ grpc::ServerUnaryReactor* ShotPlannerService::Simulate(grpc::CallbackServerConte
                                                        const grpc::ByteBuffer* request,
                                                        grpc::ByteBuffer* response) {
   return Accept(kSimulate, context, request, response);
+}
+
+grpc::ServerUnaryReactor* ShotPlannerService::GetModel(grpc::CallbackServerContext* context,
+                                                       const grpc::ByteBuffer* request,
+                                                       grpc::ByteBuffer* response) {
+  return Accept(kGetModel, context, request, response);
 }
 
 grpc::ServerUnaryReactor* ShotPlannerService::Accept(const Method& method,
@@ -156,7 +215,7 @@ grpc::ServerUnaryReactor* ShotPlannerService::Accept(const Method& method,
              {grpc::StatusCode::RESOURCE_EXHAUSTED,
               "the server is busy: " + std::to_string(pool_.threads()) + " calls running and " +
                   std::to_string(options_.max_queued) + " waiting; try again later"},
-             0);
+             0, {});
     }
   } catch (const std::exception& e) {  // std::bad_alloc above all
     by_status_[grpc::StatusCode::RESOURCE_EXHAUSTED].fetch_add(1);
@@ -171,6 +230,7 @@ void ShotPlannerService::Run(const std::shared_ptr<Call>& call) {
   running_.fetch_add(1);
   grpc::Status status;
   std::size_t response_bytes = 0;
+  Work work;
   const auto waited_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
                              Clock::now() - call->arrival).count();
   const bool cancelled = call->context->IsCancelled();
@@ -187,12 +247,16 @@ void ShotPlannerService::Run(const std::shared_ptr<Call>& call) {
     limits.interrupt.deadline = call->deadline;
     limits.interrupt.poll = &IsCancelled;
     limits.interrupt.poll_context = call->context;
+    limits.vision_tolerance_mm = options_.vision_tolerance_mm;
+    limits.default_plan_budget_ms = options_.default_plan_budget_ms;
+    limits.max_plan_budget_ms = options_.max_plan_budget_ms;
+    limits.service = &service_limits_;
     try {
       std::string bytes;
       if (!Flatten(*call->request, &bytes)) {
         status = {grpc::StatusCode::INVALID_ARGUMENT, "cannot read the request's bytes"};
       } else {
-        ApiStatus result = call->method->run(bytes, limits, call->response);
+        ApiStatus result = call->method->run(bytes, limits, call->response, &work);
         if (result.code == ApiStatus::Code::kCancelled && ClientDeadlinePassed(call->client_deadline)) {
           result.code = ApiStatus::Code::kDeadlineExceeded;
           result.message = "the client's deadline passed: " + result.message;
@@ -209,10 +273,11 @@ void ShotPlannerService::Run(const std::shared_ptr<Call>& call) {
     }
   }
   running_.fetch_sub(1);
-  Finish(*call, status, response_bytes);
+  Finish(*call, status, response_bytes, work);
 }
 
-void ShotPlannerService::Finish(Call& call, const grpc::Status& status, std::size_t response_bytes) {
+void ShotPlannerService::Finish(Call& call, const grpc::Status& status, std::size_t response_bytes,
+                                const Work& work) {
   const double latency_ms =
       std::chrono::duration<double, std::milli>(Clock::now() - call.arrival).count();
   // Counted and logged first: a client that has its answer sees it counted.
@@ -223,7 +288,7 @@ void ShotPlannerService::Finish(Call& call, const grpc::Status& status, std::siz
     line.precision(3);
     line << std::fixed << "snooker: call method=" << call.method->name << " peer=" << call.peer
          << " status=" << StatusName(status.error_code()) << " latency_ms=" << latency_ms
-         << " request_bytes=" << call.request_bytes << " response_bytes=" << response_bytes << "\n";
+         << " simulations=" << work.simulations << " request_bytes=" << call.request_bytes << " response_bytes=" << response_bytes << "\n";
     std::lock_guard<std::mutex> lock(log_mu_);
     *options_.log << line.str() << std::flush;
   }

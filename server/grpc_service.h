@@ -10,7 +10,8 @@
 //    whichever is first; it and the client's cancellation (ServerContext::
 //    IsCancelled) are checked before a call starts and inside long runs
 //    (physics::Interrupt). Stopped calls answer DEADLINE_EXCEEDED or CANCELLED.
-//  * One log line per call (method, peer, status, latency, bytes) and counters.
+//  * One log line per call (method, peer, status, latency, simulations, bytes) and
+//    counters.
 #pragma once
 
 #include <grpcpp/grpcpp.h>
@@ -44,7 +45,18 @@ struct ServiceOptions {
   int max_queued = limits::kDefaultMaxQueued;
   /// Where to write one line per finished call; nullptr: nowhere.
   std::ostream* log = nullptr;
+  /// The vision repair's tolerance, mm: a request's default and its largest.
+  double vision_tolerance_mm = limits::kDefaultVisionToleranceMm;
+  /// A plan's budget when its request sets none, and the largest allowed, ms.
+  double default_plan_budget_ms = limits::kDefaultPlanBudgetMs;
+  double max_plan_budget_ms = limits::kDefaultMaxPlanBudgetMs;
+  /// Plans in the server at once (running or waiting); more are refused at once.
+  int max_plans = limits::kDefaultMaxPlans;
 };
+
+/// Empty when the options are within their ranges (server/limits.h); otherwise
+/// what is wrong, naming the option.
+std::string ValidateServiceOptions(const ServiceOptions& options);
 
 /// Counts of calls, for tests and monitoring (a snapshot).
 struct CallCounts {
@@ -58,7 +70,8 @@ struct CallCounts {
 };
 
 using ShotPlannerRawService = v1::ShotPlanner::WithRawCallbackMethod_Collide<
-    v1::ShotPlanner::WithRawCallbackMethod_Simulate<v1::ShotPlanner::Service>>;
+    v1::ShotPlanner::WithRawCallbackMethod_Simulate<
+        v1::ShotPlanner::WithRawCallbackMethod_GetModel<v1::ShotPlanner::Service>>>;
 
 class ShotPlannerService final : public ShotPlannerRawService {
  public:
@@ -71,18 +84,25 @@ class ShotPlannerService final : public ShotPlannerRawService {
   grpc::ServerUnaryReactor* Simulate(grpc::CallbackServerContext* context,
                                      const grpc::ByteBuffer* request,
                                      grpc::ByteBuffer* response) override;
+  grpc::ServerUnaryReactor* GetModel(grpc::CallbackServerContext* context,
+                                     const grpc::ByteBuffer* request,
+                                     grpc::ByteBuffer* response) override;
 
   CallCounts counts() const;
   /// Runs what is queued and joins the workers. Call after grpc::Server::Shutdown
   /// returned (every call then has an answer).
   void StopWorkers() { pool_.Stop(); }
 
+  /// What a call did, for its log line.
+  struct Work {
+    std::int64_t simulations = 0;  ///< whole-table simulations run
+  };
   /// One method: parse the request, run the operation, serialise the answer. A new
   /// method (Plan) adds one entry.
   struct Method {
     const char* name;
     ApiStatus (*run)(std::string_view request, const CallLimits& limits,
-                     grpc::ByteBuffer* response);
+                     grpc::ByteBuffer* response, Work* work);
   };
 
  private:
@@ -90,9 +110,11 @@ class ShotPlannerService final : public ShotPlannerRawService {
   grpc::ServerUnaryReactor* Accept(const Method& method, grpc::CallbackServerContext* context,
                                    const grpc::ByteBuffer* request, grpc::ByteBuffer* response);
   void Run(const std::shared_ptr<Call>& call);
-  void Finish(Call& call, const grpc::Status& status, std::size_t response_bytes);
+  void Finish(Call& call, const grpc::Status& status, std::size_t response_bytes,
+              const Work& work);
 
   ServiceOptions options_;
+  v1::ServiceLimits service_limits_;  // what GetModel reports
   std::atomic<std::int64_t> received_{0}, finished_{0}, running_{0};
   std::array<std::atomic<std::int64_t>, 17> by_status_{};
   std::mutex log_mu_;

@@ -62,4 +62,26 @@ inline constexpr int kMaxWorkers = 256;
 inline constexpr int kDefaultMaxQueued = 256;
 inline constexpr int kMaxQueuedLimit = 100'000;
 
+// --- Vision repair ----------------------------------------------------------------
+/// Overlaps and cushion overshoots up to this are repaired (balls moved, with a
+/// warning), mm (`snooker serve --vision-tolerance-mm`, and the same flag of the local
+/// commands). A request may ask for less, not more.
+inline constexpr double kDefaultVisionToleranceMm = 1.0;
+/// What the flag accepts, mm: a ball is 52.5 mm across; an error of centimetres is
+/// not vision's small error but a wrong table.
+inline constexpr Range kVisionToleranceMm{0, 10};
+
+// --- Plans --------------------------------------------------------------------------
+/// A Plan request without a budget gets this, ms (`--default-budget-ms`; the
+/// planner's own default).
+inline constexpr double kDefaultPlanBudgetMs = 80;
+/// The largest budget a request may ask for, ms (`--max-budget-ms`), and the most
+/// that flag accepts (the planner's own bound).
+inline constexpr double kDefaultMaxPlanBudgetMs = 10'000;
+inline constexpr Range kPlanBudgetMs{1, 60'000};
+/// Plans in the server at once, running or waiting for a worker; further Plan calls
+/// are refused at once with RESOURCE_EXHAUSTED (`--max-plans`).
+inline constexpr int kDefaultMaxPlans = 32;
+inline constexpr int kMaxPlansLimit = 10'000;
+
 }  // namespace snooker::server::limits

@@ -2,6 +2,9 @@
 
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/health_check_service_interface.h>
+#include <grpcpp/security/server_credentials.h>
+
+#include "server/address.h"
 
 namespace snooker::server {
 
@@ -14,21 +17,62 @@ std::unique_ptr<Server> Server::Start(const std::string& address, std::string* e
   return Start(options, error);
 }
 
+namespace {
+
+// Concurrent HTTP/2 streams (calls) per client connection: far above what the worker
+// pool takes (its queue refuses the rest), a bound on what one connection can open.
+constexpr int kMaxStreamsPerConnection = 1024;
+// Request metadata (headers) per call, bytes.
+constexpr int kMaxMetadataBytes = 16 * 1024;
+
+std::shared_ptr<grpc::ServerCredentials> Credentials(const ServerOptions& options) {
+  if (!options.tls) return grpc::InsecureServerCredentials();
+  grpc::SslServerCredentialsOptions ssl(
+      options.tls->client_ca_pem.empty()
+          ? GRPC_SSL_DONT_REQUEST_CLIENT_CERTIFICATE
+          : GRPC_SSL_REQUEST_AND_REQUIRE_CLIENT_CERTIFICATE_AND_VERIFY);
+  ssl.pem_root_certs = options.tls->client_ca_pem;
+  ssl.pem_key_cert_pairs.push_back({options.tls->private_key_pem, options.tls->cert_chain_pem});
+  return grpc::SslServerCredentials(ssl);
+}
+
+}  // namespace
+
 std::unique_ptr<Server> Server::Start(const ServerOptions& options, std::string* error) {
+  auto fail = [&](const std::string& why) {
+    if (error != nullptr) *error = why;
+    return nullptr;
+  };
+  if (const std::string bad = ValidateServiceOptions(options); !bad.empty()) return fail(bad);
+  if (const std::string bad = CheckListenAddress(options.address); !bad.empty()) return fail(bad);
+  if (!options.tls && !options.allow_insecure && !IsLoopbackAddress(options.address)) {
+    return fail("refusing to listen on " + options.address +
+                " in plaintext: it is not a loopback address. Give a TLS certificate and key "
+                "(--tls-cert, --tls-key), or --insecure for a trusted network");
+  }
+  if (options.tls && (options.tls->cert_chain_pem.empty() || options.tls->private_key_pem.empty())) {
+    return fail("TLS needs both a certificate and its private key");
+  }
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   std::unique_ptr<Server> s(new Server(options));
   grpc::ServerBuilder builder;
-  builder.AddListeningPort(options.address, grpc::InsecureServerCredentials(), &s->port_);
+  builder.AddListeningPort(options.address, Credentials(options), &s->port_);
+  builder.AddChannelArgument(GRPC_ARG_MAX_CONCURRENT_STREAMS, kMaxStreamsPerConnection);
+  builder.AddChannelArgument(GRPC_ARG_MAX_METADATA_SIZE, kMaxMetadataBytes);
   builder.RegisterService(&s->service_);
   builder.SetMaxReceiveMessageSize(static_cast<int>(limits::kMaxRequestBytes));
   // The API bounds its answers below this (limits::kMaxResponseBytes); this is the backstop.
   builder.SetMaxSendMessageSize(static_cast<int>(limits::kMaxResponseBytes + 4096));
   s->server_ = builder.BuildAndStart();
   if (s->server_ == nullptr || s->port_ == 0) {
-    if (error != nullptr) *error = "cannot listen on " + options.address;
+    // gRPC says why on its log (stderr): a port in use, a bad address, or a
+    // certificate or key that does not load.
     s->server_.reset();
-    return nullptr;
+    return fail("cannot listen on " + options.address +
+                (options.tls ? " (or the TLS certificate or key is not valid PEM, or they do "
+                               "not match)"
+                             : ""));
   }
   s->server_->GetHealthCheckService()->SetServingStatus(kServiceName, true);
   return s;

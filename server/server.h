@@ -1,10 +1,17 @@
 // Building and running the gRPC server: the ShotPlanner service, the standard
 // health service (grpc.health.v1) and server reflection.
+//
+// Security: a server listens in plaintext only on a loopback address
+// (server/address.h) unless allow_insecure says otherwise; anywhere else it needs
+// TLS (a certificate and key; with a client CA it also requires and verifies client
+// certificates). Every message is bounded (limits::kMaxRequestBytes in,
+// kMaxResponseBytes out), as are HTTP/2 streams per connection and metadata.
 #pragma once
 
 #include <chrono>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 
 #include <grpcpp/grpcpp.h>
@@ -17,16 +24,33 @@ namespace snooker::server {
 /// The health-check service name under which ShotPlanner reports SERVING.
 inline constexpr const char* kServiceName = "snooker.v1.ShotPlanner";
 
+/// TLS for the server, as PEM text (`snooker serve --tls-cert --tls-key
+/// --tls-client-ca` read the files).
+struct TlsOptions {
+  std::string cert_chain_pem;   ///< the server's certificate (and its chain)
+  std::string private_key_pem;  ///< its private key
+  /// Not empty: clients must present a certificate signed by one of these CAs
+  /// (mutual TLS); empty: clients are not asked for one.
+  std::string client_ca_pem;
+};
+
 struct ServerOptions : ServiceOptions {
   /// "host:port"; port 0 picks a free port.
   std::string address = "127.0.0.1:50051";
+  /// TLS; none: plaintext, which only a loopback address gets unless allow_insecure.
+  std::optional<TlsOptions> tls;
+  /// Listen in plaintext on an address that is not loopback (`--insecure`): for a
+  /// trusted network or a TLS-terminating proxy in front.
+  bool allow_insecure = false;
   /// Shutdown(): how long calls in flight may finish before they are cancelled.
   std::chrono::milliseconds shutdown_grace = limits::kDefaultShutdownGrace;
 };
 
 class Server {
  public:
-  /// Starts serving. Returns nullptr and sets `error` when the address cannot be bound.
+  /// Starts serving. Returns nullptr and sets `error` when the options are invalid,
+  /// plaintext is asked for on an address that is not loopback without
+  /// allow_insecure, or the address cannot be bound.
   static std::unique_ptr<Server> Start(const ServerOptions& options, std::string* error);
   /// The same with default options on `address`.
   static std::unique_ptr<Server> Start(const std::string& address, std::string* error);

@@ -169,7 +169,8 @@ TEST(SimulateApiTest, BadTablesAreRejectedNamingTheBall) {
          *r->mutable_table()->mutable_balls(1)->mutable_position() =
              r->table().balls(0).position();
        },
-       "overlaps"},
+       "beyond the vision tolerance of 1 mm, which repairs smaller errors only: cue and black "
+       "overlap by 0.0525 m"},
       {[](v1::SimulateRequest* r) {
          r->mutable_table()->mutable_balls(1)->mutable_position()->set_x(-0.5);
        },

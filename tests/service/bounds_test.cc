@@ -53,7 +53,7 @@ TEST(RequestBoundsTest, ManyProblemsGiveTheFirstFewAndACount) {
   v1::SimulateResponse resp;
   const ApiStatus st = Simulate(Stacked(physics::limits::kMaxBalls), &resp);
   EXPECT_EQ(st.code, Code::kInvalidArgument);
-  EXPECT_TRUE(Mentions(st.message, "cue at (0.9, 1) m overlaps red-1")) << st.message;
+  EXPECT_TRUE(Mentions(st.message, "cue and red-1 overlap by 0.0525 m")) << st.message;
   EXPECT_TRUE(Mentions(st.message, "and 491 more")) << st.message;  // 496 - 5
   EXPECT_LT(st.message.size(), 1000u) << st.message;
 }

@@ -46,6 +46,13 @@ inline RunResult RunCli(const std::string& args) {
   return RunShell(std::string(SNOOKER_CLI_PATH) + " " + args);
 }
 
+/// Shell text that waits (at most 20 s) until `serve_out`, the standard output of a
+/// `snooker serve` started in the background, names its port, and sets $port.
+inline std::string kWaitForPort(const std::string& serve_out) {
+  return "for i in $(seq 200); do grep -q 'on port' " + serve_out + " 2>/dev/null && break; "
+         "sleep 0.1; done; port=$(grep -o 'port [0-9]*' " + serve_out + " | cut -d' ' -f2); ";
+}
+
 /// Writes `text` to a fresh file in the test temp folder and returns its path.
 inline std::string TempFile(const std::string& name, const std::string& text) {
   const std::string path = testing::TempDir() + std::to_string(getpid()) + "_" + name;

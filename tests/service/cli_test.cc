@@ -176,9 +176,14 @@ TEST(CliTest, ServeRunsUntilSigtermAndShutsDownCleanly) {
 }
 
 TEST(CliTest, ServeOnABadAddressFails) {
-  const RunResult r = RunCli("serve --address not-an-address:99999");
+  const RunResult r = RunCli("serve --insecure --address not-an-address:99999");
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.err.find("cannot listen on not-an-address:99999"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("port '99999' of 'not-an-address:99999' is not in [0, 65535]"),
+            std::string::npos)
+      << r.err;
+  const RunResult unknown = RunCli("serve --insecure --address not-an-address:9999");
+  EXPECT_EQ(unknown.exit_code, 1);
+  EXPECT_NE(unknown.err.find("cannot listen on not-an-address:9999"), std::string::npos) << unknown.err;
 }
 
 // The issue's own example formats.
@@ -233,7 +238,7 @@ TEST(CliSimulateTest, BadFilesAndTablesExitNonZeroNamingTheProblem) {
       {"{not json", kShot, "is not a valid TableState JSON"},
       {R"({"balls": [{"id": "cue", "kind": "CUE", "position": {"x": 0.9, "y": 0.6}},
                      {"id": "red-1", "kind": "RED", "position": {"x": 0.91, "y": 0.6}}]})",
-       kShot, "overlaps"},
+       kShot, "cue and red-1 overlap by 0.0425 m"},
       {R"({"balls": [{"id": "cue", "kind": "CUE", "position": {"x": 2.5, "y": 0.6}}]})", kShot,
        "cue"},
       {R"({"balls": [{"id": "cue", "kind": "PURPLE", "position": {"x": 0.9, "y": 0.6}}]})", kShot,

@@ -38,6 +38,25 @@ TEST_F(GrpcServiceTest, HealthReportsServing) {
   EXPECT_EQ(resp.status(), grpc::health::v1::HealthCheckResponse::SERVING);
 }
 
+// A service the server does not know is NOT_FOUND (gRPC's health semantics); the
+// server as a whole ("") is SERVING.
+TEST_F(GrpcServiceTest, HealthKnowsOnlyItsServices) {
+  auto health = grpc::health::v1::Health::NewStub(channel_);
+  grpc::health::v1::HealthCheckRequest req;
+  grpc::health::v1::HealthCheckResponse resp;
+  {
+    grpc::ClientContext ctx;
+    req.set_service("");
+    ASSERT_TRUE(health->Check(&ctx, req, &resp).ok());
+    EXPECT_EQ(resp.status(), grpc::health::v1::HealthCheckResponse::SERVING);
+  }
+  {
+    grpc::ClientContext ctx;
+    req.set_service("snooker.v1.NoSuchService");
+    EXPECT_EQ(health->Check(&ctx, req, &resp).error_code(), grpc::StatusCode::NOT_FOUND);
+  }
+}
+
 TEST_F(GrpcServiceTest, CollideAnswersThePapersFirstShot) {
   v1::CollideRequest req;
   req.set_speed(1.539);

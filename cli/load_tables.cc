@@ -1,0 +1,170 @@
+#include "cli/load_tables.h"
+
+#include <google/protobuf/util/json_util.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "cli/read_file.h"
+#include "physics/core/params.h"
+#include "physics/core/types.h"
+#include "physics/table/table.h"
+#include "server/convert.h"
+
+namespace snooker::cli {
+
+std::uint64_t LoadRandom::Next() {
+  std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+double LoadRandom::Uniform(double lo, double hi) {
+  const double u = static_cast<double>(Next() >> 11) * 0x1.0p-53;
+  return lo + (hi - lo) * u;
+}
+
+int LoadRandom::Below(int n) { return static_cast<int>(Next() % static_cast<std::uint64_t>(n)); }
+
+namespace {
+
+constexpr double kCushionMargin = 0.06;  // m from a cushion nose line
+constexpr double kGap = 0.001;           // m between balls
+constexpr int kMaxTries = 2000;          // placements tried per ball
+
+void Add(v1::TableState* t, const std::string& id, v1::BallKind kind, const physics::Vec2& p) {
+  v1::Ball* b = t->add_balls();
+  b->set_id(id);
+  b->set_kind(kind);
+  b->mutable_position()->set_x(p.x());
+  b->mutable_position()->set_y(p.y());
+}
+
+physics::Vec2 At(const v1::Ball& b) { return {b.position().x(), b.position().y()}; }
+
+// A free spot at least 2R + kGap from every ball of `t`, or false after kMaxTries.
+bool FreeSpot(const v1::TableState& t, LoadRandom& random, physics::Vec2* out) {
+  const physics::TableModel& table = physics::DefaultTable();
+  const double r2 = 2 * table.ball_radius();
+  for (int k = 0; k < kMaxTries; ++k) {
+    const physics::Vec2 p(random.Uniform(kCushionMargin, table.spec().width - kCushionMargin),
+                          random.Uniform(kCushionMargin, table.spec().length - kCushionMargin));
+    bool free = true;
+    for (const v1::Ball& b : t.balls()) free = free && (At(b) - p).norm() >= r2 + kGap;
+    if (free) {
+      *out = p;
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+std::vector<v1::TableState> VariedTables(std::uint64_t seed, int count, double overlap_mm) {
+  const physics::TableModel& table = physics::DefaultTable();
+  LoadRandom random(seed);
+  std::vector<v1::TableState> tables;
+  const std::pair<const char*, v1::BallKind> colours[] = {
+      {"yellow", v1::YELLOW}, {"green", v1::GREEN}, {"brown", v1::BROWN},
+      {"blue", v1::BLUE},     {"pink", v1::PINK},   {"black", v1::BLACK}};
+  while (static_cast<int>(tables.size()) < count) {
+    v1::TableState t;
+    physics::Vec2 p;
+    FreeSpot(t, random, &p);
+    Add(&t, "cue", v1::CUE, p);
+    const int reds = random.Below(16);
+    for (int i = 0; i < reds && FreeSpot(t, random, &p); ++i) {
+      Add(&t, "red-" + std::to_string(i + 1), v1::RED, p);
+    }
+    for (const auto& [id, kind] : colours) {
+      if ((random.Below(10) < 7 || t.balls_size() == 1) && FreeSpot(t, random, &p)) Add(&t, id, kind, p);
+    }
+    if (t.balls_size() < 2) continue;  // no object ball: draw again
+    if (overlap_mm > 0 && tables.size() % 4 == 3) {
+      // Move the last ball against the one before it, overlapping by overlap_mm (the
+      // pair stays clear of the cushions: both are 6 cm in).
+      const int n = t.balls_size();
+      const physics::Vec2 a = At(t.balls(n - 2));
+      const double angle = random.Uniform(0, 2 * physics::kPi);
+      const physics::Vec2 b =
+          a + (2 * table.ball_radius() - overlap_mm * 1e-3) * physics::Vec2(std::cos(angle), std::sin(angle));
+      bool clear = b.x() > kCushionMargin && b.x() < table.spec().width - kCushionMargin &&
+                   b.y() > kCushionMargin && b.y() < table.spec().length - kCushionMargin;
+      for (int i = 0; i < n - 2 && clear; ++i) {
+        clear = (At(t.balls(i)) - b).norm() >= 2 * table.ball_radius() + kGap;
+      }
+      if (!clear) continue;  // draw this table again
+      t.mutable_balls(n - 1)->mutable_position()->set_x(b.x());
+      t.mutable_balls(n - 1)->mutable_position()->set_y(b.y());
+    }
+    tables.push_back(std::move(t));
+  }
+  return tables;
+}
+
+v1::Shot ShotAtABall(const v1::TableState& table, LoadRandom& random) {
+  const double radius = physics::BallParams{}.radius;
+  const int cue = server::CueIndex(table);
+  const physics::Vec2 from = At(table.balls(cue));
+  int target = random.Below(std::max(1, table.balls_size() - 1));
+  if (target >= cue) ++target;
+  if (target >= table.balls_size()) target = cue == 0 ? 1 : 0;
+  const physics::Vec2 d = At(table.balls(target)) - from;
+  v1::Shot shot;
+  const double speed = random.Uniform(0.5, 5.0);
+  const double rolling = speed / radius;
+  shot.set_speed(speed);
+  shot.set_heading_deg(physics::RadToDeg(std::atan2(d.y(), d.x())) + random.Uniform(-1.5, 1.5));
+  shot.set_topspin(random.Uniform(-rolling, rolling));
+  shot.set_sidespin(random.Uniform(-0.5 * rolling, 0.5 * rolling));
+  return shot;
+}
+
+bool ReadTables(const std::string& dir, std::vector<v1::TableState>* tables, std::string* error) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) {
+    *error = "'" + dir + "' is not a directory";
+    return false;
+  }
+  std::vector<fs::path> files;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+    if (e.path().extension() == ".json") files.push_back(e.path());
+  }
+  if (ec) {
+    *error = "cannot list '" + dir + "': " + ec.message();
+    return false;
+  }
+  std::sort(files.begin(), files.end());
+  constexpr std::size_t kMaxFiles = 100'000;
+  if (files.empty() || files.size() > kMaxFiles) {
+    *error = "'" + dir + "' holds " + std::to_string(files.size()) + " *.json files (1 to " +
+             std::to_string(kMaxFiles) + " are used)";
+    return false;
+  }
+  for (const fs::path& f : files) {
+    std::string text, why;
+    if (!ReadInputFile(f.string(), &text, &why)) {
+      *error = "cannot read '" + f.string() + "': " + why;
+      return false;
+    }
+    v1::TableState t;
+    const auto st = google::protobuf::util::JsonStringToMessage(text, &t);
+    if (!st.ok()) {
+      *error = "'" + f.string() + "' is not a valid TableState JSON: " +
+               server::BoundMessage(std::string(st.message()));
+      return false;
+    }
+    if (server::CueIndex(t) < 0 || t.balls_size() < 2) {
+      *error = "'" + f.string() + "' needs a CUE ball and another ball";
+      return false;
+    }
+    tables->push_back(std::move(t));
+  }
+  return true;
+}
+
+}  // namespace snooker::cli

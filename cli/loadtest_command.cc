@@ -1,0 +1,326 @@
+// snooker loadtest: an offline load test of a `snooker serve` on this machine. C
+// client threads, each with a connection of its own, send N calls in all (built-in
+// varied tables, or a folder of table files), time each, and check every answer.
+// Bounded in count (N), concurrency and time (--max-seconds: no call is sent after
+// it), and it sends load only to a loopback address.
+#include <google/protobuf/struct.pb.h>
+#include <google/protobuf/util/json_util.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <map>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "cli/args.h"
+#include "cli/client.h"
+#include "cli/commands.h"
+#include "cli/json.h"
+#include "cli/load_tables.h"
+#include "server/address.h"
+#include "server/convert.h"
+#include "snooker/v1/service.grpc.pb.h"
+
+namespace snooker::cli {
+namespace {
+
+constexpr const char* kHelp = R"(usage: snooker loadtest --target 127.0.0.1:PORT --concurrency C --requests N
+                        [--method simulate] [--tables DIR] [--seed S] [--max-seconds S]
+                        [--json] [--tls-ca CA.pem ...] [--deadline-ms MS]
+
+Sends N calls to a snooker server on this machine from C client threads (each with
+its own connection), then prints throughput, latency percentiles, the calls by
+status code and the problems found in the answers. Every answer is checked: for
+simulate, every ball of the table answered once, finite, on or near the table,
+events in time order naming the table's balls, and each vision repair within the
+server's tolerance (GetModel). A health check (grpc.health.v1) runs before and after.
+
+Exit status 0 only when the server was SERVING before and after, and every call
+was sent, answered OK and checked without a problem; 1 otherwise; 2 for bad usage.
+
+  --target HOST:PORT   the server; loopback only (127.0.0.0/8, ::1, localhost)
+  --concurrency C      client threads, 1 to 256
+  --requests N         calls in all, 1 to 1000000
+  --method M           simulate (default): a shot on each table
+  --tables DIR         the tables: every *.json in DIR (a TableState each, as for
+                       snooker simulate --table), in name order, used in turn;
+                       default: 64 built-in tables (0-15 reds, some colours, placed
+                       at random; every fourth with two balls overlapping by 0.3 mm
+                       when the server repairs that)
+  --seed S             seed of the built-in tables and of the shots (default 1)
+  --max-seconds S      no call is sent after S seconds (default 600, at most 3600)
+  --json               one JSON object: {"target", "method", "concurrency",
+                       "requests", "completed", "elapsedS", "throughputPerS",
+                       "latencyMs": {"p50", "p90", "p99", "max", "mean"}, "statuses":
+                       {"OK": n, ...}, "errors", "badAnswers", "problems": [...],
+                       "ballsMoved", "healthBefore", "healthAfter", "timeBoundHit"}
+)";
+
+using Clock = std::chrono::steady_clock;
+
+// What the answers are checked against: the server's own model.
+struct Expectations {
+  double width = 0, length = 0;
+  double vision_tolerance_mm = 0;
+};
+
+struct Outcome {
+  bool done = false;  // sent and answered
+  grpc::StatusCode code = grpc::StatusCode::OK;
+  double latency_ms = 0;
+  std::string problem;  // empty: the answer checked out (or the call failed)
+  int balls_moved = 0;
+};
+
+std::string Num(double x) { return server::FormatNumber(x); }
+
+// Checks a Simulate answer against its request; the first problem, or "".
+std::string CheckSimulate(const v1::SimulateRequest& request, const v1::SimulateResponse& r,
+                          const Expectations& e) {
+  const v1::TableState& t = request.table();
+  std::set<std::string> ids;
+  for (const v1::Ball& b : t.balls()) ids.insert(b.id());
+  static const std::set<std::string> kStatuses = {"at rest", "event limit reached",
+                                                  "time limit reached"};
+  if (kStatuses.count(r.status()) == 0) return "status \"" + r.status() + "\"";
+  if (!(std::isfinite(r.duration_s()) && r.duration_s() >= 0)) return "durationS " + Num(r.duration_s());
+  if (r.final_balls_size() != t.balls_size()) {
+    return std::to_string(r.final_balls_size()) + " final balls for " +
+           std::to_string(t.balls_size()) + " balls";
+  }
+  constexpr double kSlack = 0.2;  // m: a ball may rest in a pocket's jaws
+  for (int i = 0; i < t.balls_size(); ++i) {
+    const v1::FinalBall& b = r.final_balls(i);
+    if (b.id() != t.balls(i).id()) return "final ball " + std::to_string(i) + " is \"" + b.id() + "\"";
+    const double x = b.position().x(), y = b.position().y();
+    if (!(std::isfinite(x) && std::isfinite(y) && x > -kSlack && x < e.width + kSlack &&
+          y > -kSlack && y < e.length + kSlack)) {
+      return "ball \"" + b.id() + "\" ended at (" + Num(x) + ", " + Num(y) + ")";
+    }
+  }
+  double last = 0;
+  for (const v1::Event& ev : r.events()) {
+    if (!(std::isfinite(ev.time()) && ev.time() >= last)) {
+      return "event time " + Num(ev.time()) + " after " + Num(last);
+    }
+    last = ev.time();
+    if (ev.balls_size() < 1) return "an event without a ball";
+    for (const std::string& id : ev.balls()) {
+      if (ids.count(id) == 0) return "an event names ball \"" + id + "\"";
+    }
+  }
+  for (const v1::Warning& w : r.warnings()) {
+    if (ids.count(w.ball_id()) == 0) return "a warning names ball \"" + w.ball_id() + "\"";
+    if (!(w.moved_mm() >= 0 && w.moved_mm() <= e.vision_tolerance_mm + 1e-9)) {
+      return "ball \"" + w.ball_id() + "\" moved " + Num(w.moved_mm()) + " mm, beyond the tolerance";
+    }
+  }
+  return "";
+}
+
+double Percentile(const std::vector<double>& sorted, double p) {
+  if (sorted.empty()) return 0;
+  const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(sorted.size())));
+  return sorted[std::clamp<std::size_t>(rank, 1, sorted.size()) - 1];
+}
+
+}  // namespace
+
+int RunLoadTest(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
+  const std::string command = "snooker loadtest";
+  std::set<std::string> valued = {"concurrency", "requests", "method", "tables", "seed", "max-seconds"};
+  for (const std::string& flag : ClientFlags("target")) valued.insert(flag);
+  Args args(argv, valued, {"json", "help"});
+  if (args.error().empty() && args.Switch("help")) {
+    out << kHelp << "\n" << ClientFlagsHelp();
+    return kExitOk;
+  }
+  const auto concurrency = args.Integer("concurrency", std::nullopt, 1, 256);
+  const auto requests = args.Integer("requests", std::nullopt, 1, 1'000'000);
+  const auto method = args.Text("method", "simulate");
+  const auto tables_dir = args.Text("tables", "");
+  const auto seed = args.Integer("seed", 1, 0, std::numeric_limits<long>::max());
+  const auto max_seconds = args.Integer("max-seconds", 600, 1, 3600);
+  ClientOptions client;
+  if (!ClientOptionsFrom(args, command, "target", 10'000, &client, err)) return kExitUsage;
+  if (args.error().empty() && client.target.empty()) {
+    err << command << ": --target is required\n";
+    return kExitUsage;
+  }
+  if (!args.error().empty()) {
+    err << command << ": " << args.error() << "\n(see snooker loadtest --help)\n";
+    return kExitUsage;
+  }
+  if (!server::IsLoopbackAddress(client.target)) {
+    err << command << ": refusing --target " << client.target
+        << ": load goes only to this machine (127.0.0.0/8, ::1, localhost)\n";
+    return kExitUsage;
+  }
+  if (*method != "simulate") {
+    err << command << ": --method '" << *method << "': simulate is the method this build tests\n";
+    return kExitUsage;
+  }
+
+  // The server's model first: what its answers are checked against. Its health too.
+  auto channel = MakeChannel(client);
+  std::string health_before = "unreachable", health_after = "unreachable";
+  if (const grpc::Status st = CheckHealth(channel, "snooker.v1.ShotPlanner", client.deadline, &health_before);
+      !st.ok()) {
+    err << command << ": health check of " << client.target << " failed: "
+        << StatusCodeName(st.error_code()) << ": " << st.error_message() << "\n";
+    return kExitFailure;
+  }
+  if (health_before != "SERVING") {
+    err << command << ": " << client.target << " reports " << health_before
+        << " for snooker.v1.ShotPlanner: no load sent\n";
+    return kExitFailure;
+  }
+  v1::GetModelResponse model;
+  {
+    grpc::ClientContext context;
+    context.set_deadline(std::chrono::system_clock::now() + client.deadline);
+    const grpc::Status st = v1::ShotPlanner::NewStub(channel)->GetModel(&context, {}, &model);
+    if (!st.ok()) return ReportCallError(command, client.target, st, err);
+  }
+  Expectations expect;
+  expect.width = model.table().width_m();
+  expect.length = model.table().length_m();
+  expect.vision_tolerance_mm = model.service().vision_tolerance_mm();
+
+  std::vector<v1::TableState> tables;
+  if (!tables_dir->empty()) {
+    std::string why;
+    if (!ReadTables(*tables_dir, &tables, &why)) {
+      err << command << ": --tables: " << why << "\n";
+      return kExitUsage;
+    }
+  } else {
+    // Overlaps of 0.3 mm only for a server that repairs them.
+    constexpr double kOverlapMm = 0.3;
+    tables = VariedTables(static_cast<std::uint64_t>(*seed), 64,
+                          expect.vision_tolerance_mm >= kOverlapMm ? kOverlapMm : 0);
+  }
+
+  const auto n = static_cast<std::size_t>(*requests);
+  std::vector<Outcome> outcomes(n);
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> time_bound_hit{false};
+  const auto t0 = Clock::now();
+  const auto stop_sending = t0 + std::chrono::seconds(*max_seconds);
+  auto worker = [&] {
+    auto stub = v1::ShotPlanner::NewStub(MakeChannel(client, /*own_connection=*/true));
+    for (;;) {
+      const std::size_t i = next.fetch_add(1);
+      if (i >= n) return;
+      if (Clock::now() >= stop_sending) {
+        time_bound_hit = true;
+        return;
+      }
+      v1::SimulateRequest request;
+      *request.mutable_table() = tables[i % tables.size()];
+      LoadRandom random(static_cast<std::uint64_t>(*seed) * 0x9E3779B97F4A7C15ull + i);
+      *request.mutable_shot() = ShotAtABall(request.table(), random);
+      v1::SimulateResponse response;
+      grpc::ClientContext context;
+      context.set_deadline(std::chrono::system_clock::now() + client.deadline);
+      const auto start = Clock::now();
+      const grpc::Status st = stub->Simulate(&context, request, &response);
+      Outcome& o = outcomes[i];
+      o.done = true;
+      o.latency_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+      o.code = st.error_code();
+      if (st.ok()) {
+        o.problem = CheckSimulate(request, response, expect);
+        o.balls_moved = response.warnings_size();
+      } else {
+        o.problem = std::string(StatusCodeName(st.error_code())) + ": " + st.error_message();
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  for (long c = 0; c < *concurrency; ++c) threads.emplace_back(worker);
+  for (std::thread& t : threads) t.join();
+  const double elapsed = std::chrono::duration<double>(Clock::now() - t0).count();
+  CheckHealth(channel, "snooker.v1.ShotPlanner", client.deadline, &health_after);
+
+  std::size_t completed = 0, errors = 0, bad = 0, moved = 0;
+  std::map<std::string, std::size_t> statuses;
+  std::vector<double> latencies;
+  std::vector<std::string> problems;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Outcome& o = outcomes[i];
+    if (!o.done) continue;  // not sent: the time bound came first
+    ++completed;
+    latencies.push_back(o.latency_ms);
+    ++statuses[StatusCodeName(o.code)];
+    moved += static_cast<std::size_t>(o.balls_moved);
+    if (o.code != grpc::StatusCode::OK) ++errors;
+    else if (!o.problem.empty()) ++bad;
+    if (!o.problem.empty() && problems.size() < 5) {
+      problems.push_back("call " + std::to_string(i) + ": " + server::BoundMessage(o.problem).substr(0, 300));
+    }
+  }
+  std::sort(latencies.begin(), latencies.end());
+  double mean = 0;
+  for (double l : latencies) mean += l;
+  mean = latencies.empty() ? 0 : mean / static_cast<double>(latencies.size());
+  const double throughput = elapsed > 0 ? static_cast<double>(completed) / elapsed : 0;
+  const bool clean = completed == n && errors == 0 && bad == 0 && health_after == "SERVING";
+
+  if (args.Switch("json")) {
+    google::protobuf::Struct j;
+    auto& f = *j.mutable_fields();
+    f["target"].set_string_value(client.target);
+    f["method"].set_string_value(*method);
+    f["concurrency"].set_number_value(static_cast<double>(*concurrency));
+    f["requests"].set_number_value(static_cast<double>(n));
+    f["completed"].set_number_value(static_cast<double>(completed));
+    f["tables"].set_number_value(static_cast<double>(tables.size()));
+    f["elapsedS"].set_number_value(elapsed);
+    f["throughputPerS"].set_number_value(throughput);
+    auto& lat = *f["latencyMs"].mutable_struct_value()->mutable_fields();
+    lat["p50"].set_number_value(Percentile(latencies, 0.50));
+    lat["p90"].set_number_value(Percentile(latencies, 0.90));
+    lat["p99"].set_number_value(Percentile(latencies, 0.99));
+    lat["max"].set_number_value(latencies.empty() ? 0 : latencies.back());
+    lat["mean"].set_number_value(mean);
+    auto& st = *f["statuses"].mutable_struct_value()->mutable_fields();
+    for (const auto& [name, count] : statuses) st[name].set_number_value(static_cast<double>(count));
+    f["errors"].set_number_value(static_cast<double>(errors));
+    f["badAnswers"].set_number_value(static_cast<double>(bad));
+    auto* list = f["problems"].mutable_list_value();
+    for (const std::string& p : problems) list->add_values()->set_string_value(p);
+    f["ballsMoved"].set_number_value(static_cast<double>(moved));
+    f["healthBefore"].set_string_value(health_before);
+    f["healthAfter"].set_string_value(health_after);
+    f["timeBoundHit"].set_bool_value(time_bound_hit.load());
+    std::string text;
+    google::protobuf::util::JsonPrintOptions o;
+    (void)google::protobuf::util::MessageToJsonString(j, &text, o);
+    out << text << "\n";
+  } else {
+    out << std::fixed << std::setprecision(1) << command << ": " << n << " " << *method
+        << " calls to " << client.target << ", concurrency " << *concurrency << ", "
+        << tables.size() << (tables_dir->empty() ? " built-in tables (seed " + std::to_string(*seed) + ")"
+                                                 : " tables from " + *tables_dir)
+        << "\n  health: " << health_before << " before, " << health_after << " after\n"
+        << "  completed " << completed << " of " << n << " in " << std::setprecision(2) << elapsed
+        << " s: " << std::setprecision(1) << throughput << " calls/s"
+        << (time_bound_hit ? " (stopped at --max-seconds)" : "") << "\n"
+        << "  latency ms: p50 " << std::setprecision(2) << Percentile(latencies, 0.5) << ", p90 "
+        << Percentile(latencies, 0.9) << ", p99 " << Percentile(latencies, 0.99) << ", max "
+        << (latencies.empty() ? 0.0 : latencies.back()) << " (mean " << mean << ")\n  statuses:";
+    for (const auto& [name, count] : statuses) out << " " << name << " " << count;
+    out << "\n  answers with problems: " << bad << "; balls moved by the vision repair: " << moved
+        << "\n";
+    for (const std::string& p : problems) out << "  problem: " << p << "\n";
+  }
+  return clean ? kExitOk : kExitFailure;
+}
+
+}  // namespace snooker::cli

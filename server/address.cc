@@ -1,0 +1,77 @@
+#include "server/address.h"
+
+#include <arpa/inet.h>
+
+#include <cstring>
+#include <string>
+
+namespace snooker::server {
+namespace {
+
+bool StartsWith(std::string_view s, std::string_view prefix) {
+  return s.substr(0, prefix.size()) == prefix;
+}
+
+// The host of "host:port" or "[host]:port" (the port is required), or nothing.
+bool SplitHost(std::string_view address, std::string_view* host) {
+  if (StartsWith(address, "[")) {
+    const std::size_t close = address.find(']');
+    if (close == std::string_view::npos || close + 1 >= address.size() || address[close + 1] != ':') {
+      return false;
+    }
+    *host = address.substr(1, close - 1);
+    return true;
+  }
+  const std::size_t colon = address.rfind(':');
+  if (colon == std::string_view::npos) return false;
+  *host = address.substr(0, colon);
+  // An IPv6 address needs its brackets when a port follows.
+  return host->find(':') == std::string_view::npos;
+}
+
+}  // namespace
+
+std::string CheckListenAddress(std::string_view address) {
+  if (StartsWith(address, "unix:") || StartsWith(address, "unix-abstract:")) return "";
+  std::string_view host;
+  if (!SplitHost(address, &host)) {
+    return "address '" + std::string(address) + "' is not HOST:PORT (an IPv6 host in brackets)";
+  }
+  const std::string_view port = address.substr(address.rfind(':') + 1);
+  long value = 0;
+  bool digits = !port.empty() && port.size() <= 5;
+  for (char c : port) {
+    digits = digits && c >= '0' && c <= '9';
+    if (digits) value = value * 10 + (c - '0');
+  }
+  if (!digits || value > 65535) {
+    return "port '" + std::string(port) + "' of '" + std::string(address) + "' is not in [0, 65535]";
+  }
+  return "";
+}
+
+bool IsLoopbackAddress(std::string_view address) {
+  if (StartsWith(address, "unix:") || StartsWith(address, "unix-abstract:")) return true;
+  for (std::string_view scheme : {"ipv4:", "ipv6:", "dns:///", "dns:"}) {
+    if (StartsWith(address, scheme)) {
+      address.remove_prefix(scheme.size());
+      break;
+    }
+  }
+  std::string_view host;
+  if (!SplitHost(address, &host) || host.empty()) return false;
+  if (host == "localhost") return true;
+  const std::string h(host);
+  in_addr v4{};
+  if (inet_pton(AF_INET, h.c_str(), &v4) == 1) {
+    return (ntohl(v4.s_addr) >> 24) == 127;
+  }
+  in6_addr v6{};
+  if (inet_pton(AF_INET6, h.c_str(), &v6) == 1) {
+    if (IN6_IS_ADDR_LOOPBACK(&v6)) return true;
+    return IN6_IS_ADDR_V4MAPPED(&v6) && v6.s6_addr[12] == 127;
+  }
+  return false;
+}
+
+}  // namespace snooker::server

@@ -1,0 +1,23 @@
+// Where a server listens and a client connects: whether an address stays on this
+// machine. `snooker serve` listens in plaintext only on such an address unless told
+// otherwise (--insecure), and `snooker loadtest` sends load nowhere else.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace snooker::server {
+
+/// True when `address` ("host:port", "[v6]:port", "unix:path" ...) can only be
+/// reached from this machine: an IPv4 address in 127.0.0.0/8, ::1 (also as
+/// ::ffff:127.x.y.z), "localhost", or a Unix domain socket ("unix:",
+/// "unix-abstract:"). Everything else is not: a wildcard (0.0.0.0, [::], an empty
+/// host), any other address or host name.
+bool IsLoopbackAddress(std::string_view address);
+
+/// Empty when `address` is "host:port" or "[v6]:port" with a port in [0, 65535]
+/// (0: any free port), or a Unix socket; otherwise what is wrong. (gRPC takes port
+/// 99999 as 34463.)
+std::string CheckListenAddress(std::string_view address);
+
+}  // namespace snooker::server

@@ -1,0 +1,181 @@
+// The command line as a client of a real server (issue 10, items 5 and 6):
+// `snooker simulate --server` prints what the local command prints, and `snooker
+// loadtest` sends bounded load to a loopback server only, checks every answer and
+// reports errors by status code. The server runs in this process; the `snooker`
+// binary connects to it.
+#include <google/protobuf/struct.pb.h>
+#include <google/protobuf/util/json_util.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+#include "cli/load_tables.h"
+#include "physics/table/table.h"
+#include "server/convert.h"
+#include "tests/service/cli_support.h"
+#include "tests/service/server_support.h"
+
+namespace snooker {
+namespace {
+
+using cli_support::RunCli;
+using cli_support::RunResult;
+using cli_support::TempFile;
+using server_support::TestServer;
+
+bool Mentions(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+constexpr const char* kTable = R"({"balls": [
+    {"id": "cue", "kind": "CUE", "position": {"x": 0.9, "y": 0.6}},
+    {"id": "red-1", "kind": "RED", "position": {"x": 0.9, "y": 1.6}},
+    {"id": "black", "kind": "BLACK", "position": {"x": 0.0241, "y": 3.0}}]})";  // a hair past
+constexpr const char* kShot = R"({"speed": 2.5, "headingDeg": 90.3, "topspin": 40, "sidespin": -5})";
+
+TEST(SimulateServerTest, PrintsWhatTheLocalCommandPrints) {
+  TestServer s;
+  const std::string files =
+      " --table " + TempFile("remote_t.json", kTable) + " --shot " + TempFile("remote_s.json", kShot);
+  for (const char* format : {"", " --json"}) {
+    const RunResult local = RunCli("simulate" + files + format);
+    const RunResult remote = RunCli("simulate" + files + format + " --server " + s.target);
+    ASSERT_EQ(local.exit_code, 0) << local.err;
+    ASSERT_EQ(remote.exit_code, 0) << remote.err;
+    EXPECT_EQ(remote.out, local.out);
+    EXPECT_TRUE(Mentions(remote.out, "moved black by 0.272 mm")) << remote.out;
+  }
+}
+
+TEST(SimulateServerTest, TheServersErrorsExitAsTheLocalOnes) {
+  TestServer s;
+  const RunResult bad = RunCli("simulate --server " + s.target + " --table " +
+                               TempFile("remote_bad.json", kTable) + " --shot " +
+                               TempFile("remote_bad_s.json", R"({"speed": -3})"));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_TRUE(Mentions(bad.err, "snooker simulate: INVALID_ARGUMENT from " + s.target +
+                                    ": shot.speed = -3"))
+      << bad.err;
+  s.server->Shutdown(std::chrono::milliseconds(0));
+  const RunResult gone = RunCli("simulate --server " + s.target + " --deadline-ms 3000 --table " +
+                                TempFile("remote_t2.json", kTable) + " --shot " +
+                                TempFile("remote_s2.json", kShot));
+  EXPECT_EQ(gone.exit_code, 1);
+  EXPECT_TRUE(Mentions(gone.err, "snooker simulate: UNAVAILABLE from ")) << gone.err;
+}
+
+google::protobuf::Struct ParseJson(const std::string& text) {
+  google::protobuf::Struct j;
+  EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(text, &j).ok()) << text;
+  return j;
+}
+
+double Field(const google::protobuf::Struct& j, const std::string& name) {
+  const auto it = j.fields().find(name);
+  EXPECT_NE(it, j.fields().end()) << name;
+  return it == j.fields().end() ? -1 : it->second.number_value();
+}
+
+TEST(LoadTestTest, SendsEveryCallAndChecksEveryAnswer) {
+  TestServer s;
+  const RunResult r =
+      RunCli("loadtest --target " + s.target + " --concurrency 4 --requests 120 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const google::protobuf::Struct j = ParseJson(r.out);
+  EXPECT_EQ(Field(j, "completed"), 120);
+  EXPECT_EQ(Field(j, "errors"), 0);
+  EXPECT_EQ(Field(j, "badAnswers"), 0);
+  EXPECT_GT(Field(j, "ballsMoved"), 0);  // every fourth table is repaired
+  EXPECT_EQ(j.fields().at("statuses").struct_value().fields().at("OK").number_value(), 120);
+  EXPECT_EQ(j.fields().at("healthBefore").string_value(), "SERVING");
+  const auto& lat = j.fields().at("latencyMs").struct_value();
+  EXPECT_LE(Field(lat, "p50"), Field(lat, "p90"));
+  EXPECT_LE(Field(lat, "p90"), Field(lat, "p99"));
+  EXPECT_LE(Field(lat, "p99"), Field(lat, "max"));
+  EXPECT_GT(Field(lat, "p50"), 0);
+  // The server saw them all.
+  EXPECT_EQ(s.server->counts().with(grpc::StatusCode::OK), 120 + 1);  // and GetModel
+}
+
+// Half the tables are refused (two balls overlapping by 2 mm, beyond the tolerance):
+// the run fails, and says how many calls ended with which status and why.
+TEST(LoadTestTest, ErrorsAreCountedByStatusCodeAndFailTheRun) {
+  TestServer s;
+  const std::string dir = testing::TempDir() + "loadtest_errors_" + std::to_string(getpid());
+  ASSERT_EQ(system(("mkdir -p " + dir).c_str()), 0);
+  std::ofstream(dir + "/good.json") << kTable;
+  std::ofstream(dir + "/overlap.json")
+      << R"({"balls": [{"id": "cue", "kind": "CUE", "position": {"x": 0.5, "y": 0.5}},
+                       {"id": "red", "kind": "RED", "position": {"x": 0.5505, "y": 0.5}}]})";
+  const RunResult r = RunCli("loadtest --target " + s.target +
+                             " --concurrency 3 --requests 10 --tables " + dir);
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  EXPECT_TRUE(Mentions(r.out, "completed 10 of 10")) << r.out;
+  EXPECT_TRUE(Mentions(r.out, "statuses: INVALID_ARGUMENT 5 OK 5")) << r.out;
+  EXPECT_TRUE(Mentions(r.out, "problem: call 1: INVALID_ARGUMENT: table.balls = positions")) << r.out;
+}
+
+TEST(LoadTestTest, RefusesTargetsOffThisMachine) {
+  for (const char* target : {"10.1.2.3:50051", "example.com:50051", "0.0.0.0:50051"}) {
+    const RunResult r = RunCli(std::string("loadtest --target ") + target +
+                               " --concurrency 1 --requests 1");
+    EXPECT_EQ(r.exit_code, 2) << target;
+    EXPECT_TRUE(Mentions(r.err, "refusing --target")) << r.err;
+  }
+}
+
+TEST(LoadTestTest, CountAndConcurrencyAreBounded) {
+  for (const char* flags : {"--concurrency 0 --requests 1", "--concurrency 257 --requests 1",
+                            "--concurrency 1 --requests 0", "--concurrency 1 --requests 1000001",
+                            "--concurrency 1 --requests 1 --max-seconds 3601",
+                            "--concurrency 1 --requests 1 --method dance"}) {
+    const RunResult r = RunCli(std::string("loadtest --target 127.0.0.1:1 ") + flags);
+    EXPECT_EQ(r.exit_code, 2) << flags << ": " << r.err;
+  }
+}
+
+TEST(LoadTestTest, TakesTablesFromAFolder) {
+  TestServer s;
+  const std::string dir = testing::TempDir() + "loadtest_tables_" + std::to_string(getpid());
+  ASSERT_EQ(system(("mkdir -p " + dir).c_str()), 0);
+  {
+    std::ofstream(dir + "/a.json") << kTable;
+    std::ofstream(dir + "/b.json")
+        << R"({"balls": [{"id": "c", "kind": "CUE", "position": {"x": 0.5, "y": 0.5}},
+                         {"id": "p", "kind": "PINK", "position": {"x": 1.0, "y": 2.5}}]})";
+    std::ofstream(dir + "/notes.txt") << "not a table";
+  }
+  RunResult r = RunCli("loadtest --target " + s.target + " --concurrency 2 --requests 10 --tables " + dir);
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_TRUE(Mentions(r.out, "2 tables from " + dir)) << r.out;
+  EXPECT_TRUE(Mentions(r.out, "balls moved by the vision repair: 5")) << r.out;  // the black, 5 times
+  std::ofstream(dir + "/c.json") << "{broken";
+  r = RunCli("loadtest --target " + s.target + " --concurrency 2 --requests 10 --tables " + dir);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(Mentions(r.err, "c.json' is not a valid TableState JSON")) << r.err;
+}
+
+TEST(LoadTablesTest, BuiltInTablesAreValidVariedAndSeeded) {
+  const auto tables = cli::VariedTables(7, 64, 0.3);
+  ASSERT_EQ(tables.size(), 64u);
+  int repaired = 0, most = 0, fewest = 100;
+  for (std::size_t i = 0; i < tables.size(); ++i) {
+    const server::TableCheck strict = server::CheckTable(tables[i], physics::DefaultTable(), 0);
+    const server::TableCheck lenient = server::CheckTable(tables[i], physics::DefaultTable(), 1e-3);
+    EXPECT_TRUE(lenient.errors.empty()) << i << ": " << server::Describe(lenient.errors);
+    EXPECT_EQ(strict.errors.empty(), i % 4 != 3) << i;
+    repaired += lenient.warnings.empty() ? 0 : 1;
+    most = std::max(most, tables[i].balls_size());
+    fewest = std::min(fewest, tables[i].balls_size());
+  }
+  EXPECT_EQ(repaired, 16);
+  EXPECT_GE(most, 15);
+  EXPECT_LE(fewest, 6);
+  const auto again = cli::VariedTables(7, 64, 0.3);
+  EXPECT_EQ(again[10].SerializeAsString(), tables[10].SerializeAsString());
+  EXPECT_NE(cli::VariedTables(8, 64, 0.3)[10].SerializeAsString(), tables[10].SerializeAsString());
+}
+
+}  // namespace
+}  // namespace snooker

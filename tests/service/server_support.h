@@ -1,0 +1,44 @@
+// An in-process server on a free loopback port and a stub to it, for the service
+// tests that call it through gRPC (and for the command-line tests that point the
+// `snooker` binary at it).
+#pragma once
+
+#include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "server/server.h"
+#include "snooker/v1/service.grpc.pb.h"
+
+namespace snooker::server_support {
+
+struct TestServer {
+  /// Starts a server with `options` on 127.0.0.1 (any free port) unless
+  /// options.address names another; logs into `log`.
+  explicit TestServer(server::ServerOptions options = {}) {
+    if (options.address == server::ServerOptions().address) options.address = "127.0.0.1:0";
+    options.log = &log;
+    std::string error;
+    server = server::Server::Start(options, &error);
+    EXPECT_NE(server, nullptr) << error;
+    if (server == nullptr) return;
+    target = "127.0.0.1:" + std::to_string(server->port());
+    if (!options.tls) {
+      channel = grpc::CreateChannel(target, grpc::InsecureChannelCredentials());
+      stub = v1::ShotPlanner::NewStub(channel);
+    }
+  }
+  ~TestServer() {
+    if (server) server->Shutdown(std::chrono::milliseconds(0));
+  }
+  std::ostringstream log;  // written under the service's lock; read after calls end
+  std::unique_ptr<server::Server> server;
+  std::string target;  ///< "127.0.0.1:PORT"
+  std::shared_ptr<grpc::Channel> channel;
+  std::unique_ptr<v1::ShotPlanner::Stub> stub;
+};
+
+}  // namespace snooker::server_support
