@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "physics/core/shot.h"
+#include "physics/sim/fidelity.h"
 #include "physics/sim/simulate.h"
 #include "planner/candidates.h"
 #include "planner/pocket_model.h"
@@ -157,22 +158,22 @@ struct PlanAnswer {
 /// How a Planner is set up (fidelity, budget calibration and shares).
 struct PlannerConfig {
   const physics::TableModel* table = &physics::DefaultTable();
-  /// Full fidelity: verification and Monte Carlo. The event cap is lower than the
-  /// simulator's 5000: a pot and its positional run take 10 to 60 events (a mean
-  /// of 14 in docs/planner.md's fidelity set), so a run past 2000 is the event
-  /// loop repeating an event (a ball frozen to a cushion, a tight cluster: a known
-  /// physics issue) and is a failed candidate, not worth 5000 events.
+  /// Full fidelity (physics::Fidelity::kDefault): verification and Monte Carlo.
+  /// The event cap is lower than the simulator's 5000: a pot and its positional
+  /// run take 10 to 60 events (a mean of 14 in docs/planner.md's fidelity set) and
+  /// break-offs into the pack stay under 400 (docs/resting-contacts.md), so a run
+  /// past 2000 is far outside what a planned shot does and counts as a failed
+  /// candidate.
   physics::SimParams full = [] {
-    physics::SimParams p;
+    physics::SimParams p = physics::FidelityParams(physics::Fidelity::kDefault);
     p.max_events = 2000;
     return p;
   }();
-  /// The search's fidelity: looser impact tolerance (docs/planner.md measures what
-  /// it costs and changes) and a tighter event cap.
+  /// The search's fidelity (physics::Fidelity::kSearch: the impact solvers at
+  /// 1e-6; docs/planner.md measures what it costs and changes) and a tighter
+  /// event cap.
   physics::SimParams search = [] {
-    physics::SimParams p;
-    p.ball_ball_solver.tolerance = 1e-6;
-    p.cushion_solver.tolerance = 1e-6;
+    physics::SimParams p = physics::FidelityParams(physics::Fidelity::kSearch);
     p.max_events = 400;
     return p;
   }();

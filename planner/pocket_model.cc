@@ -99,13 +99,12 @@ bool PocketModel::Drops(physics::Simulator& sim, PocketId id, double approach, d
     ++*count;
     // Run until the ball drops, or has come away from the mouth (a miss: it is past
     // the pocket's reach and moving away from it), or rests.
-    physics::RunOptions run = physics::RunOptions::Lean();
-    run.record_paths = true;  // for CurrentState
-    physics::SimStatus status = sim.Start(std::span<const physics::BallState>(&b, 1), run);
+    physics::SimStatus status =
+        sim.Start(std::span<const physics::BallState>(&b, 1), physics::RunOptions::Lean());
     while (status == physics::SimStatus::kRunning) {
       status = sim.Step();
       if (sim.pocket_of(0) >= 0) break;
-      const physics::BallState now = CurrentState(sim, 0, params_);
+      const physics::BallState now = sim.StateNow(0);
       const Vec2 from_mouth = now.r - p.mouth_centre;
       if (from_mouth.norm() > kGiveUpDistance &&
           from_mouth.dot(Vec2(now.v.x(), now.v.y())) > 0) {

@@ -12,14 +12,6 @@ using physics::EventKind;
 using physics::SimStatus;
 using physics::Vec2;
 
-physics::BallState CurrentState(const physics::Simulator& sim, int i, const physics::SimParams& params) {
-  const auto knots = sim.path(i);
-  if (knots.empty()) return sim.final_balls()[static_cast<size_t>(i)];
-  const physics::PathKnot& k = knots.back();
-  if (k.state.s == physics::MotionState::kPocketed) return k.state;
-  return physics::EvolveThrough(k.state, sim.end_time() - k.t, params.ball, params.cloth);
-}
-
 ShotSimulator::ShotSimulator(const physics::TableModel& table, const physics::SimParams& params)
     : table_(table), params_(params), sim_(table, params) {
   balls_.reserve(physics::Simulator::kMaxBalls);
@@ -71,11 +63,9 @@ const ShotOutcome& ShotSimulator::Run(const ShotSetup& setup, const physics::Sho
   out_ = ShotOutcome{};
   out_.potted.clear();
   ++runs_;
+  // The full mode keeps events and paths for the answer; the others neither (the
+  // object ball's state right after its contact comes from StateNow).
   physics::RunOptions options = mode == Mode::kFull ? physics::RunOptions{} : physics::RunOptions::Lean();
-  // Paths are recorded for their knots: the object ball's state right after the
-  // contact is the knot that contact adds (see CurrentState). The buffers are
-  // reused from run to run, so this allocates nothing once warm.
-  options.record_paths = true;
   options.interrupt = interrupt;
   SimStatus status = sim_.Start(balls_, options);
   const bool decide = mode == Mode::kDecide;
@@ -92,7 +82,7 @@ const ShotOutcome& ShotSimulator::Run(const ShotSetup& setup, const physics::Sho
         (ev.ball == setup.cue || ev.other == setup.cue)) {
       out_.first_hit = ev.ball == setup.cue ? ev.other : ev.ball;
       if (out_.first_hit == setup.object) {
-        MeasureLine(setup, sim_.path(setup.object).back().state);
+        MeasureLine(setup, sim_.StateNow(setup.object));
       } else if (decide) {
         out_.stopped_early = true;
         break;

@@ -59,12 +59,6 @@ struct ShotOutcome {
   int events = 0;
 };
 
-/// Ball i's state at the simulator's current time during a Step-driven run that
-/// records paths (Simulator::final_balls() is only brought up to date when the run
-/// ends, although simulate.h says "current after every Step": a physics issue;
-/// this reads the path's last knot instead and evolves it in closed form).
-physics::BallState CurrentState(const physics::Simulator& sim, int i, const physics::SimParams& params);
-
 class ShotSimulator {
  public:
   enum class Mode { kDecide, kFull };

@@ -218,7 +218,8 @@ class Simulator {
   SimStatus Start(std::span<const BallState> balls, const RunOptions& options = {});
   /// Processes the next event (detect, evolve, resolve, record) and returns kRunning,
   /// or ends the run and returns its final status; after the end it returns that
-  /// status again. final_balls() is current after every Step.
+  /// status again. During such a run StateNow() gives the balls' states;
+  /// final_balls() is set when the run ends.
   SimStatus Step();
   /// The event Step last processed.
   const SimEvent& last_event() const { return last_event_; }
@@ -235,9 +236,12 @@ class Simulator {
   std::int32_t event_count() const { return event_count_; }
   /// Recorded events (RunOptions::record_events).
   std::span<const SimEvent> events() const { return events_; }
-  /// Every ball's state at end_time() (pocketed balls: where they dropped); during
-  /// a run driven by Step, at the time of the last event.
+  /// Every ball's state when the run ended (pocketed balls: where they dropped).
+  /// Set by the end of a run; while a caller still drives Step, use StateNow().
   std::span<const BallState> final_balls() const { return final_; }
+  /// Ball i's state at end_time(), the time of the last processed event; valid
+  /// during a run driven by Step and after it. Needs no recorded paths.
+  BallState StateNow(int i) const { return StateAt(i, time_); }
   /// Index into TableModel::pockets() of the pocket ball i fell into, or -1.
   int pocket_of(int i) const { return pocket_of_[static_cast<size_t>(i)]; }
   /// Ball i's path knots (RunOptions::record_paths), first at t = 0.

@@ -170,6 +170,33 @@ TEST_F(SimulateTest, StepLoopEndsOnceTheWatchedBallIsDecided) {
   EXPECT_GE(early.pocket_of(1), 0);
 }
 
+// StateNow during a lean Step-driven run (no paths kept) is where the recorded
+// path of the same shot puts each ball at each event time, and after the run it is
+// final_balls().
+TEST_F(SimulateTest, StateNowFollowsTheRunWithoutRecordedPaths) {
+  const std::vector<BallState> balls = {Rolling(Vec2(0.9, 0.8), Vec2(0.3, 1.0).normalized(), 3.0),
+                                        AtRest(Vec2(1.05, 1.3)), AtRest(Vec2(0.5, 2.5))};
+  Simulator recorded(table_, params_), lean(table_, params_);
+  ASSERT_EQ(recorded.Run(balls), SimStatus::kAtRest);
+  ASSERT_EQ(lean.Start(balls, RunOptions::Lean()), SimStatus::kRunning);
+  SimStatus st = SimStatus::kRunning;
+  int checked = 0;
+  while (st == SimStatus::kRunning && checked < 1000) {
+    st = lean.Step();
+    for (int i = 0; i < lean.ball_count(); ++i) {
+      const Vec2 expected = recorded.PositionAt(i, lean.end_time());
+      EXPECT_NEAR((lean.StateNow(i).r - expected).norm(), 0.0, 1e-12)
+          << "ball " << i << " at t = " << lean.end_time();
+    }
+    ++checked;
+  }
+  ASSERT_EQ(st, SimStatus::kAtRest);
+  EXPECT_GT(checked, 3);
+  for (int i = 0; i < lean.ball_count(); ++i) {
+    EXPECT_EQ(lean.StateNow(i).r, lean.final_balls()[static_cast<size_t>(i)].r);
+  }
+}
+
 // One Simulator reused across many runs gives exactly what a fresh one gives.
 TEST_F(SimulateTest, AReusedSimulatorMatchesAFreshOne) {
   std::mt19937_64 rng(7);
