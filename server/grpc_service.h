@@ -116,8 +116,8 @@ class ShotPlannerService final : public ShotPlannerRawService {
   struct Work {
     std::int64_t simulations = 0;  ///< whole-table simulations run
   };
-  /// One method: parse the request, run the operation, serialise the answer. A new
-  /// method (Plan) adds one entry.
+  /// One unary method: parse the request, run the operation, serialise the answer.
+  /// (Plan and PlanStream have their own path: grpc_plan.cc.)
   struct Method {
     const char* name;
     ApiStatus (*run)(std::string_view request, const CallLimits& limits,
