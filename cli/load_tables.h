@@ -37,6 +37,15 @@ std::vector<v1::TableState> VariedTables(std::uint64_t seed, int count, double o
 /// spin (sidespin within half of it).
 v1::Shot ShotAtABall(const v1::TableState& table, LoadRandom& random);
 
+/// Named built-in table states for `snooker plan --table builtin:NAME` (and the
+/// README's demonstration): "black" (the black on its spot with three reds near
+/// it, the cue ball below and right of it), "red" (a red near the top-right pocket,
+/// the black, a red in baulk), "colours" (the reds gone, the six colours on their
+/// spots, the cue ball near the brown). False for another name.
+bool BuiltinTable(const std::string& name, v1::TableState* table);
+/// The names BuiltinTable knows, comma-separated.
+const char* BuiltinTableNames();
+
 /// The table states in the *.json files of `dir` (Protobuf's JSON form of
 /// TableState, as `snooker simulate --table` reads), in name order. False with the
 /// reason in `error` (a file that does not read or parse, or none at all).

@@ -30,15 +30,20 @@ namespace snooker::cli {
 namespace {
 
 constexpr const char* kHelp = R"(usage: snooker loadtest --target 127.0.0.1:PORT --concurrency C --requests N
-                        [--method simulate] [--tables DIR] [--seed S] [--max-seconds S]
-                        [--json] [--tls-ca CA.pem ...] [--deadline-ms MS]
+                        [--method simulate|plan] [--budget-ms MS] [--tables DIR] [--seed S]
+                        [--max-seconds S] [--json] [--tls-ca CA.pem ...] [--deadline-ms MS]
 
 Sends N calls to a snooker server on this machine from C client threads (each with
 its own connection), then prints throughput, latency percentiles, the calls by
 status code and the problems found in the answers. Every answer is checked: for
 simulate, every ball of the table answered once, finite, on or near the table,
 events in time order naming the table's balls, and each vision repair within the
-server's tolerance (GetModel). A health check (grpc.health.v1) runs before and after.
+server's tolerance (GetModel); for plan, the final answer with at most the shots
+asked for, each inside the request's limits (speed in [min, max], |topspin| and
+|sidespin| within their fractions of the rolling spin), its probability in [0, 1]
+and its position value in [0, 1.48], naming the table's balls, events in time
+order, repairs within the tolerance, and a reason when there is no shot. A health
+check (grpc.health.v1) runs before and after.
 
 Exit status 0 only when the server was SERVING before and after, and every call
 was sent, answered OK and checked without a problem; 1 otherwise; 2 for bad usage.
@@ -46,7 +51,12 @@ was sent, answered OK and checked without a problem; 1 otherwise; 2 for bad usag
   --target HOST:PORT   the server; loopback only (127.0.0.0/8, ::1, localhost)
   --concurrency C      client threads, 1 to 256
   --requests N         calls in all, 1 to 1000000
-  --method M           simulate (default): a shot on each table
+  --method M           simulate (default): a shot on each table; plan: a plan for
+                       each table, with robot limits varied per call (min speed 0.3
+                       to 0.8 m/s, max 3 to 6 m/s, topspin 0.5 to 1, sidespin 0.2 to
+                       0.5 of the rolling spin), the default ball on and noise
+  --budget-ms MS       plan: each plan's time budget, ms (default 25; 1 to 60000,
+                       at most the server's --max-budget-ms)
   --tables DIR         the tables: every *.json in DIR (a TableState each, as for
                        snooker simulate --table), in name order, used in turn;
                        default: 64 built-in tables (0-15 reds, some colours, placed
@@ -55,7 +65,7 @@ was sent, answered OK and checked without a problem; 1 otherwise; 2 for bad usag
   --seed S             seed of the built-in tables and of the shots (default 1)
   --max-seconds S      no call is sent after S seconds (default 600, at most 3600)
   --json               one JSON object: {"target", "method", "concurrency",
-                       "requests", "completed", "elapsedS", "throughputPerS",
+                       "requests", "completed", "elapsedS", "throughputPerS", "budgetMs" and "plansWithShots" (plan),
                        "latencyMs": {"p50", "p90", "p99", "max", "mean"}, "statuses":
                        {"OK": n, ...}, "errors", "badAnswers", "problems": [...],
                        "ballsMoved", "healthBefore", "healthAfter", "timeBoundHit"}
@@ -67,6 +77,7 @@ using Clock = std::chrono::steady_clock;
 struct Expectations {
   double width = 0, length = 0;
   double vision_tolerance_mm = 0;
+  double ball_radius = 0;
 };
 
 struct Outcome {
@@ -75,9 +86,14 @@ struct Outcome {
   double latency_ms = 0;
   std::string problem;  // empty: the answer checked out (or the call failed)
   int balls_moved = 0;
+  int shots = 0;  // plan: shots in the answer
 };
 
 std::string Num(double x) { return server::FormatNumber(x); }
+
+// A plan's budget in the load test unless --budget-ms says otherwise, ms: small, so
+// that a 2-core server answers 50 plans a second (docs/load.md).
+constexpr double kDefaultPlanBudgetMs = 25;
 
 // Checks a Simulate answer against its request; the first problem, or "".
 std::string CheckSimulate(const v1::SimulateRequest& request, const v1::SimulateResponse& r,
@@ -123,6 +139,83 @@ std::string CheckSimulate(const v1::SimulateRequest& request, const v1::Simulate
   return "";
 }
 
+// Checks a Plan answer against its request; the first problem, or "".
+std::string CheckPlan(const v1::PlanRequest& request, const v1::PlanResponse& r, const Expectations& e) {
+  const v1::TableState& t = request.table();
+  std::set<std::string> ids;
+  for (const v1::Ball& b : t.balls()) ids.insert(b.id());
+  if (!r.final()) return "the answer is not marked final";
+  if (r.shots_size() > request.max_shots()) {
+    return std::to_string(r.shots_size()) + " shots for max_shots " + std::to_string(request.max_shots());
+  }
+  if (r.shots_size() == 0 && r.reason().empty()) return "no shot and no reason";
+  const v1::RobotLimits& l = request.limits();
+  constexpr double kRel = 1e-9;
+  for (int k = 0; k < r.shots_size(); ++k) {
+    const v1::PlannedShot& s = r.shots(k);
+    const std::string which = "shot " + std::to_string(k + 1) + ": ";
+    if (!(s.speed() >= l.min_speed() * (1 - kRel) && s.speed() <= l.max_speed() * (1 + kRel))) {
+      return which + "speed " + Num(s.speed()) + " m/s outside [" + Num(l.min_speed()) + ", " +
+             Num(l.max_speed()) + "]";
+    }
+    const double rolling = s.speed() / e.ball_radius;
+    if (!(std::abs(s.topspin()) <= l.max_topspin_fraction() * rolling * (1 + kRel) + 1e-12)) {
+      return which + "topspin " + Num(s.topspin()) + " rad/s beyond " + Num(l.max_topspin_fraction()) +
+             " of the rolling spin " + Num(rolling);
+    }
+    if (!(std::abs(s.sidespin()) <= l.max_sidespin_fraction() * rolling * (1 + kRel) + 1e-12)) {
+      return which + "sidespin " + Num(s.sidespin()) + " rad/s beyond " +
+             Num(l.max_sidespin_fraction()) + " of the rolling spin " + Num(rolling);
+    }
+    if (!(s.pot_probability() >= 0 && s.pot_probability() <= 1)) {
+      return which + "potProbability " + Num(s.pot_probability());
+    }
+    if (!(s.position_value() >= 0 && s.position_value() <= 1.48 + 1e-9)) {
+      return which + "positionValue " + Num(s.position_value());
+    }
+    if (!(std::isfinite(s.heading_deg()) && std::isfinite(s.cut_deg()) &&
+          std::isfinite(s.cue_ball_end().x()) && std::isfinite(s.cue_ball_end().y()))) {
+      return which + "a number that is not finite";
+    }
+    if (ids.count(s.object_ball()) == 0) return which + "object ball \"" + s.object_ball() + "\"";
+    if (!s.next_ball().empty() && ids.count(s.next_ball()) == 0) {
+      return which + "next ball \"" + s.next_ball() + "\"";
+    }
+    double last = 0;
+    for (const v1::Event& ev : s.events()) {
+      if (!(std::isfinite(ev.time()) && ev.time() >= last)) {
+        return which + "event time " + Num(ev.time()) + " after " + Num(last);
+      }
+      last = ev.time();
+      for (const std::string& id : ev.balls()) {
+        if (ids.count(id) == 0) return which + "an event names ball \"" + id + "\"";
+      }
+    }
+  }
+  for (const v1::Warning& w : r.warnings()) {
+    if (ids.count(w.ball_id()) == 0) return "a warning names ball \"" + w.ball_id() + "\"";
+    if (!(w.moved_mm() >= 0 && w.moved_mm() <= e.vision_tolerance_mm + 1e-9)) {
+      return "ball \"" + w.ball_id() + "\" moved " + Num(w.moved_mm()) + " mm, beyond the tolerance";
+    }
+  }
+  return "";
+}
+
+// A plan request for a table: the budget, and robot limits varied by `random`.
+v1::PlanRequest PlanFor(const v1::TableState& table, double budget_ms, LoadRandom& random) {
+  v1::PlanRequest r;
+  *r.mutable_table() = table;
+  r.set_time_budget_ms(budget_ms);
+  r.set_max_shots(3);
+  r.set_seed(random.Next() >> 1);
+  v1::RobotLimits* l = r.mutable_limits();
+  l->set_min_speed(random.Uniform(0.3, 0.8));
+  l->set_max_speed(random.Uniform(3.0, 6.0));
+  l->set_max_topspin_fraction(random.Uniform(0.5, 1.0));
+  l->set_max_sidespin_fraction(random.Uniform(0.2, 0.5));
+  return r;
+}
+
 double Percentile(const std::vector<double>& sorted, double p) {
   if (sorted.empty()) return 0;
   const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(sorted.size())));
@@ -133,7 +226,8 @@ double Percentile(const std::vector<double>& sorted, double p) {
 
 int RunLoadTest(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
   const std::string command = "snooker loadtest";
-  std::set<std::string> valued = {"concurrency", "requests", "method", "tables", "seed", "max-seconds"};
+  std::set<std::string> valued = {"concurrency", "requests", "method", "tables", "seed", "max-seconds",
+                                  "budget-ms"};
   for (const std::string& flag : ClientFlags("target")) valued.insert(flag);
   Args args(argv, valued, {"json", "help"});
   if (args.error().empty() && args.Switch("help")) {
@@ -146,6 +240,7 @@ int RunLoadTest(const std::vector<std::string>& argv, std::ostream& out, std::os
   const auto tables_dir = args.Text("tables", "");
   const auto seed = args.Integer("seed", 1, 0, std::numeric_limits<long>::max());
   const auto max_seconds = args.Integer("max-seconds", 600, 1, 3600);
+  const auto budget_ms = args.Number("budget-ms", kDefaultPlanBudgetMs);
   ClientOptions client;
   if (!ClientOptionsFrom(args, command, "target", 10'000, &client, err)) return kExitUsage;
   if (args.error().empty() && client.target.empty()) {
@@ -161,10 +256,15 @@ int RunLoadTest(const std::vector<std::string>& argv, std::ostream& out, std::os
         << ": load goes only to this machine (127.0.0.0/8, ::1, localhost)\n";
     return kExitUsage;
   }
-  if (*method != "simulate") {
-    err << command << ": --method '" << *method << "': simulate is the method this build tests\n";
+  if (*method != "simulate" && *method != "plan") {
+    err << command << ": --method '" << *method << "': simulate or plan\n";
     return kExitUsage;
   }
+  if (!(*budget_ms >= 1 && *budget_ms <= 60'000)) {
+    err << command << ": --budget-ms " << Num(*budget_ms) << " is outside [1, 60000]\n";
+    return kExitUsage;
+  }
+  const bool plan = *method == "plan";
 
   // The server's model first: what its answers are checked against. Its health too.
   auto channel = MakeChannel(client);
@@ -191,6 +291,7 @@ int RunLoadTest(const std::vector<std::string>& argv, std::ostream& out, std::os
   expect.width = model.table().width_m();
   expect.length = model.table().length_m();
   expect.vision_tolerance_mm = model.service().vision_tolerance_mm();
+  expect.ball_radius = model.ball().radius_m();
 
   std::vector<v1::TableState> tables;
   if (!tables_dir->empty()) {
@@ -221,23 +322,37 @@ int RunLoadTest(const std::vector<std::string>& argv, std::ostream& out, std::os
         time_bound_hit = true;
         return;
       }
-      v1::SimulateRequest request;
-      *request.mutable_table() = tables[i % tables.size()];
       LoadRandom random(static_cast<std::uint64_t>(*seed) * 0x9E3779B97F4A7C15ull + i);
-      *request.mutable_shot() = ShotAtABall(request.table(), random);
-      v1::SimulateResponse response;
       grpc::ClientContext context;
       context.set_deadline(std::chrono::system_clock::now() + client.deadline);
-      const auto start = Clock::now();
-      const grpc::Status st = stub->Simulate(&context, request, &response);
       Outcome& o = outcomes[i];
-      o.done = true;
-      o.latency_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-      o.code = st.error_code();
-      if (st.ok()) {
-        o.problem = CheckSimulate(request, response, expect);
-        o.balls_moved = response.warnings_size();
+      grpc::Status st;
+      const auto start = Clock::now();
+      if (plan) {
+        const v1::PlanRequest request = PlanFor(tables[i % tables.size()], *budget_ms, random);
+        v1::PlanResponse response;
+        st = stub->Plan(&context, request, &response);
+        o.latency_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        if (st.ok()) {
+          o.problem = CheckPlan(request, response, expect);
+          o.balls_moved = response.warnings_size();
+          o.shots = response.shots_size();
+        }
       } else {
+        v1::SimulateRequest request;
+        *request.mutable_table() = tables[i % tables.size()];
+        *request.mutable_shot() = ShotAtABall(request.table(), random);
+        v1::SimulateResponse response;
+        st = stub->Simulate(&context, request, &response);
+        o.latency_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        if (st.ok()) {
+          o.problem = CheckSimulate(request, response, expect);
+          o.balls_moved = response.warnings_size();
+        }
+      }
+      o.done = true;
+      o.code = st.error_code();
+      if (!st.ok()) {
         o.problem = std::string(StatusCodeName(st.error_code())) + ": " + st.error_message();
       }
     }
@@ -248,7 +363,7 @@ int RunLoadTest(const std::vector<std::string>& argv, std::ostream& out, std::os
   const double elapsed = std::chrono::duration<double>(Clock::now() - t0).count();
   CheckHealth(channel, "snooker.v1.ShotPlanner", client.deadline, &health_after);
 
-  std::size_t completed = 0, errors = 0, bad = 0, moved = 0;
+  std::size_t completed = 0, errors = 0, bad = 0, moved = 0, with_shots = 0;
   std::map<std::string, std::size_t> statuses;
   std::vector<double> latencies;
   std::vector<std::string> problems;
@@ -259,6 +374,7 @@ int RunLoadTest(const std::vector<std::string>& argv, std::ostream& out, std::os
     latencies.push_back(o.latency_ms);
     ++statuses[StatusCodeName(o.code)];
     moved += static_cast<std::size_t>(o.balls_moved);
+    if (o.code == grpc::StatusCode::OK && o.shots > 0) ++with_shots;
     if (o.code != grpc::StatusCode::OK) ++errors;
     else if (!o.problem.empty()) ++bad;
     if (!o.problem.empty() && problems.size() < 5) {
@@ -296,6 +412,10 @@ int RunLoadTest(const std::vector<std::string>& argv, std::ostream& out, std::os
     auto* list = f["problems"].mutable_list_value();
     for (const std::string& p : problems) list->add_values()->set_string_value(p);
     f["ballsMoved"].set_number_value(static_cast<double>(moved));
+    if (plan) {
+      f["budgetMs"].set_number_value(*budget_ms);
+      f["plansWithShots"].set_number_value(static_cast<double>(with_shots));
+    }
     f["healthBefore"].set_string_value(health_before);
     f["healthAfter"].set_string_value(health_after);
     f["timeBoundHit"].set_bool_value(time_bound_hit.load());
@@ -318,6 +438,10 @@ int RunLoadTest(const std::vector<std::string>& argv, std::ostream& out, std::os
     for (const auto& [name, count] : statuses) out << " " << name << " " << count;
     out << "\n  answers with problems: " << bad << "; balls moved by the vision repair: " << moved
         << "\n";
+    if (plan) {
+      out << "  plans: budget " << Num(*budget_ms) << " ms each; " << with_shots
+          << " answers with at least one shot\n";
+    }
     for (const std::string& p : problems) out << "  problem: " << p << "\n";
   }
   return clean ? kExitOk : kExitFailure;

@@ -1,6 +1,8 @@
 // snooker plan: the shot planner from the command line. Reads a table file (the
-// TableState of proto/snooker/v1/table.proto in Protobuf's JSON form), builds the
-// PlanRequest the service takes and calls the same operation (server/plan_api.h).
+// TableState of proto/snooker/v1/table.proto in Protobuf's JSON form) or takes a
+// built-in table, builds the PlanRequest the service takes and calls the same
+// operation (server/plan_api.h), here or on a server (--server: Plan, or PlanStream
+// with --stream), and prints the same answer either way.
 #include <google/protobuf/util/json_util.h>
 
 #include <cstdint>
@@ -8,24 +10,34 @@
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <set>
 #include <sstream>
+#include <string_view>
 
 #include "cli/args.h"
+#include "cli/client.h"
 #include "cli/commands.h"
 #include "cli/json.h"
+#include "cli/load_tables.h"
+#include "cli/read_file.h"
 #include "cli/svg.h"
 #include "server/api.h"
 #include "server/convert.h"
+#include "server/limits.h"
+#include "snooker/v1/service.grpc.pb.h"
 
 namespace snooker::cli {
 namespace {
 
-constexpr const char* kHelp = R"(usage: snooker plan --table T.json [--on RED|YELLOW|GREEN|BROWN|BLUE|PINK|BLACK|COLOUR]
-                    [--budget-ms N] [--shots K] [--seed S] [--json] [--svg out.svg]
+constexpr const char* kHelp = R"(usage: snooker plan --table T.json|builtin:NAME [--on RED|YELLOW|GREEN|BROWN|BLUE|PINK|BLACK|COLOUR]
+                    [--budget-ms N] [--shots K] [--seed S] [--json] [--svg out.svg] [--stream]
+                    [--vision-tolerance-mm MM]
                     [--noise-heading-deg X] [--noise-speed X] [--noise-spin X]
                     [--noise-position-mm X] [--min-speed X] [--max-speed X]
                     [--max-topspin X] [--max-sidespin X] [--cue-clearance-m X] [--pot-only]
                     [--max-simulations N] [--samples N]
+                    [--server HOST:PORT [--tls-ca CA.pem] [--tls-cert C --tls-key K]
+                    [--tls-server-name N] [--deadline-ms MS]]
 
 Plans the shots that pot a ball on and leave the cue ball in a good position for the
 next one: every shot is searched with NLopt over speed, topspin, sidespin and cut
@@ -35,10 +47,14 @@ Monte Carlo).
 
   --table T.json   the balls, as for snooker simulate: {"balls": [{"id": "cue",
                    "kind": "CUE", "position": {"x": 0.9, "y": 0.6}}, ...]}; positions
-                   in metres, x across from the left cushion, y from the baulk cushion
+                   in metres, x across from the left cushion, y from the baulk cushion;
+                   or builtin:NAME, a built-in table: black (the black on its spot, three
+                   reds near it), red (a red by the top-right pocket, the black, a red
+                   in baulk), colours (the reds gone, the colours on their spots)
   --on BALL        the ball on: RED, a colour, or COLOUR (any colour, the planner
                    choosing); default: a red while reds remain, else the lowest colour
-  --budget-ms N    planning time budget, ms (default 80; 1 to 60000)
+  --budget-ms N    planning time budget, ms (default 80; 1 to 60000; with --server,
+                   the server's --default-budget-ms and at most its --max-budget-ms)
   --shots K        how many shots to list, best first (default 3; 1 to 20)
   --seed S         seed of the Monte Carlo (default 1): same table and seed, same
                    answer when the budget does not cut the work short
@@ -49,6 +65,14 @@ Monte Carlo).
                    "elapsedMs"}; a shot's first four fields are a simulate shot file
   --svg out.svg    draw the best shot (both balls' paths, bold) and the cue ball's
                    path of each alternative (dashed) over the table
+  --stream         print the best shot so far each time the search improves on it
+                   ("progress" lines, or one JSON object per line with --json: final
+                   false, potProbability the fast estimate), then the answer; with
+                   --server through PlanStream
+  --vision-tolerance-mm MM
+                   balls overlapping, or past a cushion, by at most MM are moved apart
+                   or back first, each with a warning; more is an error (default 1
+                   here, the server's own with --server; 0: no repair)
 Noise (standard deviations; the same options as snooker selfplay):
   --noise-heading-deg X   cue heading, degrees (default 0.02)
   --noise-speed X         cue speed, fraction of the speed (default 0.01)
@@ -67,14 +91,20 @@ Planner:
 )";
 
 bool ReadTable(const std::string& path, v1::TableState* table, std::ostream& err) {
-  std::ifstream f(path);
-  if (!f) {
-    err << "snooker plan: cannot read '" << path << "'\n";
+  constexpr std::string_view kBuiltin = "builtin:";
+  if (path.compare(0, kBuiltin.size(), kBuiltin) == 0) {
+    const std::string name = path.substr(kBuiltin.size());
+    if (BuiltinTable(name, table)) return true;
+    err << "snooker plan: --table '" << path << "': no built-in table '" << name
+        << "' (there are: " << BuiltinTableNames() << ")\n";
     return false;
   }
-  std::stringstream ss;
-  ss << f.rdbuf();
-  const auto st = google::protobuf::util::JsonStringToMessage(ss.str(), table);
+  std::string text, why;
+  if (!ReadInputFile(path, &text, &why)) {
+    err << "snooker plan: cannot read '" << path << "': " << why << "\n";
+    return false;
+  }
+  const auto st = google::protobuf::util::JsonStringToMessage(text, table);
   if (!st.ok()) {
     err << "snooker plan: '" << path << "' is not a valid TableState JSON: " << st.message() << "\n";
     return false;
@@ -83,6 +113,8 @@ bool ReadTable(const std::string& path, v1::TableState* table, std::ostream& err
 }
 
 void PrintReadable(const v1::PlanResponse& r, std::ostream& out) {
+  for (const v1::Warning& w : r.warnings()) out << "warning: " << w.message() << "\n";
+  if (r.warnings_size() > 0) out << "\n";
   if (r.shots_size() == 0) out << "no shot: " << r.reason() << "\n";
   int rank = 0;
   for (const v1::PlannedShot& s : r.shots()) {
@@ -98,6 +130,22 @@ void PrintReadable(const v1::PlanResponse& r, std::ostream& out) {
   }
   out << std::setprecision(1) << r.simulations() << " simulations, " << r.evaluations()
       << " NLopt evaluations, " << r.elapsed_ms() << " ms\n";
+}
+
+// A progress message of --stream: the best verified shot so far.
+void PrintProgress(const v1::PlanResponse& r, bool json, std::ostream& out, std::ostream& err) {
+  if (json) {
+    PrintJson(r, "snooker plan", out, err);
+    return;
+  }
+  for (const v1::PlannedShot& s : r.shots()) {
+    out << std::fixed << std::setprecision(1) << "progress " << r.elapsed_ms() << " ms: "
+        << s.object_ball() << " into " << s.pocket() << std::setprecision(3)
+        << ", P(pot) estimate " << s.pot_probability() << ", position " << s.position_value()
+        << std::setprecision(4) << "; speed " << s.speed() << " m/s, heading " << s.heading_deg()
+        << " deg\n";
+  }
+  out << std::flush;
 }
 
 // The best shot's paths (ShotSvg) and each alternative's cue-ball path, dashed.
@@ -155,13 +203,15 @@ bool WriteSvg(const std::string& path, const v1::TableState& table, const v1::Pl
 }  // namespace
 
 int RunPlan(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
-  Args args(argv,
-            {"table", "on", "budget-ms", "shots", "seed", "svg", "noise-heading-deg", "noise-speed",
-             "noise-spin", "noise-position-mm", "min-speed", "max-speed", "max-topspin",
-             "max-sidespin", "cue-clearance-m", "max-simulations", "samples"},
-            {"json", "help", "pot-only"});
+  std::set<std::string> valued = {"table", "on", "budget-ms", "shots", "seed", "svg",
+                                  "noise-heading-deg", "noise-speed", "noise-spin",
+                                  "noise-position-mm", "min-speed", "max-speed", "max-topspin",
+                                  "max-sidespin", "cue-clearance-m", "max-simulations", "samples",
+                                  "vision-tolerance-mm"};
+  for (const std::string& flag : ClientFlags()) valued.insert(flag);
+  Args args(argv, valued, {"json", "help", "pot-only", "stream"});
   if (args.error().empty() && args.Switch("help")) {
-    out << kHelp;
+    out << kHelp << "\n" << ClientFlagsHelp();
     return kExitOk;
   }
   v1::PlanRequest req;
@@ -221,22 +271,74 @@ int RunPlan(const std::vector<std::string>& argv, std::ostream& out, std::ostrea
   number("max-sidespin", [&](double x) { limits->set_max_sidespin_fraction(x); });
   number("cue-clearance-m", [&](double x) { limits->set_cue_clearance_m(x); });
   if (args.Switch("pot-only")) req.set_position_play(false);
+  const auto vision = args.Number("vision-tolerance-mm", server::limits::kDefaultVisionToleranceMm);
+  ClientOptions client;
+  if (!ClientOptionsFrom(args, "snooker plan", "server", 60'000, &client, err)) return kExitUsage;
+  if (args.error().empty() && !server::limits::kVisionToleranceMm.Contains(*vision)) {
+    err << "snooker plan: --vision-tolerance-mm " << server::FormatNumber(*vision) << " is outside [0, "
+        << server::FormatNumber(server::limits::kVisionToleranceMm.hi) << "]\n";
+    return kExitUsage;
+  }
   if (!args.error().empty()) {
     err << "snooker plan: " << args.error() << "\n(see snooker plan --help)\n";
     return kExitUsage;
   }
   if (!ReadTable(*table_path, req.mutable_table(), err)) return kExitUsage;
+  const bool json = args.Switch("json");
+  const bool stream = args.Switch("stream");
   v1::PlanResponse resp;
-  const server::ApiStatus status = server::Plan(req, &resp);
-  if (!status.ok()) {
-    err << "snooker plan: " << status.message << "\n";
-    return status.code == server::ApiStatus::Code::kInvalidArgument ? kExitUsage : kExitFailure;
+  if (!client.target.empty()) {
+    // The same request to a server: its vision tolerance unless one is asked for here.
+    if (args.Has("vision-tolerance-mm")) req.set_vision_tolerance_mm(*vision);
+    auto stub = v1::ShotPlanner::NewStub(MakeChannel(client));
+    grpc::ClientContext context;
+    context.set_deadline(std::chrono::system_clock::now() + client.deadline);
+    if (stream) {
+      auto reader = stub->PlanStream(&context, req);
+      v1::PlanResponse message;
+      bool final_seen = false;
+      // A stream sends one message per improvement (at most one per candidate) and
+      // the final one; the count is bounded here too.
+      for (int i = 0; i < 100'000 && reader->Read(&message); ++i) {
+        if (message.final()) {
+          resp = message;
+          final_seen = true;
+        } else {
+          PrintProgress(message, json, out, err);
+        }
+      }
+      const grpc::Status st = reader->Finish();
+      if (!st.ok()) return ReportCallError("snooker plan", client.target, st, err);
+      if (!final_seen) {
+        err << "snooker plan: " << client.target << " ended the stream without a final answer\n";
+        return kExitFailure;
+      }
+    } else {
+      const grpc::Status st = stub->Plan(&context, req, &resp);
+      if (!st.ok()) return ReportCallError("snooker plan", client.target, st, err);
+    }
+  } else {
+    server::PlanControl control;
+    control.vision_tolerance_mm = *vision;
+    if (stream) control.on_progress = [&](const v1::PlanResponse& best) { PrintProgress(best, json, out, err); };
+    const server::ApiStatus status = server::Plan(req, &resp, control);
+    if (!status.ok()) {
+      err << "snooker plan: " << status.message << "\n";
+      return status.code == server::ApiStatus::Code::kInvalidArgument ? kExitUsage : kExitFailure;
+    }
   }
   const auto svg_path = args.Text("svg", "");
-  if (!svg_path->empty() && resp.shots_size() > 0 && !WriteSvg(*svg_path, req.table(), resp, err)) {
-    return kExitFailure;
+  if (!svg_path->empty() && resp.shots_size() > 0) {
+    // Drawn from the table the plan started from (after any vision repair).
+    v1::TableState drawn = req.table();
+    for (const v1::Warning& w : resp.warnings()) {
+      for (v1::Ball& b : *drawn.mutable_balls()) {
+        if (b.id() == w.ball_id()) *b.mutable_position() = w.to();
+      }
+    }
+    if (!WriteSvg(*svg_path, drawn, resp, err)) return kExitFailure;
   }
-  if (args.Switch("json")) {
+  if (json) {
     if (!PrintJson(resp, "snooker plan", out, err)) return kExitFailure;
   } else {
     PrintReadable(resp, out);

@@ -14,8 +14,11 @@
 //    valid placement.
 // A broken property aborts (libFuzzer then saves the input as a crash-* file).
 //
-// A method is one entry of kMethods (0 Collide, 1 Simulate, 2 GetModel): Plan adds
-// its own when it exists.
+// A method is one entry of kMethods (0 Collide, 1 Simulate, 2 GetModel, 3 Plan).
+// Plans run with a tiny budget (at most kPlanBudgetMs, and a cap on simulations
+// and samples) so that thousands of inputs run a minute; their answers must be
+// final, inside the request's limits, with probabilities in [0, 1] and the vision
+// repair within its tolerance.
 #include <fuzzer/FuzzedDataProvider.h>
 #include <google/protobuf/descriptor.h>
 #include <google/protobuf/message.h>
@@ -34,6 +37,8 @@
 #include "server/api.h"
 #include "server/decode.h"
 #include "server/limits.h"
+#include "server/plan_api.h"
+#include "planner/planner.h"
 
 namespace {
 
@@ -84,6 +89,24 @@ void Tame(v1::SimulateRequest* r) {
   }
 }
 void Tame(v1::GetModelRequest*) {}
+// A plan's budget here, ms, and its caps on work.
+constexpr double kPlanBudgetMs = 5;
+void Tame(v1::PlanRequest* r) {
+  if (r->has_time_budget_ms() && r->time_budget_ms() > kPlanBudgetMs &&
+      r->time_budget_ms() <= server::limits::kDefaultMaxPlanBudgetMs) {
+    r->set_time_budget_ms(kPlanBudgetMs);
+  }
+  if (!r->has_max_simulations() || (r->max_simulations() > 400 && r->max_simulations() <= 100'000'000) ||
+      r->max_simulations() == 0) {
+    r->set_max_simulations(400);
+  }
+  if (r->has_monte_carlo_samples() && r->monte_carlo_samples() > 16 &&
+      r->monte_carlo_samples() <= 100'000) {
+    r->set_monte_carlo_samples(16);
+  } else if (!r->has_monte_carlo_samples()) {
+    r->set_monte_carlo_samples(16);
+  }
+}
 void Tame(v1::CollideRequest* r) {
   v1::ImpulseSolverOptions* s = r->mutable_solver();
   if (s->has_steps() && s->steps() > 20'000 && s->steps() <= physics::limits::kMaxFixedSteps) {
@@ -94,7 +117,9 @@ void Tame(v1::CollideRequest* r) {
 // Method-specific properties of an answer.
 void CheckAnswer(const v1::CollideRequest&, const v1::CollideResponse&) {}
 void CheckAnswer(const v1::GetModelRequest&, const v1::GetModelResponse&) {}
-void CheckAnswer(const v1::SimulateRequest& request, const v1::SimulateResponse& response) {
+// The vision repair moved each ball at most the tolerance, and left a valid table.
+template <typename Request, typename Response>
+void CheckRepair(const Request& request, const Response& response) {
   const double tolerance_mm = request.has_vision_tolerance_mm()
                                   ? request.vision_tolerance_mm()
                                   : server::limits::kDefaultVisionToleranceMm;
@@ -116,6 +141,50 @@ void CheckAnswer(const v1::SimulateRequest& request, const v1::SimulateResponse&
   }
   const std::string bad = physics::DefaultTable().ValidatePlacement(placed);
   if (!bad.empty()) Fail("the repaired table is not valid: " + bad);
+}
+
+void CheckAnswer(const v1::SimulateRequest& request, const v1::SimulateResponse& response) {
+  CheckRepair(request, response);
+}
+
+void CheckAnswer(const v1::PlanRequest& request, const v1::PlanResponse& response) {
+  CheckRepair(request, response);
+  if (!response.final()) Fail("a plan not marked final");
+  const planner::RobotLimits defaults;
+  const v1::RobotLimits& l = request.limits();
+  const double lo = l.has_min_speed() ? l.min_speed() : defaults.min_speed;
+  const double hi = l.has_max_speed() ? l.max_speed() : defaults.max_speed;
+  const double top = l.has_max_topspin_fraction() ? l.max_topspin_fraction() : defaults.max_topspin_fraction;
+  const double side =
+      l.has_max_sidespin_fraction() ? l.max_sidespin_fraction() : defaults.max_sidespin_fraction;
+  const int most = request.has_max_shots() ? request.max_shots() : 3;
+  if (response.shots_size() > most) Fail("more shots than max_shots");
+  const double radius = physics::BallParams{}.radius;
+  for (const v1::PlannedShot& s : response.shots()) {
+    const double rolling = s.speed() / radius;
+    if (!(s.speed() >= lo * (1 - 1e-9) && s.speed() <= hi * (1 + 1e-9))) {
+      Fail("a planned speed of " + std::to_string(s.speed()) + " m/s outside the limits");
+    }
+    if (std::abs(s.topspin()) > top * rolling * (1 + 1e-9) + 1e-12 ||
+        std::abs(s.sidespin()) > side * rolling * (1 + 1e-9) + 1e-12) {
+      Fail("a planned spin beyond the limits");
+    }
+    if (!(s.pot_probability() >= 0 && s.pot_probability() <= 1)) Fail("a probability outside [0, 1]");
+    bool known = false;
+    for (const v1::Ball& b : request.table().balls()) known = known || b.id() == s.object_ball();
+    if (!known) Fail("a shot names an object ball not on the table");
+  }
+}
+
+// Plan with the service's bounds and a tiny default budget (Tame caps a set one).
+ApiStatus PlanOperation(const v1::PlanRequest& request, v1::PlanResponse* response,
+                        const server::CallLimits& limits) {
+  server::PlanControl control;
+  control.deadline = limits.interrupt.deadline;
+  control.vision_tolerance_mm = limits.vision_tolerance_mm;
+  control.default_budget_ms = kPlanBudgetMs;
+  control.max_budget_ms = limits.max_plan_budget_ms;
+  return server::Plan(request, response, control);
 }
 
 template <typename Request, typename Response,
@@ -250,6 +319,40 @@ std::string BuildSimulate(FuzzedDataProvider& in) {
   return Serialized(r);
 }
 
+std::string BuildPlan(FuzzedDataProvider& in) {
+  // The table as for Simulate, the rest of a plan request around its bounds.
+  v1::SimulateRequest sim;
+  sim.ParseFromString(BuildSimulate(in));
+  v1::PlanRequest r;
+  *r.mutable_table() = sim.table();
+  if (sim.has_vision_tolerance_mm()) r.set_vision_tolerance_mm(sim.vision_tolerance_mm());
+  r.set_ball_on(v1::BallOn(in.ConsumeIntegralInRange<int>(-1, 10)));
+  v1::RobotLimits* l = r.mutable_limits();
+  if (in.ConsumeBool()) l->set_min_speed(Value(in, -0.1, 21));
+  if (in.ConsumeBool()) l->set_max_speed(Value(in, -0.1, 21));
+  if (in.ConsumeBool()) l->set_max_topspin_fraction(Value(in, -0.1, 3.1));
+  if (in.ConsumeBool()) l->set_max_sidespin_fraction(Value(in, -0.1, 3.1));
+  if (in.ConsumeBool()) l->set_cue_clearance_m(Value(in, -0.1, 2.1));
+  if (in.ConsumeBool()) l->set_cue_radius_m(Value(in, -0.01, 0.06));
+  v1::NoiseModel* n = r.mutable_noise();
+  if (in.ConsumeBool()) n->set_heading_sigma_deg(Value(in, -0.1, 11));
+  if (in.ConsumeBool()) n->set_speed_sigma_fraction(Value(in, -0.1, 0.6));
+  if (in.ConsumeBool()) n->set_topspin_sigma(Value(in, -1, 110));
+  if (in.ConsumeBool()) n->set_sidespin_sigma(Value(in, -1, 110));
+  if (in.ConsumeBool()) n->set_position_sigma_mm(Value(in, -1, 60));
+  if (in.ConsumeBool() && r.table().balls_size() > 0) {
+    (*n->mutable_ball_position_sigma_mm())[in.ConsumeBool() ? r.table().balls(0).id() : "nobody"] =
+        Value(in, -1, 60);
+  }
+  if (in.ConsumeBool()) r.set_time_budget_ms(Value(in, -1, 12'000));
+  if (in.ConsumeBool()) r.set_max_shots(in.ConsumeIntegralInRange<int>(-1, 25));
+  if (in.ConsumeBool()) r.set_seed(in.ConsumeIntegral<std::uint64_t>());
+  if (in.ConsumeBool()) r.set_position_play(in.ConsumeBool());
+  if (in.ConsumeBool()) r.set_max_simulations(in.ConsumeIntegral<std::int32_t>());
+  if (in.ConsumeBool()) r.set_monte_carlo_samples(in.ConsumeIntegral<std::int32_t>());
+  return Serialized(r);
+}
+
 std::string BuildGetModel(FuzzedDataProvider& in) {
   return in.ConsumeRandomLengthString(64);  // unknown fields, or bytes that do not parse
 }
@@ -264,12 +367,16 @@ const Method kMethods[] = {
     {"Collide", &Exercise<v1::CollideRequest, v1::CollideResponse, &server::Collide>, &BuildCollide},
     {"Simulate", &Exercise<v1::SimulateRequest, v1::SimulateResponse, &server::Simulate>, &BuildSimulate},
     {"GetModel", &Exercise<v1::GetModelRequest, v1::GetModelResponse, &server::GetModel>, &BuildGetModel},
+    {"Plan", &Exercise<v1::PlanRequest, v1::PlanResponse, &PlanOperation>, &BuildPlan},
 };
 
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int* /*argc*/, char*** /*argv*/) {
   google::protobuf::SetLogHandler(nullptr);  // decoding errors are expected here
+  // The planner's pocket and throw tables, built once per process: here, not inside
+  // the first Plan input's time limit.
+  (void)planner::Planner::Default();
   return 0;
 }
 

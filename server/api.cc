@@ -132,18 +132,6 @@ ApiStatus Collide(const v1::CollideRequest& request, v1::CollideResponse* respon
 
 namespace {
 
-v1::EventKind EventKindToProto(physics::EventKind k) {
-  switch (k) {
-    case physics::EventKind::kBallBall: return v1::BALL_BALL;
-    case physics::EventKind::kCushion: return v1::CUSHION;
-    case physics::EventKind::kJawWall: return v1::JAW_WALL;
-    case physics::EventKind::kKnuckle: return v1::KNUCKLE;
-    case physics::EventKind::kPocket: return v1::POCKET;
-    case physics::EventKind::kTransition: return v1::MOTION_CHANGE;
-  }
-  return v1::EVENT_KIND_UNSPECIFIED;
-}
-
 std::string Progress(const physics::Simulator& sim) {
   return "after " + std::to_string(sim.event_count()) + " events (" + Num(sim.end_time()) +
          " s of the shot simulated)";
@@ -211,27 +199,7 @@ ApiStatus Simulate(const v1::SimulateRequest& request, v1::SimulateResponse* res
   auto id = [&](int i) -> const std::string& { return state.balls(i).id(); };
   for (const physics::SimEvent& e : sim.events()) {
     v1::Event* out = response->add_events();
-    out->set_time(e.time);
-    out->set_kind(EventKindToProto(e.kind));
-    out->add_balls(id(e.ball));
-    if (e.other >= 0) out->add_balls(id(e.other));
-    out->set_motion(physics::ToString(e.state_after));
-    switch (e.kind) {
-      case physics::EventKind::kCushion:
-        out->set_cushion(table.segments()[static_cast<size_t>(e.where)].name);
-        break;
-      case physics::EventKind::kJawWall:
-        out->set_cushion(table.segments()[static_cast<size_t>(e.where)].name);
-        out->set_pocket(physics::ToString(table.segments()[static_cast<size_t>(e.where)].pocket));
-        break;
-      case physics::EventKind::kKnuckle:
-        out->set_pocket(physics::ToString(table.jaws()[static_cast<size_t>(e.where)].pocket));
-        break;
-      case physics::EventKind::kPocket:
-        out->set_pocket(physics::ToString(table.pockets()[static_cast<size_t>(e.where)].id));
-        break;
-      default: break;
-    }
+    ToProto(e, state, table, out);
     if (!budget.Add(out->ByteSizeLong())) {
       return TooLarge(budget.limit(), std::to_string(sim.events().size()) + " events", response);
     }

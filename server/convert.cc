@@ -417,6 +417,39 @@ physics::ImpulseSolverOptions SolverOptionsFrom(const v1::ImpulseSolverOptions& 
   return s;
 }
 
+v1::EventKind EventKindToProto(physics::EventKind k) {
+  switch (k) {
+    case physics::EventKind::kBallBall: return v1::BALL_BALL;
+    case physics::EventKind::kCushion: return v1::CUSHION;
+    case physics::EventKind::kJawWall: return v1::JAW_WALL;
+    case physics::EventKind::kKnuckle: return v1::KNUCKLE;
+    case physics::EventKind::kPocket: return v1::POCKET;
+    case physics::EventKind::kTransition: return v1::MOTION_CHANGE;
+  }
+  return v1::EVENT_KIND_UNSPECIFIED;
+}
+
+void ToProto(const physics::SimEvent& e, const v1::TableState& table,
+             const physics::TableModel& model, v1::Event* out) {
+  auto id = [&](int i) -> const std::string& { return table.balls(i).id(); };
+  out->set_time(e.time);
+  out->set_kind(EventKindToProto(e.kind));
+  out->add_balls(id(e.ball));
+  if (e.other >= 0) out->add_balls(id(e.other));
+  out->set_motion(physics::ToString(e.state_after));
+  const auto w = static_cast<std::size_t>(e.where);
+  switch (e.kind) {
+    case physics::EventKind::kCushion: out->set_cushion(model.segments()[w].name); break;
+    case physics::EventKind::kJawWall:
+      out->set_cushion(model.segments()[w].name);
+      out->set_pocket(physics::ToString(model.segments()[w].pocket));
+      break;
+    case physics::EventKind::kKnuckle: out->set_pocket(physics::ToString(model.jaws()[w].pocket)); break;
+    case physics::EventKind::kPocket: out->set_pocket(physics::ToString(model.pockets()[w].id)); break;
+    default: break;
+  }
+}
+
 void ToProto(const physics::Vec2& v, v1::Vec2* out) {
   out->set_x(v.x());
   out->set_y(v.y());

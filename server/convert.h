@@ -103,6 +103,15 @@ physics::SimParams SimParamsFrom(const v1::SimulationOptions& options);
 /// Index of the CUE ball in a table state, or -1.
 int CueIndex(const v1::TableState& table);
 
+/// The API's name of an event kind (simulate.proto's EventKind).
+v1::EventKind EventKindToProto(physics::EventKind kind);
+
+/// One simulation event in API form: ball indices become the ids of `table` (the
+/// state the simulation started from), `where` the cushion, jaw or pocket name of
+/// `model`.
+void ToProto(const physics::SimEvent& event, const v1::TableState& table,
+             const physics::TableModel& model, v1::Event* out);
+
 void ToProto(const physics::Vec2& v, v1::Vec2* out);
 void ToProto(const physics::Vec3& v, v1::Vec3* out);
 

@@ -9,6 +9,7 @@
 
 #include "server/convert.h"
 #include "server/decode.h"
+#include "server/service_detail.h"
 
 namespace snooker::server {
 
@@ -28,8 +29,10 @@ grpc::Status ToGrpcStatus(const ApiStatus& status) {
 }
 
 namespace {
-
 using Clock = std::chrono::steady_clock;
+}  // namespace
+
+namespace service_detail {
 
 const char* StatusName(grpc::StatusCode code) {
   static constexpr const char* kNames[] = {
@@ -41,6 +44,50 @@ const char* StatusName(grpc::StatusCode code) {
   const auto i = static_cast<std::size_t>(code);
   return i < std::size(kNames) ? kNames[i] : "UNKNOWN";
 }
+
+Clock::time_point CallDeadline(std::chrono::system_clock::time_point client, Clock::time_point arrival,
+                               std::chrono::milliseconds max_call) {
+  const Clock::time_point server_bound = arrival + max_call;
+  const auto system_now = std::chrono::system_clock::now();
+  // Compared before subtracting: a deadline far in the future must not overflow.
+  if (client >= system_now + max_call) return server_bound;
+  const auto left = std::chrono::duration_cast<Clock::duration>(client - system_now);
+  return std::min(server_bound, Clock::now() + left);
+}
+
+// gRPC cancels a call when the client's deadline passes, with timers of a millisecond
+// grain: a cancellation within a few milliseconds of that deadline is the deadline.
+constexpr auto kTimerGrain = std::chrono::milliseconds(2);
+
+bool ClientDeadlinePassed(std::chrono::system_clock::time_point client) {
+  return client != std::chrono::system_clock::time_point::max() &&
+         std::chrono::system_clock::now() + kTimerGrain >= client;
+}
+
+bool IsCancelled(void* context) {
+  return static_cast<grpc::CallbackServerContext*>(context)->IsCancelled();
+}
+
+// Requests are at most limits::kMaxRequestBytes: gRPC refuses larger ones before
+// they get here.
+bool Flatten(const grpc::ByteBuffer& buffer, std::string* out) {
+  std::vector<grpc::Slice> slices;
+  if (!buffer.Dump(&slices).ok()) return false;
+  out->clear();
+  out->reserve(buffer.Length());
+  for (const grpc::Slice& s : slices) out->append(reinterpret_cast<const char*>(s.begin()), s.size());
+  return true;
+}
+
+}  // namespace service_detail
+
+namespace {
+
+using service_detail::CallDeadline;
+using service_detail::ClientDeadlinePassed;
+using service_detail::Flatten;
+using service_detail::IsCancelled;
+using service_detail::StatusName;
 
 // Simulations a call ran, from its answer.
 std::int64_t SimulationsOf(const v1::CollideResponse&) { return 0; }
@@ -69,42 +116,6 @@ constexpr ShotPlannerService::Method kSimulate{
     "Simulate", &RunMethod<v1::SimulateRequest, v1::SimulateResponse, &server::Simulate>};
 constexpr ShotPlannerService::Method kGetModel{
     "GetModel", &RunMethod<v1::GetModelRequest, v1::GetModelResponse, &server::GetModel>};
-
-// The call's deadline on the steady clock: the client's, or arrival + max_call when
-// that is earlier (or the client set none).
-Clock::time_point CallDeadline(std::chrono::system_clock::time_point client, Clock::time_point arrival,
-                               std::chrono::milliseconds max_call) {
-  const Clock::time_point server_bound = arrival + max_call;
-  const auto system_now = std::chrono::system_clock::now();
-  // Compared before subtracting: a deadline far in the future must not overflow.
-  if (client >= system_now + max_call) return server_bound;
-  const auto left = std::chrono::duration_cast<Clock::duration>(client - system_now);
-  return std::min(server_bound, Clock::now() + left);
-}
-
-// gRPC cancels a call when the client's deadline passes, with timers of a millisecond
-// grain: a cancellation within a few milliseconds of that deadline is the deadline.
-constexpr auto kTimerGrain = std::chrono::milliseconds(2);
-
-bool ClientDeadlinePassed(std::chrono::system_clock::time_point client) {
-  return client != std::chrono::system_clock::time_point::max() &&
-         std::chrono::system_clock::now() + kTimerGrain >= client;
-}
-
-bool IsCancelled(void* context) {
-  return static_cast<grpc::CallbackServerContext*>(context)->IsCancelled();
-}
-
-// One call's bytes as one contiguous string (requests are at most
-// limits::kMaxRequestBytes: gRPC refuses larger ones before they get here).
-bool Flatten(const grpc::ByteBuffer& buffer, std::string* out) {
-  std::vector<grpc::Slice> slices;
-  if (!buffer.Dump(&slices).ok()) return false;
-  out->clear();
-  out->reserve(buffer.Length());
-  for (const grpc::Slice& s : slices) out->append(reinterpret_cast<const char*>(s.begin()), s.size());
-  return true;
-}
 
 }  // namespace
 
@@ -278,23 +289,29 @@ void ShotPlannerService::Run(const std::shared_ptr<Call>& call) {
 
 void ShotPlannerService::Finish(Call& call, const grpc::Status& status, std::size_t response_bytes,
                                 const Work& work) {
-  const double latency_ms =
-      std::chrono::duration<double, std::milli>(Clock::now() - call.arrival).count();
   // Counted and logged first: a client that has its answer sees it counted.
+  Record(call.method->name, call.peer, call.arrival, status, call.request_bytes, response_bytes, work);
+  // The context and buffers belong to gRPC once Finish is called: nothing of them
+  // is touched after it.
+  call.reactor->Finish(status);
+}
+
+void ShotPlannerService::Record(const char* method, const std::string& peer, Clock::time_point arrival,
+                                const grpc::Status& status, std::size_t request_bytes,
+                                std::size_t response_bytes, const Work& work, const std::string& extra) {
+  const double latency_ms = std::chrono::duration<double, std::milli>(Clock::now() - arrival).count();
   by_status_[static_cast<std::size_t>(status.error_code()) % by_status_.size()].fetch_add(1);
   finished_.fetch_add(1);
   if (options_.log != nullptr) {
     std::ostringstream line;
     line.precision(3);
-    line << std::fixed << "snooker: call method=" << call.method->name << " peer=" << call.peer
+    line << std::fixed << "snooker: call method=" << method << " peer=" << peer
          << " status=" << StatusName(status.error_code()) << " latency_ms=" << latency_ms
-         << " simulations=" << work.simulations << " request_bytes=" << call.request_bytes << " response_bytes=" << response_bytes << "\n";
+         << " simulations=" << work.simulations << " request_bytes=" << request_bytes
+         << " response_bytes=" << response_bytes << extra << "\n";
     std::lock_guard<std::mutex> lock(log_mu_);
     *options_.log << line.str() << std::flush;
   }
-  // The context and buffers belong to gRPC once Finish is called: nothing of them
-  // is touched after it.
-  call.reactor->Finish(status);
 }
 
 CallCounts ShotPlannerService::counts() const {
@@ -303,6 +320,9 @@ CallCounts ShotPlannerService::counts() const {
   c.finished = finished_.load();
   for (std::size_t i = 0; i < by_status_.size(); ++i) c.by_status[i] = by_status_[i].load();
   c.running = running_.load();
+  c.plans = plans_.load();
+  c.progress_messages = progress_messages_.load();
+  c.progress_dropped = progress_dropped_.load();
   c.received = received_.load();
   return c;
 }

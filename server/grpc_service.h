@@ -12,6 +12,14 @@
 //    (physics::Interrupt). Stopped calls answer DEADLINE_EXCEEDED or CANCELLED.
 //  * One log line per call (method, peer, status, latency, simulations, bytes) and
 //    counters.
+//  * Plans (Plan, PlanStream; grpc_plan.cc) run on the same workers, at most
+//    max_plans in the server at once (more are refused with RESOURCE_EXHAUSTED at
+//    once). Their reactors turn gRPC's cancellation (the client's, its deadline's, a
+//    shutdown's) into the planner's cancel flag; a plan stops a little before the
+//    call's deadline so that its best shots so far reach the client in time.
+//    PlanStream writes from the planner's threads without blocking them: while a
+//    write is in flight only the newest progress message waits (older ones are
+//    dropped), and the final answer is always the last message.
 #pragma once
 
 #include <grpcpp/grpcpp.h>
@@ -20,6 +28,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <ostream>
@@ -29,6 +38,7 @@
 #include "server/api_status.h"
 #include "server/limits.h"
 #include "server/worker_pool.h"
+#include "snooker/v1/plan.pb.h"
 #include "snooker/v1/service.grpc.pb.h"
 
 namespace snooker::server {
@@ -63,6 +73,9 @@ struct CallCounts {
   std::int64_t received = 0;  ///< calls that reached a method
   std::int64_t finished = 0;  ///< calls answered (any status)
   std::int64_t running = 0;   ///< calls on a worker right now
+  std::int64_t plans = 0;     ///< Plan and PlanStream calls in the server right now
+  std::int64_t progress_messages = 0;  ///< PlanStream progress messages written
+  std::int64_t progress_dropped = 0;   ///< ... and replaced by newer ones before a write
   /// Finished calls by grpc::StatusCode (0 OK ... 16 UNAUTHENTICATED).
   std::array<std::int64_t, 17> by_status{};
   std::int64_t in_flight() const { return received - finished; }
@@ -70,8 +83,9 @@ struct CallCounts {
 };
 
 using ShotPlannerRawService = v1::ShotPlanner::WithRawCallbackMethod_Collide<
-    v1::ShotPlanner::WithRawCallbackMethod_Simulate<
-        v1::ShotPlanner::WithRawCallbackMethod_GetModel<v1::ShotPlanner::Service>>>;
+    v1::ShotPlanner::WithRawCallbackMethod_Simulate<v1::ShotPlanner::WithRawCallbackMethod_GetModel<
+        v1::ShotPlanner::WithRawCallbackMethod_Plan<
+            v1::ShotPlanner::WithRawCallbackMethod_PlanStream<v1::ShotPlanner::Service>>>>>;
 
 class ShotPlannerService final : public ShotPlannerRawService {
  public:
@@ -87,6 +101,11 @@ class ShotPlannerService final : public ShotPlannerRawService {
   grpc::ServerUnaryReactor* GetModel(grpc::CallbackServerContext* context,
                                      const grpc::ByteBuffer* request,
                                      grpc::ByteBuffer* response) override;
+  grpc::ServerUnaryReactor* Plan(grpc::CallbackServerContext* context,
+                                 const grpc::ByteBuffer* request,
+                                 grpc::ByteBuffer* response) override;
+  grpc::ServerWriteReactor<grpc::ByteBuffer>* PlanStream(grpc::CallbackServerContext* context,
+                                                         const grpc::ByteBuffer* request) override;
 
   CallCounts counts() const;
   /// Runs what is queued and joins the workers. Call after grpc::Server::Shutdown
@@ -97,8 +116,8 @@ class ShotPlannerService final : public ShotPlannerRawService {
   struct Work {
     std::int64_t simulations = 0;  ///< whole-table simulations run
   };
-  /// One method: parse the request, run the operation, serialise the answer. A new
-  /// method (Plan) adds one entry.
+  /// One unary method: parse the request, run the operation, serialise the answer.
+  /// (Plan and PlanStream have their own path: grpc_plan.cc.)
   struct Method {
     const char* name;
     ApiStatus (*run)(std::string_view request, const CallLimits& limits,
@@ -107,15 +126,29 @@ class ShotPlannerService final : public ShotPlannerRawService {
 
  private:
   struct Call;
+  struct PlanCall;
+  class PlanUnaryReactor;
+  class PlanStreamReactor;
   grpc::ServerUnaryReactor* Accept(const Method& method, grpc::CallbackServerContext* context,
                                    const grpc::ByteBuffer* request, grpc::ByteBuffer* response);
   void Run(const std::shared_ptr<Call>& call);
   void Finish(Call& call, const grpc::Status& status, std::size_t response_bytes,
               const Work& work);
+  /// Counts a finished call and writes its log line.
+  void Record(const char* method, const std::string& peer, std::chrono::steady_clock::time_point arrival,
+              const grpc::Status& status, std::size_t request_bytes, std::size_t response_bytes,
+              const Work& work, const std::string& extra = "");
+  /// Plans: a new PlanCall for a call that arrived (nullptr with `refusal` set when
+  /// max_plans are in the server), the plan itself on a worker, and its status.
+  std::shared_ptr<PlanCall> AdmitPlan(const char* method, grpc::CallbackServerContext* context,
+                                      const grpc::ByteBuffer* request, grpc::Status* refusal);
+  grpc::Status RunPlan(PlanCall& call, v1::PlanResponse* response, Work* work,
+                       const std::function<void(const v1::PlanResponse&)>& on_progress);
 
   ServiceOptions options_;
   v1::ServiceLimits service_limits_;  // what GetModel reports
-  std::atomic<std::int64_t> received_{0}, finished_{0}, running_{0};
+  std::atomic<std::int64_t> received_{0}, finished_{0}, running_{0}, plans_{0};
+  std::atomic<std::int64_t> progress_messages_{0}, progress_dropped_{0};
   std::array<std::atomic<std::int64_t>, 17> by_status_{};
   std::mutex log_mu_;
   WorkerPool pool_;  // last: its threads use the members above

@@ -10,27 +10,45 @@ struct ProgressSink {
   const PlanControl* control;
   const v1::TableState* table;
   const physics::TableModel* model;
+  const std::vector<v1::Warning>* warnings;
+  std::chrono::steady_clock::time_point start;
 };
 
 void ForwardProgress(const planner::PlannedShot& best, void* context) {
   const auto* sink = static_cast<const ProgressSink*>(context);
   v1::PlanResponse partial;
   ToProto(best, *sink->table, *sink->model, partial.add_shots());
+  partial.set_elapsed_ms(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - sink->start).count());
+  partial.set_final(false);
+  for (const v1::Warning& w : *sink->warnings) *partial.add_warnings() = w;
   sink->control->on_progress(partial);
 }
 
 }  // namespace
 
 ApiStatus Plan(const v1::PlanRequest& request, v1::PlanResponse* response, const PlanControl& control) {
+  const auto start = std::chrono::steady_clock::now();
   // Validate before the planner is first built (its pocket and throw tables take a
   // few thousand simulations once per process): bad input costs nothing.
-  const std::vector<FieldError> errors = ValidatePlanRequest(request, physics::DefaultTable());
-  if (!errors.empty()) return ApiStatus::Invalid(Describe(errors));
+  PlanBounds bounds;
+  bounds.vision_tolerance_mm = control.vision_tolerance_mm;
+  bounds.max_budget_ms = control.max_budget_ms;
+  PlanCheck check = CheckPlanRequest(request, physics::DefaultTable(), bounds);
+  if (!check.errors.empty()) return ApiStatus::Invalid(Describe(check.errors));
+  // The planner works from the repaired table; ids (and so the answer) are the same.
+  const v1::PlanRequest* planned = &request;
+  v1::PlanRequest repaired;
+  if (check.repaired) {
+    repaired = request;
+    *repaired.mutable_table() = std::move(*check.repaired);
+    planned = &repaired;
+  }
   const planner::Planner& planner = planner::Planner::Default();
-  planner::PlanRequest p = PlanRequestFrom(request);
+  planner::PlanRequest p = PlanRequestFrom(*planned, control.default_budget_ms);
   p.deadline = control.deadline;
   p.cancel = control.cancel;
-  ProgressSink sink{&control, &request.table(), planner.config().table};
+  ProgressSink sink{&control, &planned->table(), planner.config().table, &check.warnings, start};
   if (control.on_progress) {
     p.progress = &ForwardProgress;
     p.progress_context = &sink;
@@ -40,7 +58,9 @@ ApiStatus Plan(const v1::PlanRequest& request, v1::PlanResponse* response, const
     // The API checks should have caught it: the library names its own field.
     return ApiStatus::Invalid(answer.reason);
   }
-  ToProto(answer, request.table(), *planner.config().table, response);
+  ToProto(answer, planned->table(), *planner.config().table, response);
+  response->set_final(true);
+  for (v1::Warning& w : check.warnings) *response->add_warnings() = std::move(w);
   return ApiStatus::Ok();
 }
 

@@ -1,6 +1,7 @@
 // Plan: the planner behind the API, independent of the transport (as api.h's
-// operations): validate, convert, one planner call, convert back. The gRPC Plan and
-// PlanStream RPCs (issue 10) and `snooker plan` call this.
+// operations): validate (with the vision repair), convert, one planner call, convert
+// back. The gRPC Plan and PlanStream RPCs (grpc_service.h) and `snooker plan` call
+// this.
 #pragma once
 
 #include <atomic>
@@ -8,12 +9,13 @@
 #include <functional>
 
 #include "server/api_status.h"
+#include "server/limits.h"
 #include "snooker/v1/plan.pb.h"
 
 namespace snooker::server {
 
-/// What a transport adds to a plan: its deadline, its cancellation, and a sink for
-/// the best shot so far.
+/// What a transport adds to a plan: its deadline, its cancellation, a sink for the
+/// best shot so far, and the server's bounds.
 struct PlanControl {
   /// The plan ends by this time (and by its own budget), returning what it has.
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
@@ -21,12 +23,21 @@ struct PlanControl {
   const std::atomic<bool>* cancel = nullptr;
   /// Called, never concurrently, each time the best verified shot improves, with a
   /// response holding that one shot (its potProbability is the fast estimate until
-  /// the final answer). For PlanStream.
+  /// the final answer), final = false, the elapsed time and the repair's warnings.
+  /// For PlanStream.
   std::function<void(const v1::PlanResponse& best_so_far)> on_progress;
+  /// The vision repair's tolerance, mm: a request's default and its largest (0: no
+  /// repair). The defaults here are the local command's; a server passes its flags.
+  double vision_tolerance_mm = limits::kDefaultVisionToleranceMm;
+  /// A request's time budget when it sets none, and the largest it may ask for, ms.
+  double default_budget_ms = limits::kDefaultPlanBudgetMs;
+  double max_budget_ms = limits::kPlanBudgetMs.hi;
 };
 
-/// Plans shots for the request's table. INVALID_ARGUMENT names each bad field; an
-/// answer without shots is OK with its reason (no pot, or time ran out first).
+/// Plans shots for the request's table. INVALID_ARGUMENT names each bad field and
+/// value; an answer without shots is OK with its reason (no pot, or time ran out
+/// first: the caller compares its deadline). The answer has final = true and the
+/// vision repair's warnings.
 ApiStatus Plan(const v1::PlanRequest& request, v1::PlanResponse* response,
                const PlanControl& control = {});
 

@@ -1,6 +1,7 @@
 #include "server/plan_convert.h"
 
 #include <cmath>
+#include <algorithm>
 #include <sstream>
 
 #include "physics/core/limits.h"
@@ -8,12 +9,7 @@
 namespace snooker::server {
 namespace {
 
-std::string Num(double x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << x;
-  return s.str();
-}
+std::string Num(double x) { return FormatNumber(x); }
 
 // Adds an error when an optional double field is set and outside [lo, hi].
 template <typename Msg, typename Has, typename Get>
@@ -23,18 +19,6 @@ void CheckRange(std::vector<FieldError>* errors, const Msg& m, Has has, Get get,
   const double x = (m.*get)();
   if (std::isfinite(x) && x >= lo && x <= hi) return;
   errors->push_back({field, Num(x), "must be a number in [" + Num(lo) + ", " + Num(hi) + "]" + unit});
-}
-
-v1::EventKind EventKindToProto(physics::EventKind k) {
-  switch (k) {
-    case physics::EventKind::kBallBall: return v1::BALL_BALL;
-    case physics::EventKind::kCushion: return v1::CUSHION;
-    case physics::EventKind::kJawWall: return v1::JAW_WALL;
-    case physics::EventKind::kKnuckle: return v1::KNUCKLE;
-    case physics::EventKind::kPocket: return v1::POCKET;
-    case physics::EventKind::kTransition: return v1::MOTION_CHANGE;
-  }
-  return v1::EVENT_KIND_UNSPECIFIED;
 }
 
 }  // namespace
@@ -81,10 +65,25 @@ std::optional<planner::BallOn> BallOnFrom(v1::BallOn on) {
 }
 
 std::vector<FieldError> ValidatePlanRequest(const v1::PlanRequest& r, const physics::TableModel& table) {
-  // The table as Simulate checks it (ids, kinds, one cue ball, placement).
-  v1::SimulateRequest as_simulate;
-  *as_simulate.mutable_table() = r.table();
-  std::vector<FieldError> errors = ValidateSimulateRequest(as_simulate, table);
+  return CheckPlanRequest(r, table, PlanBounds{}).errors;
+}
+
+PlanCheck CheckPlanRequest(const v1::PlanRequest& r, const physics::TableModel& table,
+                           const PlanBounds& bounds) {
+  PlanCheck result;
+  // The table as Simulate checks it (ids, kinds, one cue ball, placement), with the
+  // same vision repair. A bad tolerance is reported alone: the table is then
+  // checked with the server's.
+  std::vector<FieldError> tolerance_errors;
+  const std::optional<double> tolerance = VisionTolerance(
+      r.has_vision_tolerance_mm() ? std::optional<double>(r.vision_tolerance_mm()) : std::nullopt,
+      bounds.vision_tolerance_mm, "vision_tolerance_mm", &tolerance_errors);
+  TableCheck check = CheckTable(r.table(), table, tolerance.value_or(bounds.vision_tolerance_mm * 1e-3));
+  std::vector<FieldError>& errors = result.errors;
+  errors = std::move(check.errors);
+  errors.insert(errors.end(), tolerance_errors.begin(), tolerance_errors.end());
+  result.repaired = std::move(check.repaired);
+  result.warnings = std::move(check.warnings);
   const v1::TableState& t = r.table();
   int reds = 0, colours[9] = {};
   for (const v1::Ball& b : t.balls()) {
@@ -147,8 +146,15 @@ std::vector<FieldError> ValidatePlanRequest(const v1::PlanRequest& r, const phys
       errors.push_back({field, Num(sigma), "must be a number in [0, 50] mm"});
     }
   }
-  using R = v1::PlanRequest;
-  CheckRange(&errors, r, &R::has_time_budget_ms, &R::time_budget_ms, "time_budget_ms", 1, kMaxPlanBudgetMs, " ms");
+  if (r.has_time_budget_ms()) {
+    const double budget = r.time_budget_ms();
+    const double most = std::min(bounds.max_budget_ms, kMaxPlanBudgetMs);
+    if (!(std::isfinite(budget) && budget >= 1 && budget <= most)) {
+      errors.push_back({"time_budget_ms", Num(budget),
+                        "must be in [1, " + Num(most) + "] ms: " + Num(most) +
+                            " ms is the server's largest budget (--max-budget-ms)"});
+    }
+  }
   if (r.has_max_shots() && (r.max_shots() < 1 || r.max_shots() > 20)) {
     errors.push_back({"max_shots", std::to_string(r.max_shots()), "must be in [1, 20]"});
   }
@@ -158,10 +164,10 @@ std::vector<FieldError> ValidatePlanRequest(const v1::PlanRequest& r, const phys
   if (r.has_monte_carlo_samples() && (r.monte_carlo_samples() < 0 || r.monte_carlo_samples() > 100'000)) {
     errors.push_back({"monte_carlo_samples", std::to_string(r.monte_carlo_samples()), "must be in [0, 100000]"});
   }
-  return errors;
+  return result;
 }
 
-planner::PlanRequest PlanRequestFrom(const v1::PlanRequest& r) {
+planner::PlanRequest PlanRequestFrom(const v1::PlanRequest& r, std::optional<double> default_budget_ms) {
   planner::PlanRequest p;
   for (const v1::Ball& b : r.table().balls()) {
     p.table.balls.push_back({BallKindFrom(b.kind()), physics::Vec2(b.position().x(), b.position().y())});
@@ -187,7 +193,11 @@ planner::PlanRequest PlanRequestFrom(const v1::PlanRequest& r) {
                                                                         : it->second * 1e-3);
     }
   }
-  if (r.has_time_budget_ms()) p.time_budget = r.time_budget_ms() * 1e-3;
+  if (r.has_time_budget_ms()) {
+    p.time_budget = r.time_budget_ms() * 1e-3;
+  } else if (default_budget_ms) {
+    p.time_budget = *default_budget_ms * 1e-3;
+  }
   if (r.has_max_shots()) p.max_shots = r.max_shots();
   if (r.has_seed()) p.seed = r.seed();
   if (r.has_position_play()) p.position_play = r.position_play();
@@ -210,25 +220,7 @@ void ToProto(const planner::PlannedShot& s, const v1::TableState& table,
   out->set_position_value(s.position_value);
   if (s.next_ball >= 0) out->set_next_ball(id(s.next_ball));
   ToProto(s.cue_ball_end, out->mutable_cue_ball_end());
-  for (const physics::SimEvent& e : s.events) {
-    v1::Event* ev = out->add_events();
-    ev->set_time(e.time);
-    ev->set_kind(EventKindToProto(e.kind));
-    ev->add_balls(id(e.ball));
-    if (e.other >= 0) ev->add_balls(id(e.other));
-    ev->set_motion(physics::ToString(e.state_after));
-    const auto w = static_cast<size_t>(e.where);
-    switch (e.kind) {
-      case physics::EventKind::kCushion: ev->set_cushion(model.segments()[w].name); break;
-      case physics::EventKind::kJawWall:
-        ev->set_cushion(model.segments()[w].name);
-        ev->set_pocket(physics::ToString(model.segments()[w].pocket));
-        break;
-      case physics::EventKind::kKnuckle: ev->set_pocket(physics::ToString(model.jaws()[w].pocket)); break;
-      case physics::EventKind::kPocket: ev->set_pocket(physics::ToString(model.pockets()[w].id)); break;
-      default: break;
-    }
-  }
+  for (const physics::SimEvent& e : s.events) ToProto(e, table, model, out->add_events());
 }
 
 void ToProto(const planner::PlanAnswer& a, const v1::TableState& table,

@@ -16,14 +16,39 @@ namespace snooker::server {
 /// Largest plan budget a request may ask for, ms.
 inline constexpr double kMaxPlanBudgetMs = 60'000;
 
-/// Checks the table (as Simulate does, plus at most 15 reds and one ball of each
-/// colour, a ball on that is on the table), the limits, the noise, the budget and
-/// the counts.
+/// What a server allows a plan request (snooker serve's flags).
+struct PlanBounds {
+  /// The vision repair's tolerance, mm: the default of a request that sets none and
+  /// the most one may ask for; 0: no repair (every overlap is an error).
+  double vision_tolerance_mm = 0;
+  /// The largest time budget a request may ask for, ms.
+  double max_budget_ms = kMaxPlanBudgetMs;
+};
+
+/// What CheckPlanRequest found, and what the vision repair changed.
+struct PlanCheck {
+  std::vector<FieldError> errors;
+  /// Set when the repair moved a ball: the table with the moved positions.
+  std::optional<v1::TableState> repaired;
+  /// One per moved ball, in table order.
+  std::vector<v1::Warning> warnings;
+};
+
+/// Checks the table (as Simulate does, with its vision repair within the bounds'
+/// tolerance, plus at most 15 reds and one ball of each colour, a ball on that is
+/// on the table), the limits (min_speed < max_speed), the noise, the budget (1 ms to
+/// bounds.max_budget_ms) and the counts; every error names the field and value.
+PlanCheck CheckPlanRequest(const v1::PlanRequest& request, const physics::TableModel& table,
+                           const PlanBounds& bounds);
+
+/// CheckPlanRequest's errors with the default bounds (no vision repair).
 std::vector<FieldError> ValidatePlanRequest(const v1::PlanRequest& request,
                                             const physics::TableModel& table);
 
-/// The planner's request for a validated API request (defaults where unset).
-planner::PlanRequest PlanRequestFrom(const v1::PlanRequest& request);
+/// The planner's request for a validated API request (defaults where unset; an
+/// unset time budget takes `default_budget_ms` when given, else the planner's).
+planner::PlanRequest PlanRequestFrom(const v1::PlanRequest& request,
+                                     std::optional<double> default_budget_ms = std::nullopt);
 
 planner::BallKind BallKindFrom(v1::BallKind kind);
 v1::BallKind ToProto(planner::BallKind kind);

@@ -53,7 +53,8 @@ def main():
     calls = re.findall(r"method=(\w+) .*? status=(\w+)", log.read())
     print("server exit status:", server_rc, "; calls logged:", calls)
     ok = (rc == 0 and server_rc == 0 and ("GetModel", "OK") in calls and ("Simulate", "OK") in calls
-          and ("Simulate", "INVALID_ARGUMENT") in calls)
+          and ("Simulate", "INVALID_ARGUMENT") in calls and ("Plan", "OK") in calls
+          and ("PlanStream", "OK") in calls and ("Plan", "INVALID_ARGUMENT") in calls)
     print("check_example:", "passed" if ok else "FAILED")
     return 0 if ok else 1
 

@@ -9,7 +9,9 @@ proto/ at build time (build/examples/python_stubs; see examples/CMakeLists.txt):
 
 It checks the server's health, asks for the model it works with (GetModel),
 simulates a shot on a table whose black vision placed a hair past the left cushion
-(the server moves it back and says so), and shows what a bad request gets back.
+(the server moves it back and says so), plans a shot on the same table (Plan, and
+PlanStream: the best shot so far as the search improves, then the final answer),
+and shows what bad requests get back.
 Exits 0 when every answer is as expected, 1 otherwise.
 """
 import argparse
@@ -29,7 +31,7 @@ def main():
     import grpc
     import health_pb2
     import health_pb2_grpc
-    from snooker.v1 import model_pb2, service_pb2_grpc, simulate_pb2, table_pb2
+    from snooker.v1 import model_pb2, plan_pb2, service_pb2_grpc, simulate_pb2, table_pb2
 
     if args.tls_ca:
         with open(args.tls_ca, "rb") as f:
@@ -94,6 +96,49 @@ def main():
         print("bad request:", e.code().name, "-", e.details())
         expect(e.code() == grpc.StatusCode.INVALID_ARGUMENT and "shot.speed = -1" in e.details(),
                "a negative speed is INVALID_ARGUMENT naming shot.speed")
+
+    # 5. A plan on the same table: the robot's limits, a fixed seed and a simulation
+    #    cap (so the answer does not depend on the machine's speed).
+    limits = plan_pb2.RobotLimits(min_speed=0.5, max_speed=4.0, max_topspin_fraction=0.8,
+                                  max_sidespin_fraction=0.4)
+    request = plan_pb2.PlanRequest(table=table, ball_on=plan_pb2.BALL_ON_RED, limits=limits,
+                                   time_budget_ms=5000, max_simulations=400,
+                                   monte_carlo_samples=16, seed=11)
+    plan = stub.Plan(request, timeout=args.timeout)
+    print("plan: %d shots, %d simulations, %.1f ms" % (len(plan.shots), plan.simulations, plan.elapsed_ms))
+    for w in plan.warnings:
+        print("  warning:", w.message)
+    for k, s in enumerate(plan.shots):
+        print("  #%d %s into %s: P(pot) %.3f, speed %.3f m/s, heading %.2f deg, topspin %.1f, "
+              "sidespin %.1f rad/s" % (k + 1, s.object_ball, s.pocket, s.pot_probability, s.speed,
+                                       s.heading_deg, s.topspin, s.sidespin))
+    expect(len(plan.shots) > 0 and plan.final, "the plan has shots and is final")
+    expect(all(s.object_ball == "red-1" for s in plan.shots), "every shot pots red-1, the only red")
+    rolling = lambda s: s.speed / model.ball.radius_m
+    expect(all(limits.min_speed <= s.speed <= limits.max_speed
+               and abs(s.topspin) <= limits.max_topspin_fraction * rolling(s) * (1 + 1e-9)
+               and abs(s.sidespin) <= limits.max_sidespin_fraction * rolling(s) * (1 + 1e-9)
+               and 0 <= s.pot_probability <= 1 for s in plan.shots),
+           "every shot is within the robot's limits, its probability in [0, 1]")
+    expect(len(plan.warnings) == 1 and plan.warnings[0].ball_id == "black",
+           "the plan reports the black's repair too")
+
+    messages = list(stub.PlanStream(request, timeout=args.timeout))
+    progress = [m for m in messages if not m.final]
+    print("plan stream: %d progress messages, then the final answer" % len(progress))
+    expect(len(messages) >= 2 and messages[-1].final and len(progress) == len(messages) - 1,
+           "the stream sends progress, then one final message last")
+    expect(all(len(m.shots) == 1 for m in progress), "each progress message holds one shot")
+    expect([s.SerializeToString() for s in messages[-1].shots] == [s.SerializeToString() for s in plan.shots],
+           "the stream's final answer is Plan's")
+
+    try:
+        stub.Plan(plan_pb2.PlanRequest(table=table, time_budget_ms=0), timeout=args.timeout)
+        expect(False, "a budget of 0 is refused")
+    except grpc.RpcError as e:
+        print("bad plan:", e.code().name, "-", e.details())
+        expect(e.code() == grpc.StatusCode.INVALID_ARGUMENT and "time_budget_ms = 0" in e.details(),
+               "a budget of 0 is INVALID_ARGUMENT naming time_budget_ms")
 
     channel.close()
     print("all as expected" if not failures else "%d unexpected answers" % len(failures))

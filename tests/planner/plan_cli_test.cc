@@ -74,7 +74,9 @@ TEST(CliPlanTest, JsonHasExactlyTheContractedNames) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   Struct json;
   ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &json).ok()) << r.out;
-  EXPECT_EQ(Keys(json), (std::set<std::string>{"shots", "reason", "simulations", "evaluations", "elapsedMs"}));
+  EXPECT_EQ(Keys(json), (std::set<std::string>{"shots", "reason", "simulations", "evaluations", "elapsedMs",
+                                               "final", "warnings"}));
+  EXPECT_TRUE(json.fields().at("final").bool_value());
   const auto& shots = json.fields().at("shots").list_value();
   ASSERT_GT(shots.values_size(), 0);
   const Struct& s = shots.values(0).struct_value();

@@ -177,5 +177,89 @@ TEST(LoadTablesTest, BuiltInTablesAreValidVariedAndSeeded) {
   EXPECT_NE(cli::VariedTables(8, 64, 0.3)[10].SerializeAsString(), tables[10].SerializeAsString());
 }
 
+// Everything but the last line ("N simulations, ..., T ms": wall time differs).
+std::string WithoutWorkLine(const std::string& text) {
+  const std::size_t end = text.rfind('\n', text.size() >= 2 ? text.size() - 2 : 0);
+  return end == std::string::npos ? text : text.substr(0, end + 1);
+}
+
+constexpr const char* kPlanFlags =
+    "plan --table builtin:red --max-simulations 300 --samples 16 --budget-ms 5000 --seed 3";
+
+TEST(PlanServerTest, PrintsWhatTheLocalCommandPrints) {
+  TestServer s;
+  const RunResult local = RunCli(std::string(kPlanFlags));
+  const RunResult remote = RunCli(std::string(kPlanFlags) + " --server " + s.target);
+  ASSERT_EQ(local.exit_code, 0) << local.err;
+  ASSERT_EQ(remote.exit_code, 0) << remote.err;
+  EXPECT_TRUE(Mentions(remote.out, "#1  red-1 into top-right")) << remote.out;
+  EXPECT_EQ(WithoutWorkLine(remote.out), WithoutWorkLine(local.out));
+  // JSON: the same shots; and an SVG of them.
+  const std::string svg = testing::TempDir() + "plan_remote_" + std::to_string(getpid()) + ".svg";
+  const RunResult local_json = RunCli(std::string(kPlanFlags) + " --json");
+  const RunResult remote_json = RunCli(std::string(kPlanFlags) + " --json --svg " + svg + " --server " + s.target);
+  ASSERT_EQ(remote_json.exit_code, 0) << remote_json.err;
+  const google::protobuf::Struct a = ParseJson(local_json.out), b = ParseJson(remote_json.out);
+  EXPECT_EQ(a.fields().at("shots").DebugString(), b.fields().at("shots").DebugString());
+  EXPECT_TRUE(b.fields().at("final").bool_value());
+  std::ifstream f(svg);
+  std::string head(5, '\0');
+  f.read(head.data(), 5);
+  EXPECT_EQ(head, "<svg ");
+}
+
+TEST(PlanServerTest, StreamPrintsProgressThenTheAnswer) {
+  TestServer s;
+  const RunResult r = RunCli(std::string(kPlanFlags) + " --stream --server " + s.target);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::size_t progress = r.out.find("progress ");
+  const std::size_t answer = r.out.find("#1  red-1 into top-right");
+  ASSERT_NE(progress, std::string::npos) << r.out;
+  ASSERT_NE(answer, std::string::npos) << r.out;
+  EXPECT_LT(progress, answer);
+  EXPECT_TRUE(Mentions(r.out, "P(pot) estimate")) << r.out;
+}
+
+TEST(PlanServerTest, TheServersErrorsExitAsTheLocalOnes) {
+  TestServer s;
+  const RunResult bad = RunCli("plan --table builtin:red --budget-ms 20000 --server " + s.target);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_TRUE(Mentions(bad.err, "snooker plan: INVALID_ARGUMENT from " + s.target +
+                                    ": time_budget_ms = 20000 (must be in [1, 10000] ms"))
+      << bad.err;
+  const RunResult unknown = RunCli("plan --table builtin:snooker --server " + s.target);
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_TRUE(Mentions(unknown.err, "no built-in table 'snooker' (there are: black, red, colours)"))
+      << unknown.err;
+}
+
+TEST(LoadTestTest, PlansAreCheckedAgainstTheirLimits) {
+  TestServer s;
+  const RunResult r = RunCli("loadtest --target " + s.target +
+                             " --method plan --budget-ms 20 --concurrency 4 --requests 40 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const google::protobuf::Struct j = ParseJson(r.out);
+  EXPECT_EQ(j.fields().at("method").string_value(), "plan");
+  EXPECT_EQ(Field(j, "completed"), 40);
+  EXPECT_EQ(Field(j, "errors"), 0);
+  EXPECT_EQ(Field(j, "badAnswers"), 0);
+  EXPECT_EQ(Field(j, "budgetMs"), 20);
+  EXPECT_GT(Field(j, "plansWithShots"), 0);
+  EXPECT_GT(Field(j, "ballsMoved"), 0);  // every fourth table is repaired
+  EXPECT_EQ(j.fields().at("statuses").struct_value().fields().at("OK").number_value(), 40);
+  EXPECT_EQ(s.server->counts().with(grpc::StatusCode::OK), 40 + 1);  // and GetModel
+}
+
+TEST(LoadTablesTest, BuiltInNamedTablesAreValid) {
+  for (const char* name : {"black", "red", "colours"}) {
+    v1::TableState t;
+    ASSERT_TRUE(cli::BuiltinTable(name, &t)) << name;
+    const server::TableCheck check = server::CheckTable(t, physics::DefaultTable(), 0);
+    EXPECT_TRUE(check.errors.empty()) << name << ": " << server::Describe(check.errors);
+  }
+  v1::TableState t;
+  EXPECT_FALSE(cli::BuiltinTable("snooker", &t));
+}
+
 }  // namespace
 }  // namespace snooker

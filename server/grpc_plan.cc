@@ -1,0 +1,378 @@
+// The gRPC adapter's plans: Plan (unary) and PlanStream (server streaming), raw
+// callback methods like the others (grpc_service.cc), with three differences:
+//  * admission: at most options.max_plans plans are in the server at once (running
+//    or waiting for a worker); another is refused with RESOURCE_EXHAUSTED at once;
+//  * cancellation: the planner polls an atomic flag, not the context; each plan's
+//    reactor sets it from OnCancel (the client cancelled, its deadline passed, or
+//    the server's shutdown grace ended);
+//  * the deadline: a plan stops a little before the call's deadline (kDeadlineShare
+//    of the time left, within [kMinMargin, kMaxMargin]) so that its best shots so
+//    far reach the client in time; with none it answers DEADLINE_EXCEEDED.
+//
+// PlanStream's writes never block the planner: a progress message is serialised on
+// the planner's thread and handed to the reactor; while a write is in flight only
+// the newest waits (an older one waiting is dropped and counted), and the final
+// answer, when the plan ends, replaces any waiting progress and is always the last
+// message. The reactor's state lives in a shared object that the worker and gRPC's
+// callbacks both hold, so neither outlives what it locks; OnDone deletes the reactor.
+#include <algorithm>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <new>
+#include <optional>
+#include <string>
+
+#include "server/decode.h"
+#include "server/grpc_service.h"
+#include "server/plan_api.h"
+#include "server/service_detail.h"
+
+namespace snooker::server {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using service_detail::CallDeadline;
+using service_detail::ClientDeadlinePassed;
+using service_detail::Flatten;
+
+// The share of a plan's time (arrival to deadline) kept back for sending its answer.
+constexpr double kDeadlineShare = 0.1;
+constexpr auto kMinMargin = std::chrono::milliseconds(1);
+constexpr auto kMaxMargin = std::chrono::milliseconds(50);
+
+// When the planner must stop for its answer to arrive by `deadline`.
+Clock::time_point PlanStop(Clock::time_point arrival, Clock::time_point deadline) {
+  if (deadline == Clock::time_point::max()) return deadline;
+  const auto span = deadline - arrival;
+  const auto margin = std::clamp<Clock::duration>(
+      std::chrono::duration_cast<Clock::duration>(span * kDeadlineShare), kMinMargin, kMaxMargin);
+  return deadline - margin;
+}
+
+grpc::Status Serialize(const v1::PlanResponse& response, grpc::ByteBuffer* out) {
+  if (response.ByteSizeLong() > limits::kMaxResponseBytes) {
+    return {grpc::StatusCode::RESOURCE_EXHAUSTED,
+            "the answer would be larger than " + std::to_string(limits::kMaxResponseBytes) +
+                " bytes; ask for fewer shots (max_shots)"};
+  }
+  bool own = false;
+  grpc::Status st = grpc::SerializationTraits<v1::PlanResponse>::Serialize(response, out, &own);
+  if (!st.ok()) return {grpc::StatusCode::INTERNAL, "cannot serialise the answer: " + st.error_message()};
+  return grpc::Status::OK;
+}
+
+}  // namespace
+
+struct ShotPlannerService::PlanCall {
+  const char* method = "";
+  grpc::CallbackServerContext* context = nullptr;
+  const grpc::ByteBuffer* request = nullptr;
+  std::string peer;
+  Clock::time_point arrival;
+  Clock::time_point deadline;  // the client's or the server's, whichever is first
+  std::chrono::system_clock::time_point client_deadline;
+  std::size_t request_bytes = 0;
+  std::atomic<bool> cancel{false};  // set by the reactor's OnCancel
+};
+
+// Plan: a unary reactor whose only reactions are OnCancel (the planner's flag) and
+// OnDone (itself deleted); the worker calls Finish.
+class ShotPlannerService::PlanUnaryReactor final : public grpc::ServerUnaryReactor {
+ public:
+  explicit PlanUnaryReactor(std::shared_ptr<PlanCall> call) : call_(std::move(call)) {}
+  void OnCancel() override { call_->cancel.store(true); }
+  void OnDone() override { delete this; }
+
+ private:
+  std::shared_ptr<PlanCall> call_;
+};
+
+// PlanStream's reactor; see the file comment.
+class ShotPlannerService::PlanStreamReactor final : public grpc::ServerWriteReactor<grpc::ByteBuffer> {
+ public:
+  PlanStreamReactor(ShotPlannerService* service, std::shared_ptr<PlanCall> call)
+      : state_(std::make_shared<State>()) {
+    state_->service = service;
+    state_->call = std::move(call);
+    state_->reactor = this;
+  }
+
+  // From the worker (the planner's threads, never concurrently).
+  void Progress(const v1::PlanResponse& best) {
+    const std::shared_ptr<State> state = state_;
+    grpc::ByteBuffer bytes;
+    if (!Serialize(best, &bytes).ok()) return;  // a progress message is optional
+    std::lock_guard<std::mutex> lock(state->mu);
+    if (state->completed || state->broken) return;
+    if (state->writing) {
+      if (state->pending) state->service->progress_dropped_.fetch_add(1);
+      state->pending = std::move(bytes);
+      return;
+    }
+    state->StartWrite(std::move(bytes), false);
+  }
+
+  // From the worker, once, as its last use of the reactor: the final answer (for an
+  // OK status) and the status.
+  void Complete(const grpc::Status& status, std::optional<grpc::ByteBuffer> final_answer) {
+    const std::shared_ptr<State> state = state_;
+    std::lock_guard<std::mutex> lock(state->mu);
+    state->completed = true;
+    state->status = status;
+    if (state->pending) state->service->progress_dropped_.fetch_add(1);
+    state->pending.reset();  // the final answer supersedes it
+    if (status.ok() && !state->broken) state->final_answer = std::move(final_answer);
+    if (!state->writing) state->Pump();
+  }
+
+  void OnWriteDone(bool ok) override {
+    const std::shared_ptr<State> state = state_;  // the worker may drop its copy meanwhile
+    std::lock_guard<std::mutex> lock(state->mu);
+    state->writing = false;
+    if (ok && !state->in_flight_is_final) state->service->progress_messages_.fetch_add(1);
+    if (!ok) {
+      // The stream is broken (the client went away, or the call was cancelled):
+      // nothing more is written; the status still ends the call.
+      state->broken = true;
+      state->pending.reset();
+      state->final_answer.reset();
+    }
+    state->Pump();
+  }
+
+  void OnCancel() override { state_->call->cancel.store(true); }
+  void OnDone() override { delete this; }
+
+ private:
+  struct State {
+    ShotPlannerService* service = nullptr;
+    std::shared_ptr<PlanCall> call;
+    PlanStreamReactor* reactor = nullptr;
+    std::mutex mu;
+    bool writing = false;             // a write is in flight
+    bool in_flight_is_final = false;  // ... and it is the final answer
+    bool completed = false;           // the worker is done (status set)
+    bool broken = false;              // a write failed
+    bool finished = false;            // Finish was called
+    grpc::Status status;
+    grpc::ByteBuffer in_flight;  // must live until OnWriteDone
+    std::optional<grpc::ByteBuffer> pending;       // the newest progress not yet written
+    std::optional<grpc::ByteBuffer> final_answer;  // the last message, once completed
+
+    void StartWrite(grpc::ByteBuffer bytes, bool is_final) {
+      in_flight = std::move(bytes);
+      in_flight_is_final = is_final;
+      writing = true;
+      reactor->StartWrite(&in_flight);
+    }
+    // With mu held and no write in flight: the next write, or Finish.
+    void Pump() {
+      if (finished) return;
+      if (completed) {
+        if (final_answer && !broken) {
+          grpc::ByteBuffer bytes = std::move(*final_answer);
+          final_answer.reset();
+          StartWrite(std::move(bytes), true);
+          return;
+        }
+        finished = true;
+        reactor->Finish(status);  // the reactor's last use here: OnDone may follow
+        return;
+      }
+      if (pending && !broken) {
+        grpc::ByteBuffer bytes = std::move(*pending);
+        pending.reset();
+        StartWrite(std::move(bytes), false);
+      }
+    }
+  };
+  std::shared_ptr<State> state_;
+};
+
+std::shared_ptr<ShotPlannerService::PlanCall> ShotPlannerService::AdmitPlan(
+    const char* method, grpc::CallbackServerContext* context, const grpc::ByteBuffer* request,
+    grpc::Status* refusal) {
+  auto call = std::make_shared<PlanCall>();
+  call->method = method;
+  call->context = context;
+  call->request = request;
+  call->peer = context->peer();
+  call->arrival = Clock::now();
+  call->client_deadline = context->deadline();
+  call->deadline = CallDeadline(call->client_deadline, call->arrival, options_.max_call);
+  call->request_bytes = request->Length();
+  if (plans_.fetch_add(1) >= options_.max_plans) {
+    plans_.fetch_sub(1);
+    *refusal = {grpc::StatusCode::RESOURCE_EXHAUSTED,
+                "the server is planning " + std::to_string(options_.max_plans) +
+                    " shots already (its --max-plans); try again later"};
+    return nullptr;
+  }
+  return call;
+}
+
+grpc::Status ShotPlannerService::RunPlan(PlanCall& call, v1::PlanResponse* response, Work* work,
+                                         const std::function<void(const v1::PlanResponse&)>& on_progress) {
+  const auto waited_ms =
+      std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - call.arrival).count();
+  const bool cancelled = call.cancel.load() || call.context->IsCancelled();
+  if (Clock::now() >= call.deadline || (cancelled && ClientDeadlinePassed(call.client_deadline))) {
+    return {grpc::StatusCode::DEADLINE_EXCEEDED,
+            "the call's deadline passed before the plan started (" + std::to_string(waited_ms) +
+                " ms waiting for a worker)"};
+  }
+  if (cancelled) {
+    return {grpc::StatusCode::CANCELLED, "the call was cancelled before the plan started (" +
+                                             std::to_string(waited_ms) + " ms waiting for a worker)"};
+  }
+  std::string bytes;
+  if (!Flatten(*call.request, &bytes)) {
+    return {grpc::StatusCode::INVALID_ARGUMENT, "cannot read the request's bytes"};
+  }
+  v1::PlanRequest request;
+  if (ApiStatus st = ParseRequest(bytes, &request); !st.ok()) return ToGrpcStatus(st);
+  PlanControl control;
+  const Clock::time_point stop = PlanStop(call.arrival, call.deadline);
+  control.deadline = stop;
+  control.cancel = &call.cancel;
+  control.on_progress = on_progress;
+  control.vision_tolerance_mm = options_.vision_tolerance_mm;
+  control.default_budget_ms = options_.default_plan_budget_ms;
+  control.max_budget_ms = options_.max_plan_budget_ms;
+  const ApiStatus st = server::Plan(request, response, control);
+  if (!st.ok()) return ToGrpcStatus(st);
+  work->simulations = response->simulations();
+  if (call.cancel.load() || call.context->IsCancelled()) {
+    if (ClientDeadlinePassed(call.client_deadline)) {
+      return {grpc::StatusCode::DEADLINE_EXCEEDED,
+              "the client's deadline passed while planning (" +
+                  std::to_string(response->simulations()) + " simulations)"};
+    }
+    return {grpc::StatusCode::CANCELLED, "the call was cancelled while planning (" +
+                                             std::to_string(response->simulations()) + " simulations)"};
+  }
+  if (response->shots_size() == 0 && Clock::now() >= stop) {
+    return {grpc::StatusCode::DEADLINE_EXCEEDED,
+            "the call's deadline passed before any shot was verified (" +
+                std::to_string(response->simulations()) + " simulations, " + response->reason() + ")"};
+  }
+  return grpc::Status::OK;
+}
+
+grpc::ServerUnaryReactor* ShotPlannerService::Plan(grpc::CallbackServerContext* context,
+                                                   const grpc::ByteBuffer* request,
+                                                   grpc::ByteBuffer* response) {
+  // On a gRPC thread: admit and queue the call, return at once (no exception may leave).
+  received_.fetch_add(1);
+  try {
+    grpc::Status refusal;
+    std::shared_ptr<PlanCall> call = AdmitPlan("Plan", context, request, &refusal);
+    if (call == nullptr) {
+      grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
+      Record("Plan", context->peer(), Clock::now(), refusal, request->Length(), 0, {});
+      reactor->Finish(refusal);
+      return reactor;
+    }
+    auto* reactor = new PlanUnaryReactor(call);
+    auto job = [this, call, reactor, response] {
+      running_.fetch_add(1);
+      Work work;
+      grpc::Status status;
+      std::size_t response_bytes = 0;
+      try {
+        v1::PlanResponse answer;
+        status = RunPlan(*call, &answer, &work, nullptr);
+        if (status.ok()) status = Serialize(answer, response);
+        if (status.ok()) response_bytes = response->Length();
+      } catch (const std::bad_alloc&) {
+        status = {grpc::StatusCode::RESOURCE_EXHAUSTED, "out of memory"};
+      } catch (const std::exception& e) {
+        status = {grpc::StatusCode::INTERNAL, std::string("internal error: ") + e.what()};
+      } catch (...) {
+        status = {grpc::StatusCode::INTERNAL, "internal error"};
+      }
+      running_.fetch_sub(1);
+      plans_.fetch_sub(1);
+      Record(call->method, call->peer, call->arrival, status, call->request_bytes, response_bytes, work);
+      reactor->Finish(status);  // the last use of the reactor and the buffers
+    };
+    if (!pool_.TrySubmit(job)) {
+      plans_.fetch_sub(1);
+      const grpc::Status busy{grpc::StatusCode::RESOURCE_EXHAUSTED,
+                              "the server is busy: " + std::to_string(pool_.threads()) +
+                                  " calls running and " + std::to_string(options_.max_queued) +
+                                  " waiting; try again later"};
+      Record("Plan", call->peer, call->arrival, busy, call->request_bytes, 0, {});
+      reactor->Finish(busy);
+    }
+    return reactor;
+  } catch (const std::exception& e) {  // std::bad_alloc above all
+    grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
+    by_status_[grpc::StatusCode::RESOURCE_EXHAUSTED].fetch_add(1);
+    finished_.fetch_add(1);
+    reactor->Finish({grpc::StatusCode::RESOURCE_EXHAUSTED,
+                     std::string("the server cannot take the call: ") + e.what()});
+    return reactor;
+  }
+}
+
+grpc::ServerWriteReactor<grpc::ByteBuffer>* ShotPlannerService::PlanStream(
+    grpc::CallbackServerContext* context, const grpc::ByteBuffer* request) {
+  received_.fetch_add(1);
+  grpc::Status refusal;
+  std::shared_ptr<PlanCall> call;
+  try {
+    call = AdmitPlan("PlanStream", context, request, &refusal);
+  } catch (const std::exception& e) {
+    refusal = {grpc::StatusCode::RESOURCE_EXHAUSTED, std::string("the server cannot take the call: ") + e.what()};
+  }
+  if (call == nullptr) {
+    // A reactor that only finishes (it needs a PlanCall for its OnCancel).
+    auto placeholder = std::make_shared<PlanCall>();
+    auto* reactor = new PlanStreamReactor(this, placeholder);
+    Record("PlanStream", context->peer(), Clock::now(), refusal, request->Length(), 0, {});
+    reactor->Complete(refusal, std::nullopt);
+    return reactor;
+  }
+  auto* reactor = new PlanStreamReactor(this, call);
+  auto job = [this, call, reactor] {
+    running_.fetch_add(1);
+    Work work;
+    grpc::Status status;
+    std::optional<grpc::ByteBuffer> final_bytes;
+    std::size_t response_bytes = 0;
+    try {
+      v1::PlanResponse answer;
+      status = RunPlan(*call, &answer, &work,
+                       [reactor](const v1::PlanResponse& best) { reactor->Progress(best); });
+      if (status.ok()) {
+        final_bytes.emplace();
+        status = Serialize(answer, &*final_bytes);
+        if (status.ok()) response_bytes = final_bytes->Length();
+      }
+    } catch (const std::bad_alloc&) {
+      status = {grpc::StatusCode::RESOURCE_EXHAUSTED, "out of memory"};
+    } catch (const std::exception& e) {
+      status = {grpc::StatusCode::INTERNAL, std::string("internal error: ") + e.what()};
+    } catch (...) {
+      status = {grpc::StatusCode::INTERNAL, "internal error"};
+    }
+    running_.fetch_sub(1);
+    plans_.fetch_sub(1);
+    Record(call->method, call->peer, call->arrival, status, call->request_bytes, response_bytes, work);
+    reactor->Complete(status, status.ok() ? std::move(final_bytes) : std::nullopt);
+  };
+  if (!pool_.TrySubmit(job)) {
+    plans_.fetch_sub(1);
+    const grpc::Status busy{grpc::StatusCode::RESOURCE_EXHAUSTED,
+                            "the server is busy: " + std::to_string(pool_.threads()) +
+                                " calls running and " + std::to_string(options_.max_queued) +
+                                " waiting; try again later"};
+    Record("PlanStream", call->peer, call->arrival, busy, call->request_bytes, 0, {});
+    reactor->Complete(busy, std::nullopt);
+  }
+  return reactor;
+}
+
+}  // namespace snooker::server
