@@ -120,17 +120,6 @@ grpc::Status CheckHealth(const std::shared_ptr<grpc::Channel>& channel, const st
   return st;
 }
 
-const char* StatusCodeName(grpc::StatusCode code) {
-  static constexpr const char* kNames[] = {
-      "OK",           "CANCELLED",          "UNKNOWN",           "INVALID_ARGUMENT",
-      "DEADLINE_EXCEEDED", "NOT_FOUND",     "ALREADY_EXISTS",    "PERMISSION_DENIED",
-      "RESOURCE_EXHAUSTED", "FAILED_PRECONDITION", "ABORTED",    "OUT_OF_RANGE",
-      "UNIMPLEMENTED", "INTERNAL",          "UNAVAILABLE",       "DATA_LOSS",
-      "UNAUTHENTICATED"};
-  const auto i = static_cast<std::size_t>(code);
-  return i < std::size(kNames) ? kNames[i] : "UNKNOWN";
-}
-
 int ReportCallError(const std::string& command, const std::string& target,
                     const grpc::Status& status, std::ostream& err) {
   err << command << ": " << StatusCodeName(status.error_code()) << " from " << target << ": "

@@ -19,6 +19,7 @@
 #include <string>
 
 #include "cli/args.h"
+#include "server/grpc_service.h"
 
 namespace snooker::cli {
 
@@ -58,7 +59,7 @@ grpc::Status CheckHealth(const std::shared_ptr<grpc::Channel>& channel, const st
 int ReportCallError(const std::string& command, const std::string& target,
                     const grpc::Status& status, std::ostream& err);
 
-/// gRPC's name of a status code ("OK", "INVALID_ARGUMENT", ...).
-const char* StatusCodeName(grpc::StatusCode code);
+/// gRPC's name of a status code (the server's, server/grpc_service.h).
+using server::StatusCodeName;
 
 }  // namespace snooker::cli

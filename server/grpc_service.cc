@@ -28,13 +28,7 @@ grpc::Status ToGrpcStatus(const ApiStatus& status) {
   return {grpc::StatusCode::UNKNOWN, status.message};
 }
 
-namespace {
-using Clock = std::chrono::steady_clock;
-}  // namespace
-
-namespace service_detail {
-
-const char* StatusName(grpc::StatusCode code) {
+const char* StatusCodeName(grpc::StatusCode code) {
   static constexpr const char* kNames[] = {
       "OK",           "CANCELLED",          "UNKNOWN",           "INVALID_ARGUMENT",
       "DEADLINE_EXCEEDED", "NOT_FOUND",     "ALREADY_EXISTS",    "PERMISSION_DENIED",
@@ -44,6 +38,12 @@ const char* StatusName(grpc::StatusCode code) {
   const auto i = static_cast<std::size_t>(code);
   return i < std::size(kNames) ? kNames[i] : "UNKNOWN";
 }
+
+namespace {
+using Clock = std::chrono::steady_clock;
+}  // namespace
+
+namespace service_detail {
 
 Clock::time_point CallDeadline(std::chrono::system_clock::time_point client, Clock::time_point arrival,
                                std::chrono::milliseconds max_call) {
@@ -87,7 +87,6 @@ using service_detail::CallDeadline;
 using service_detail::ClientDeadlinePassed;
 using service_detail::Flatten;
 using service_detail::IsCancelled;
-using service_detail::StatusName;
 
 // Simulations a call ran, from its answer.
 std::int64_t SimulationsOf(const v1::CollideResponse&) { return 0; }
@@ -306,7 +305,7 @@ void ShotPlannerService::Record(const char* method, const std::string& peer, Clo
     std::ostringstream line;
     line.precision(3);
     line << std::fixed << "snooker: call method=" << method << " peer=" << peer
-         << " status=" << StatusName(status.error_code()) << " latency_ms=" << latency_ms
+         << " status=" << StatusCodeName(status.error_code()) << " latency_ms=" << latency_ms
          << " simulations=" << work.simulations << " request_bytes=" << request_bytes
          << " response_bytes=" << response_bytes << extra << "\n";
     std::lock_guard<std::mutex> lock(log_mu_);

@@ -46,6 +46,10 @@ namespace snooker::server {
 /// Maps an API status to a gRPC status (the only place that does).
 grpc::Status ToGrpcStatus(const ApiStatus& status);
 
+/// gRPC's name of a status code ("OK", "INVALID_ARGUMENT", ...; "UNKNOWN" for a
+/// value out of range).
+const char* StatusCodeName(grpc::StatusCode code);
+
 struct ServiceOptions {
   /// Longest wall time of a call (and the default deadline of a call without one).
   std::chrono::milliseconds max_call = limits::kDefaultMaxCall;

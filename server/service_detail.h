@@ -9,9 +9,6 @@
 
 namespace snooker::server::service_detail {
 
-/// gRPC's name of a status code.
-const char* StatusName(grpc::StatusCode code);
-
 /// The call's deadline on the steady clock: the client's, or arrival + max_call when
 /// that is earlier (or the client set none).
 std::chrono::steady_clock::time_point CallDeadline(std::chrono::system_clock::time_point client,
