@@ -27,6 +27,8 @@ void ForwardProgress(const planner::PlannedShot& best, void* context) {
 
 }  // namespace
 
+void WarmUpPlanner() { (void)planner::Planner::Default(); }
+
 ApiStatus Plan(const v1::PlanRequest& request, v1::PlanResponse* response, const PlanControl& control) {
   const auto start = std::chrono::steady_clock::now();
   // Validate before the planner is first built (its pocket and throw tables take a

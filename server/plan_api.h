@@ -34,6 +34,11 @@ struct PlanControl {
   double max_budget_ms = limits::kPlanBudgetMs.hi;
 };
 
+/// Builds the planner and its pocket and throw tables (a few thousand simulations,
+/// about 0.2 s, once per process) so that no call pays for them: a server does this
+/// before it reports SERVING.
+void WarmUpPlanner();
+
 /// Plans shots for the request's table. INVALID_ARGUMENT names each bad field and
 /// value; an answer without shots is OK with its reason (no pot, or time ran out
 /// first: the caller compares its deadline). The answer has final = true and the

@@ -5,6 +5,7 @@
 #include <grpcpp/security/server_credentials.h>
 
 #include "server/address.h"
+#include "server/plan_api.h"
 
 namespace snooker::server {
 
@@ -53,6 +54,9 @@ std::unique_ptr<Server> Server::Start(const ServerOptions& options, std::string*
   if (options.tls && (options.tls->cert_chain_pem.empty() || options.tls->private_key_pem.empty())) {
     return fail("TLS needs both a certificate and its private key");
   }
+  // The planner's tables are built before the port opens: the first plan after
+  // SERVING is as fast as any other.
+  WarmUpPlanner();
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   std::unique_ptr<Server> s(new Server(options));

@@ -121,6 +121,9 @@ def main():
             if w in rows and "before" in rows[w] and "after" in rows[w]:
                 (ib, tb), (ia, ta) = rows[w]["before"], rows[w]["after"]
                 out.append(f"| {w} | {ib:,.0f} | {ia:,.0f} | {ib / ia:.2f}x | {tb:.1f} | {ta:.1f} | {tb / ta:.2f}x |")
+        out.append("")
+        out.append("The planner's self-play at one budget on the engine before and after: "
+                   "[selfplay-before-after.md](selfplay-before-after.md) (scripts/selfplay-before-after).")
     out.append("")
     out.append(f"Machine: {os.cpu_count()} cores, {platform.processor() or platform.machine()}, "
                f"{platform.platform()}.")
