@@ -32,7 +32,6 @@ namespace snooker::server {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-using service_detail::CallDeadline;
 using service_detail::ClientDeadlinePassed;
 using service_detail::Flatten;
 
@@ -64,15 +63,8 @@ grpc::Status Serialize(const v1::PlanResponse& response, grpc::ByteBuffer* out) 
 
 }  // namespace
 
-struct ShotPlannerService::PlanCall {
+struct ShotPlannerService::PlanCall : service_detail::CallInfo {
   const char* method = "";
-  grpc::CallbackServerContext* context = nullptr;
-  const grpc::ByteBuffer* request = nullptr;
-  std::string peer;
-  Clock::time_point arrival;
-  Clock::time_point deadline;  // the client's or the server's, whichever is first
-  std::chrono::system_clock::time_point client_deadline;
-  std::size_t request_bytes = 0;
   std::atomic<bool> cancel{false};  // set by the reactor's OnCancel
 };
 
@@ -194,14 +186,8 @@ std::shared_ptr<ShotPlannerService::PlanCall> ShotPlannerService::AdmitPlan(
     const char* method, grpc::CallbackServerContext* context, const grpc::ByteBuffer* request,
     grpc::Status* refusal) {
   auto call = std::make_shared<PlanCall>();
+  service_detail::Arrived(context, request, options_.max_call, call.get());
   call->method = method;
-  call->context = context;
-  call->request = request;
-  call->peer = context->peer();
-  call->arrival = Clock::now();
-  call->client_deadline = context->deadline();
-  call->deadline = CallDeadline(call->client_deadline, call->arrival, options_.max_call);
-  call->request_bytes = request->Length();
   if (plans_.fetch_add(1) >= options_.max_plans) {
     plans_.fetch_sub(1);
     *refusal = {grpc::StatusCode::RESOURCE_EXHAUSTED,
@@ -278,20 +264,14 @@ grpc::ServerUnaryReactor* ShotPlannerService::Plan(grpc::CallbackServerContext* 
     auto job = [this, call, reactor, response] {
       running_.fetch_add(1);
       Work work;
-      grpc::Status status;
       std::size_t response_bytes = 0;
-      try {
+      const grpc::Status status = service_detail::Guarded([&] {
         v1::PlanResponse answer;
-        status = RunPlan(*call, &answer, &work, nullptr);
-        if (status.ok()) status = Serialize(answer, response);
-        if (status.ok()) response_bytes = response->Length();
-      } catch (const std::bad_alloc&) {
-        status = {grpc::StatusCode::RESOURCE_EXHAUSTED, "out of memory"};
-      } catch (const std::exception& e) {
-        status = {grpc::StatusCode::INTERNAL, std::string("internal error: ") + e.what()};
-      } catch (...) {
-        status = {grpc::StatusCode::INTERNAL, "internal error"};
-      }
+        grpc::Status st = RunPlan(*call, &answer, &work, nullptr);
+        if (st.ok()) st = Serialize(answer, response);
+        if (st.ok()) response_bytes = response->Length();
+        return st;
+      });
       running_.fetch_sub(1);
       plans_.fetch_sub(1);
       Record(call->method, call->peer, call->arrival, status, call->request_bytes, response_bytes, work);
@@ -339,25 +319,19 @@ grpc::ServerWriteReactor<grpc::ByteBuffer>* ShotPlannerService::PlanStream(
   auto job = [this, call, reactor] {
     running_.fetch_add(1);
     Work work;
-    grpc::Status status;
     std::optional<grpc::ByteBuffer> final_bytes;
     std::size_t response_bytes = 0;
-    try {
+    const grpc::Status status = service_detail::Guarded([&] {
       v1::PlanResponse answer;
-      status = RunPlan(*call, &answer, &work,
-                       [reactor](const v1::PlanResponse& best) { reactor->Progress(best); });
-      if (status.ok()) {
+      grpc::Status st = RunPlan(*call, &answer, &work,
+                                [reactor](const v1::PlanResponse& best) { reactor->Progress(best); });
+      if (st.ok()) {
         final_bytes.emplace();
-        status = Serialize(answer, &*final_bytes);
-        if (status.ok()) response_bytes = final_bytes->Length();
+        st = Serialize(answer, &*final_bytes);
+        if (st.ok()) response_bytes = final_bytes->Length();
       }
-    } catch (const std::bad_alloc&) {
-      status = {grpc::StatusCode::RESOURCE_EXHAUSTED, "out of memory"};
-    } catch (const std::exception& e) {
-      status = {grpc::StatusCode::INTERNAL, std::string("internal error: ") + e.what()};
-    } catch (...) {
-      status = {grpc::StatusCode::INTERNAL, "internal error"};
-    }
+      return st;
+    });
     running_.fetch_sub(1);
     plans_.fetch_sub(1);
     Record(call->method, call->peer, call->arrival, status, call->request_bytes, response_bytes, work);

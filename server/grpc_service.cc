@@ -79,11 +79,21 @@ bool Flatten(const grpc::ByteBuffer& buffer, std::string* out) {
   return true;
 }
 
+void Arrived(grpc::CallbackServerContext* context, const grpc::ByteBuffer* request,
+             std::chrono::milliseconds max_call, CallInfo* info) {
+  info->context = context;
+  info->request = request;
+  info->peer = context->peer();
+  info->arrival = Clock::now();
+  info->client_deadline = context->deadline();
+  info->deadline = CallDeadline(info->client_deadline, info->arrival, max_call);
+  info->request_bytes = request->Length();
+}
+
 }  // namespace service_detail
 
 namespace {
 
-using service_detail::CallDeadline;
 using service_detail::ClientDeadlinePassed;
 using service_detail::Flatten;
 using service_detail::IsCancelled;
@@ -118,17 +128,10 @@ constexpr ShotPlannerService::Method kGetModel{
 
 }  // namespace
 
-struct ShotPlannerService::Call {
-  const Method* method;
-  grpc::CallbackServerContext* context;
-  const grpc::ByteBuffer* request;
-  grpc::ByteBuffer* response;
-  grpc::ServerUnaryReactor* reactor;
-  std::string peer;
-  Clock::time_point arrival;
-  Clock::time_point deadline;  // the client's or the server's, whichever is first
-  std::chrono::system_clock::time_point client_deadline;
-  std::size_t request_bytes = 0;
+struct ShotPlannerService::Call : service_detail::CallInfo {
+  const Method* method = nullptr;
+  grpc::ByteBuffer* response = nullptr;
+  grpc::ServerUnaryReactor* reactor = nullptr;
 };
 
 std::string ValidateServiceOptions(const ServiceOptions& o) {
@@ -210,16 +213,10 @@ grpc::ServerUnaryReactor* ShotPlannerService::Accept(const Method& method,
   grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
   try {
     auto call = std::make_shared<Call>();
+    service_detail::Arrived(context, request, options_.max_call, call.get());
     call->method = &method;
-    call->context = context;
-    call->request = request;
     call->response = response;
     call->reactor = reactor;
-    call->peer = context->peer();
-    call->arrival = Clock::now();
-    call->client_deadline = context->deadline();
-    call->deadline = CallDeadline(call->client_deadline, call->arrival, options_.max_call);
-    call->request_bytes = request->Length();
     if (!pool_.TrySubmit([this, call] { Run(call); })) {
       Finish(*call,
              {grpc::StatusCode::RESOURCE_EXHAUSTED,
@@ -261,26 +258,20 @@ void ShotPlannerService::Run(const std::shared_ptr<Call>& call) {
     limits.default_plan_budget_ms = options_.default_plan_budget_ms;
     limits.max_plan_budget_ms = options_.max_plan_budget_ms;
     limits.service = &service_limits_;
-    try {
+    status = service_detail::Guarded([&]() -> grpc::Status {
       std::string bytes;
       if (!Flatten(*call->request, &bytes)) {
-        status = {grpc::StatusCode::INVALID_ARGUMENT, "cannot read the request's bytes"};
-      } else {
-        ApiStatus result = call->method->run(bytes, limits, call->response, &work);
-        if (result.code == ApiStatus::Code::kCancelled && ClientDeadlinePassed(call->client_deadline)) {
-          result.code = ApiStatus::Code::kDeadlineExceeded;
-          result.message = "the client's deadline passed: " + result.message;
-        }
-        status = ToGrpcStatus(result);
-        if (status.ok()) response_bytes = call->response->Length();
+        return {grpc::StatusCode::INVALID_ARGUMENT, "cannot read the request's bytes"};
       }
-    } catch (const std::bad_alloc&) {
-      status = {grpc::StatusCode::RESOURCE_EXHAUSTED, "out of memory"};
-    } catch (const std::exception& e) {
-      status = {grpc::StatusCode::INTERNAL, std::string("internal error: ") + e.what()};
-    } catch (...) {
-      status = {grpc::StatusCode::INTERNAL, "internal error"};
-    }
+      ApiStatus result = call->method->run(bytes, limits, call->response, &work);
+      if (result.code == ApiStatus::Code::kCancelled && ClientDeadlinePassed(call->client_deadline)) {
+        result.code = ApiStatus::Code::kDeadlineExceeded;
+        result.message = "the client's deadline passed: " + result.message;
+      }
+      const grpc::Status st = ToGrpcStatus(result);
+      if (st.ok()) response_bytes = call->response->Length();
+      return st;
+    });
   }
   running_.fetch_sub(1);
   Finish(*call, status, response_bytes, work);

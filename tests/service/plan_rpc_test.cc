@@ -23,6 +23,7 @@
 #include "server/plan_convert.h"
 #include "server/server.h"
 #include "snooker/v1/service.grpc.pb.h"
+#include "tests/service/server_support.h"
 
 namespace snooker::server {
 namespace {
@@ -118,18 +119,12 @@ std::string ShotsOf(const v1::PlanResponse& r) {
 class PlanRpcTest : public testing::Test {
  protected:
   void StartServer(ServerOptions options = {}) {
-    options.address = "127.0.0.1:0";
-    options.log = &log_;
-    std::string error;
-    server_ = Server::Start(options, &error);
-    ASSERT_NE(server_, nullptr) << error;
-    channel_ = grpc::CreateChannel("127.0.0.1:" + std::to_string(server_->port()),
-                                   grpc::InsecureChannelCredentials());
-    stub_ = v1::ShotPlanner::NewStub(channel_);
+    test_server_ = std::make_unique<server_support::TestServer>(options);
+    ASSERT_NE(test_server_->server, nullptr);
+    server_ = test_server_->server.get();
+    stub_ = test_server_->stub.get();
   }
-  void TearDown() override {
-    if (server_) server_->Shutdown(milliseconds(0));
-  }
+  std::string Log() const { return test_server_->log.str(); }
 
   grpc::Status Plan(const v1::PlanRequest& request, v1::PlanResponse* response,
                     std::optional<milliseconds> deadline = std::nullopt) {
@@ -156,10 +151,9 @@ class PlanRpcTest : public testing::Test {
     EXPECT_EQ(server_->counts().in_flight(), 0);
   }
 
-  std::ostringstream log_;
-  std::unique_ptr<Server> server_;
-  std::shared_ptr<grpc::Channel> channel_;
-  std::unique_ptr<v1::ShotPlanner::Stub> stub_;
+  std::unique_ptr<server_support::TestServer> test_server_;
+  Server* server_ = nullptr;
+  v1::ShotPlanner::Stub* stub_ = nullptr;
 };
 
 // A plan in flight through the callback stub; its status once answered.
@@ -202,7 +196,7 @@ TEST_F(PlanRpcTest, PlansShotsWithinTheLimitsTheSameForTheSameSeed) {
   ASSERT_TRUE(Plan(request, &b).ok());
   EXPECT_EQ(ShotsOf(a), ShotsOf(b));
   WaitUntilIdle();
-  const std::string log = log_.str();
+  const std::string log = Log();
   EXPECT_TRUE(Mentions(log, "method=Plan peer=ipv4:127.0.0.1:")) << log;
   EXPECT_TRUE(Mentions(log, "status=OK")) << log;
   EXPECT_TRUE(Mentions(log, "simulations=" + std::to_string(a.simulations()))) << log;
@@ -232,7 +226,7 @@ TEST_F(PlanRpcTest, PlanStreamSendsProgressThenTheFinalAnswerAsPlanGivesIt) {
   EXPECT_EQ(last.simulations(), unary.simulations());
   WaitUntilIdle();
   EXPECT_GE(server_->counts().progress_messages, 1);
-  EXPECT_TRUE(Mentions(log_.str(), "method=PlanStream")) << log_.str();
+  EXPECT_TRUE(Mentions(Log(), "method=PlanStream")) << Log();
 }
 
 struct BadPlan {
@@ -369,7 +363,7 @@ TEST_F(PlanRpcTest, TheServersMaximumCallTimeEndsAPlan) {
 
 TEST_F(PlanRpcTest, ACancelledPlanStops) {
   StartServer();
-  AsyncPlan call(stub_.get(), LongPlan(10'000));
+  AsyncPlan call(stub_, LongPlan(10'000));
   ASSERT_TRUE(WaitUntilPlanning(1));
   const auto t0 = Clock::now();
   call.context.TryCancel();
@@ -384,7 +378,7 @@ TEST_F(PlanRpcTest, AFullServerRefusesMorePlansAtOnce) {
   ServerOptions options;
   options.max_plans = 1;
   StartServer(options);
-  AsyncPlan held(stub_.get(), LongPlan(10'000));
+  AsyncPlan held(stub_, LongPlan(10'000));
   ASSERT_TRUE(WaitUntilPlanning(1));
   v1::PlanResponse response;
   const grpc::Status st = Plan(ObviousPot(), &response);
@@ -414,7 +408,7 @@ TEST_F(PlanRpcTest, ShutdownWithPlansInFlightIsBounded) {
   ServerOptions options;
   options.workers = 2;
   StartServer(options);
-  AsyncPlan unary(stub_.get(), LongPlan(10'000));
+  AsyncPlan unary(stub_, LongPlan(10'000));
   grpc::ClientContext stream_ctx;
   auto reader = stub_->PlanStream(&stream_ctx, LongPlan(10'000));
   ASSERT_TRUE(WaitUntilPlanning(2));
