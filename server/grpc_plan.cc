@@ -279,10 +279,7 @@ grpc::ServerUnaryReactor* ShotPlannerService::Plan(grpc::CallbackServerContext* 
     };
     if (!pool_.TrySubmit(job)) {
       plans_.fetch_sub(1);
-      const grpc::Status busy{grpc::StatusCode::RESOURCE_EXHAUSTED,
-                              "the server is busy: " + std::to_string(pool_.threads()) +
-                                  " calls running and " + std::to_string(options_.max_queued) +
-                                  " waiting; try again later"};
+      const grpc::Status busy = Busy();
       Record("Plan", call->peer, call->arrival, busy, call->request_bytes, 0, {});
       reactor->Finish(busy);
     }
@@ -339,10 +336,7 @@ grpc::ServerWriteReactor<grpc::ByteBuffer>* ShotPlannerService::PlanStream(
   };
   if (!pool_.TrySubmit(job)) {
     plans_.fetch_sub(1);
-    const grpc::Status busy{grpc::StatusCode::RESOURCE_EXHAUSTED,
-                            "the server is busy: " + std::to_string(pool_.threads()) +
-                                " calls running and " + std::to_string(options_.max_queued) +
-                                " waiting; try again later"};
+    const grpc::Status busy = Busy();
     Record("PlanStream", call->peer, call->arrival, busy, call->request_bytes, 0, {});
     reactor->Complete(busy, std::nullopt);
   }

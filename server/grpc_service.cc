@@ -218,11 +218,7 @@ grpc::ServerUnaryReactor* ShotPlannerService::Accept(const Method& method,
     call->response = response;
     call->reactor = reactor;
     if (!pool_.TrySubmit([this, call] { Run(call); })) {
-      Finish(*call,
-             {grpc::StatusCode::RESOURCE_EXHAUSTED,
-              "the server is busy: " + std::to_string(pool_.threads()) + " calls running and " +
-                  std::to_string(options_.max_queued) + " waiting; try again later"},
-             0, {});
+      Finish(*call, Busy(), 0, {});
     }
   } catch (const std::exception& e) {  // std::bad_alloc above all
     by_status_[grpc::StatusCode::RESOURCE_EXHAUSTED].fetch_add(1);
@@ -275,6 +271,12 @@ void ShotPlannerService::Run(const std::shared_ptr<Call>& call) {
   }
   running_.fetch_sub(1);
   Finish(*call, status, response_bytes, work);
+}
+
+grpc::Status ShotPlannerService::Busy() const {
+  return {grpc::StatusCode::RESOURCE_EXHAUSTED,
+          "the server is busy: " + std::to_string(pool_.threads()) + " calls running and " +
+              std::to_string(options_.max_queued) + " waiting; try again later"};
 }
 
 void ShotPlannerService::Finish(Call& call, const grpc::Status& status, std::size_t response_bytes,

@@ -138,6 +138,8 @@ class ShotPlannerService final : public ShotPlannerRawService {
   void Run(const std::shared_ptr<Call>& call);
   void Finish(Call& call, const grpc::Status& status, std::size_t response_bytes,
               const Work& work);
+  /// The answer to a call that finds every worker busy and the queue full.
+  grpc::Status Busy() const;
   /// Counts a finished call and writes its log line.
   void Record(const char* method, const std::string& peer, std::chrono::steady_clock::time_point arrival,
               const grpc::Status& status, std::size_t request_bytes, std::size_t response_bytes,
