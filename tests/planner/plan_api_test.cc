@@ -10,17 +10,12 @@
 #include <vector>
 
 #include "server/plan_convert.h"
+#include "tests/service/requests.h"
 
 namespace snooker::server {
 namespace {
 
-void AddBall(v1::PlanRequest* r, const std::string& id, v1::BallKind kind, double x, double y) {
-  v1::Ball* b = r->mutable_table()->add_balls();
-  b->set_id(id);
-  b->set_kind(kind);
-  b->mutable_position()->set_x(x);
-  b->mutable_position()->set_y(y);
-}
+using testing_requests::AddBall;
 
 // A red 40 cm before the top-right pocket on its axis, the cue ball 40 cm behind it.
 v1::PlanRequest ObviousPot() {

@@ -4,8 +4,6 @@
 #include <google/protobuf/struct.pb.h>
 #include <google/protobuf/util/json_util.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <array>
 #include <cctype>
@@ -16,42 +14,20 @@
 #include <sstream>
 #include <string>
 
+#include "tests/support/cli_support.h"
+
 namespace snooker {
 namespace {
 
 using google::protobuf::Struct;
 using google::protobuf::Value;
 
-struct RunResult {
-  int exit_code = -1;
-  std::string out, err;
-};
+using cli_support::RunCli;
+using cli_support::RunResult;
 
-RunResult RunCli(const std::string& args) {
-  static int calls = 0;
-  const std::string err_file = testing::TempDir() + "snooker_plan_stderr_" +
-                               std::to_string(getpid()) + "_" + std::to_string(++calls) + ".txt";
-  const std::string cmd = std::string(SNOOKER_CLI_PATH) + " " + args + " 2>" + err_file;
-  RunResult r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (p == nullptr) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  const int status = pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream f(err_file);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  r.err = ss.str();
-  std::remove(err_file.c_str());
-  return r;
-}
-
+// A table or shot file in the test temp folder.
 std::string WriteFile(const std::string& name, const std::string& text) {
-  const std::string path = testing::TempDir() + name + "_" + std::to_string(getpid()) + ".json";
-  std::ofstream(path) << text;
-  return path;
+  return cli_support::TempFile(name + ".json", text);
 }
 
 // The cue ball 40 cm behind a red 40 cm before the top-right pocket, on its axis

@@ -11,6 +11,7 @@
 #include "physics/motion/motion.h"
 #include "server/convert.h"
 #include "tests/physics/impact/paper_shots.h"
+#include "tests/service/requests.h"
 
 namespace snooker::server {
 namespace {
@@ -103,11 +104,7 @@ v1::SimulateRequest PotRequest() {
   // The black 0.35 m out of the top-right pocket on its axis, the cue ball behind.
   v1::SimulateRequest r;
   auto add = [&](const char* id, v1::BallKind kind, double x, double y) {
-    v1::Ball* b = r.mutable_table()->add_balls();
-    b->set_id(id);
-    b->set_kind(kind);
-    b->mutable_position()->set_x(x);
-    b->mutable_position()->set_y(y);
+    testing_requests::AddBall(&r, id, kind, x, y);
   };
   const physics::Pocket& p = physics::DefaultTable().pocket(physics::PocketId::kTopRight);
   const physics::Vec2 black = p.mouth_centre - 0.35 * p.axis, cue = black - 0.4 * p.axis;

@@ -17,7 +17,7 @@
 
 #include "snooker/v1/service.grpc.pb.h"
 #include "tests/service/call_support.h"
-#include "tests/service/cli_support.h"
+#include "tests/support/cli_support.h"
 #include "tests/service/requests.h"
 
 namespace snooker {

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "tests/physics/impact/paper_shots.h"
-#include "tests/service/cli_support.h"
+#include "tests/support/cli_support.h"
 
 namespace snooker {
 namespace {

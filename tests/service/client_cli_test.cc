@@ -13,7 +13,7 @@
 #include "cli/load_tables.h"
 #include "physics/table/table.h"
 #include "server/convert.h"
-#include "tests/service/cli_support.h"
+#include "tests/support/cli_support.h"
 #include "tests/service/server_support.h"
 
 namespace snooker {

@@ -23,6 +23,7 @@
 #include "server/plan_convert.h"
 #include "server/server.h"
 #include "snooker/v1/service.grpc.pb.h"
+#include "tests/service/requests.h"
 #include "tests/service/server_support.h"
 
 namespace snooker::server {
@@ -35,13 +36,7 @@ bool Mentions(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
-void AddBall(v1::PlanRequest* r, const std::string& id, v1::BallKind kind, double x, double y) {
-  v1::Ball* b = r->mutable_table()->add_balls();
-  b->set_id(id);
-  b->set_kind(kind);
-  b->mutable_position()->set_x(x);
-  b->mutable_position()->set_y(y);
-}
+using testing_requests::AddBall;
 
 // A red 40 cm before the top-right pocket on its axis, the cue ball 40 cm behind it,
 // the black on its spot; the work capped in simulations (not by the budget), so the

@@ -1,5 +1,6 @@
-// Requests shared by the service tests: the paper's first collision, a full table,
-// and a heavy (but valid) break-off.
+// Requests shared by the service tests (and the planner's service tests): a ball
+// added to a table, the paper's first collision, a full table, and a heavy (but
+// valid) break-off.
 #pragma once
 
 #include <cmath>
@@ -10,6 +11,7 @@
 #include "physics/table/table.h"
 #include "snooker/v1/collide.pb.h"
 #include "snooker/v1/simulate.pb.h"
+#include "snooker/v1/table.pb.h"
 
 namespace snooker::testing_requests {
 
@@ -22,13 +24,18 @@ inline v1::CollideRequest PaperCollide() {
   return r;
 }
 
-inline void AddBall(v1::SimulateRequest* r, const std::string& id, v1::BallKind kind, double x,
-                    double y) {
-  v1::Ball* b = r->mutable_table()->add_balls();
+/// Adds a ball at (x, y), m, table frame.
+inline void AddBall(v1::TableState* t, const std::string& id, v1::BallKind kind, double x, double y) {
+  v1::Ball* b = t->add_balls();
   b->set_id(id);
   b->set_kind(kind);
   b->mutable_position()->set_x(x);
   b->mutable_position()->set_y(y);
+}
+/// The same to a request's table (SimulateRequest, PlanRequest).
+template <typename Request>
+void AddBall(Request* r, const std::string& id, v1::BallKind kind, double x, double y) {
+  AddBall(r->mutable_table(), id, kind, x, y);
 }
 
 /// The full table (15 reds in the triangle, six colours on their spots) and the cue

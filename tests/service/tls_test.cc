@@ -16,7 +16,7 @@
 #include "health.grpc.pb.h"
 #include "server/address.h"
 #include "server/server.h"
-#include "tests/service/cli_support.h"
+#include "tests/support/cli_support.h"
 #include "tests/service/requests.h"
 #include "tests/service/server_support.h"
 

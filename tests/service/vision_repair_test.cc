@@ -10,7 +10,8 @@
 
 #include "physics/table/table.h"
 #include "server/api.h"
-#include "tests/service/cli_support.h"
+#include "tests/support/cli_support.h"
+#include "tests/service/requests.h"
 #include "tests/service/server_support.h"
 
 namespace snooker::server {
@@ -30,11 +31,7 @@ const double kContact = physics::DefaultTable().cushion_contact_distance();
 v1::SimulateRequest Table(double gap) {
   v1::SimulateRequest r;
   auto add = [&](const char* id, v1::BallKind kind, double x, double y) {
-    v1::Ball* b = r.mutable_table()->add_balls();
-    b->set_id(id);
-    b->set_kind(kind);
-    b->mutable_position()->set_x(x);
-    b->mutable_position()->set_y(y);
+    testing_requests::AddBall(&r, id, kind, x, y);
   };
   add("cue", v1::CUE, 0.9, 0.6);
   add("red-1", v1::RED, 0.8, 2.0);

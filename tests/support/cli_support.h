@@ -1,4 +1,5 @@
-// Running the built `snooker` command from the service tests.
+// Running the built `snooker` command from the tests (service and planner suites;
+// the test target defines SNOOKER_CLI_PATH).
 #pragma once
 
 #include <gtest/gtest.h>
