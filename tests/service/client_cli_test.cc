@@ -138,7 +138,9 @@ TEST(LoadTestTest, CountAndConcurrencyAreBounded) {
 TEST(LoadTestTest, TakesTablesFromAFolder) {
   TestServer s;
   const std::string dir = testing::TempDir() + "loadtest_tables_" + std::to_string(getpid());
-  ASSERT_EQ(system(("mkdir -p " + dir).c_str()), 0);
+  // A fresh folder: one left by an earlier run with the same process id holds its
+  // broken c.json.
+  ASSERT_EQ(system(("rm -rf " + dir + " && mkdir -p " + dir).c_str()), 0);
   {
     std::ofstream(dir + "/a.json") << kTable;
     std::ofstream(dir + "/b.json")
@@ -154,6 +156,7 @@ TEST(LoadTestTest, TakesTablesFromAFolder) {
   r = RunCli("loadtest --target " + s.target + " --concurrency 2 --requests 10 --tables " + dir);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(Mentions(r.err, "c.json' is not a valid TableState JSON")) << r.err;
+  EXPECT_EQ(system(("rm -rf " + dir).c_str()), 0);
 }
 
 TEST(LoadTablesTest, BuiltInTablesAreValidVariedAndSeeded) {
