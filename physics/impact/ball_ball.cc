@@ -16,7 +16,7 @@ bool AllFinite(const ImpactState& s) {
 }
 
 bool OptionsValid(const ImpulseSolverOptions& o) {
-  if (o.max_steps <= 0 || !FidelityValid(o.fidelity)) return false;
+  if (o.max_steps <= 0 || !FidelityValid(o.fidelity) || !MethodValid(o.method)) return false;
   if (o.integrator == ImpulseIntegrator::kFixedStep) return o.steps > 0;
   return limits::kTolerance.Contains(o.tolerance);
 }
@@ -79,6 +79,7 @@ std::string ValidateImpact(const ImpactState& in, const BallParams& ball,
   PutVec(out, "O velocity", in.o.v);
   PutVec(out, "O angular velocity", in.o.w);
   add(ValidateFidelity(options.fidelity));
+  add(ValidateMethod(options.method));
   const ImpulseSolverOptions o = EffectiveOptions(options);  // what the solver runs with
   if (o.max_steps <= 0) add("max_steps = " + std::to_string(o.max_steps) + " (must be > 0)");
   if (o.integrator == ImpulseIntegrator::kFixedStep && o.steps <= 0) {

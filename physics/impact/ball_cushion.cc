@@ -34,14 +34,15 @@ void CheckVec(std::ostringstream& out, const char* name, const Vec3& v) {
 
 // The checks, without building messages (ResolveCushionImpact must not allocate).
 struct OptionChecks {
-  bool fidelity, max_steps, steps, tolerance;
-  bool Ok() const { return fidelity && max_steps && steps && tolerance; }
+  bool fidelity, method, max_steps, steps, tolerance;
+  bool Ok() const { return fidelity && method && max_steps && steps && tolerance; }
 };
 
 OptionChecks CheckOptions(const ImpulseSolverOptions& given) {
   const ImpulseSolverOptions o = EffectiveOptions(given);  // what the solver runs with
   OptionChecks k;
   k.fidelity = FidelityValid(given.fidelity);
+  k.method = MethodValid(given.method);
   k.max_steps = o.max_steps > 0;
   k.steps = o.integrator != ImpulseIntegrator::kFixedStep || o.steps > 0;
   k.tolerance = o.integrator != ImpulseIntegrator::kAdaptive ||
@@ -166,6 +167,7 @@ std::string ValidateCushionImpact(const BallMotion& in, const BallParams& ball,
   const OptionChecks k = CheckOptions(options);
   const ImpulseSolverOptions o = EffectiveOptions(options);
   Add(out, ValidateFidelity(options.fidelity));
+  Add(out, ValidateMethod(options.method));
   if (!k.max_steps) Add(out, "max_steps = " + std::to_string(o.max_steps) + " (must be > 0)");
   if (!k.steps) Add(out, "steps = " + std::to_string(o.steps) + " (must be > 0)");
   if (!k.tolerance) {

@@ -22,11 +22,22 @@ std::string ValidateFidelity(ImpulseFidelity fidelity) {
          " (must be kExact (0) or kSearch (1))";
 }
 
+bool MethodValid(ImpulseMethod method) {
+  return method == ImpulseMethod::kDormandPrince54 || method == ImpulseMethod::kDormandPrince853;
+}
+
+std::string ValidateMethod(ImpulseMethod method) {
+  if (MethodValid(method)) return "";
+  return "method = " + std::to_string(static_cast<int>(method)) +
+         " (must be kDormandPrince54 (0) or kDormandPrince853 (1))";
+}
+
 ImpulseSolverOptions EffectiveOptions(const ImpulseSolverOptions& options) {
   ImpulseSolverOptions o = options;
   if (o.fidelity == ImpulseFidelity::kSearch) {
     o.integrator = ImpulseIntegrator::kAdaptive;
     o.tolerance = kSearchTolerance;
+    o.method = ImpulseMethod::kDormandPrince54;  // the cheaper pair at that tolerance
   }
   return o;
 }

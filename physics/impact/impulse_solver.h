@@ -19,18 +19,25 @@ enum class ImpulseFidelity : std::uint8_t {
   kExact,
   /// For a planner's search, where thousands of candidate shots are simulated and
   /// the chosen ones are verified with kExact: the adaptive integrator at
-  /// kSearchTolerance, whatever `integrator` and `tolerance` say. Measured on the
-  /// benchmark shot sets (docs/impact-speed.md): at most 3e-6 m/s (ball-ball) and
-  /// 2e-5 m/s (cushion) from a converged answer, for about a quarter of the work of
-  /// the default tolerance.
+  /// kSearchTolerance with Dormand-Prince 5(4), whatever `integrator`, `tolerance` and
+  /// `method` say. Measured on the benchmark shot sets (docs/impact-speed.md): at most
+  /// 3e-6 m/s (ball-ball) and 2e-5 m/s (cushion) from a converged answer, for about a
+  /// quarter of the work of the default tolerance.
   kSearch,
+};
+
+/// The explicit Runge-Kutta pair of the adaptive integrator (physics/ode/): both reach
+/// any tolerance; they differ in cost (docs/impact-methods.md).
+enum class ImpulseMethod : std::uint8_t {
+  kDormandPrince54,   ///< 5th order, 6 right-hand sides a step
+  kDormandPrince853,  ///< 8th order, 12 a step: fewer steps at tight tolerances
 };
 
 /// The tolerance of ImpulseFidelity::kSearch (chosen in docs/impact-speed.md).
 inline constexpr double kSearchTolerance = 1e-6;
 
 struct ImpulseSolverOptions {
-  /// kSearch overrides `integrator` and `tolerance` (see ImpulseFidelity).
+  /// kSearch overrides `integrator`, `tolerance` and `method` (see ImpulseFidelity).
   ImpulseFidelity fidelity = ImpulseFidelity::kExact;
   ImpulseIntegrator integrator = ImpulseIntegrator::kAdaptive;
   /// kFixedStep: N of eq. 14, the step being dP_I = (1 + e) M ydot_A(0) / N.
@@ -38,6 +45,8 @@ struct ImpulseSolverOptions {
   /// kAdaptive: local error per step, relative to the speed scale of the input
   /// (the largest of |v| and R|w| over both balls). Dimensionless.
   double tolerance = 1e-10;
+  /// kAdaptive: the Runge-Kutta pair of its non-stiff steps.
+  ImpulseMethod method = ImpulseMethod::kDormandPrince54;
   /// Cap on steps (accepted plus rejected) for either integrator. When reached the
   /// solver stops with kStepLimit and returns the state it had reached.
   std::int32_t max_steps = 100'000;
@@ -59,13 +68,16 @@ enum class ImpactStatus : std::uint8_t {
 const char* ToString(ImpactStatus status);
 
 /// The options a solver runs with: `options` with its fidelity applied (kSearch sets
-/// the adaptive integrator at kSearchTolerance).
+/// the adaptive integrator at kSearchTolerance with Dormand-Prince 5(4)).
 ImpulseSolverOptions EffectiveOptions(const ImpulseSolverOptions& options);
 
 /// True for a fidelity this library knows (an enum read from outside may not be).
 bool FidelityValid(ImpulseFidelity fidelity);
 /// Empty for a known fidelity; otherwise a message naming the bad value.
 std::string ValidateFidelity(ImpulseFidelity fidelity);
+/// Likewise for the Runge-Kutta pair.
+bool MethodValid(ImpulseMethod method);
+std::string ValidateMethod(ImpulseMethod method);
 
 /// How often a contact changed its regime during the impact (adaptive integrator).
 struct ContactTransitions {

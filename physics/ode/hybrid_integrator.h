@@ -15,13 +15,15 @@
 // Coulomb friction is smooth only between mode switches (a slip reaching zero, a
 // stuck contact leaving its friction cone, ...). A high-order method stepping across
 // a switch loses its order and its error control grinds the step down. So:
-//  * The mode is held during a step. Dormand-Prince 5(4) (FSAL, PI control, max-norm
-//    error weighted by the model); the first step is sized from the impact (an
-//    estimate of the solution's second derivative, Hairer, Norsett & Wanner II.4).
+//  * The mode is held during a step. Dormand-Prince 5(4) or, where it pays at tight
+//    tolerances, 8(5,3) (RkMethod; FSAL, PI control capped by Gustafsson's predictive
+//    controller, max-norm error weighted by the model); the first step is sized from
+//    the impact (an estimate of the solution's second derivative, Hairer, Norsett &
+//    Wanner II.4).
 //  * Witnesses are checked at the end of every step; the first zero crossing is
-//    located (Illinois) on the step's dense output - a 4th-order continuous
-//    extension as accurate as the step - and the step ends there: one right-hand side
-//    per event, no refinement with real steps. A kRecord witness (the end of
+//    located (Illinois) on the step's dense output - a continuous extension as
+//    accurate as the step (4th order; 7th for 8(5,3), built with 3 more right-hand
+//    sides) - and the step ends there: no refinement with real steps. A kRecord witness (the end of
 //    compression) changes no dynamics: it is recorded and the search goes on.
 //  * A sliding slip heading for zero along a fixed ray has its direction held over the
 //    step (Freeze): the right-hand side stays smooth through the zero, which is then a
@@ -49,8 +51,10 @@
 #include <concepts>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 #include "physics/core/types.h"
+#include "physics/ode/ode_dop853.h"
 #include "physics/ode/ode_dp54.h"
 #include "physics/ode/ode_rosenbrock23.h"
 
@@ -95,6 +99,12 @@ struct HybridWork {
 };
 
 enum class HybridStatus : std::uint8_t { kFinished, kStepLimit };
+
+/// The explicit Runge-Kutta pair of the non-stiff steps.
+enum class RkMethod : std::uint8_t {
+  kDp54,    ///< Dormand-Prince 5(4), 6 evaluations a step (FSAL), 4th-order dense output
+  kDop853,  ///< Dormand-Prince 8(5,3), 12 a step, 7th-order dense output (3 more)
+};
 
 /// The model an impulse ODE supplies (see the top of this file). State is a
 /// fixed-size Eigen column vector whose component kImpulse is P_I; Aux holds what a
@@ -142,7 +152,7 @@ concept HybridImpulseModel =
       { cm.DirectionStiffness(i, caux) } -> std::same_as<double>;
     };
 
-template <HybridImpulseModel Model>
+template <HybridImpulseModel Model, RkMethod kMethod = RkMethod::kDp54>
 class HybridIntegrator {
  public:
   using State = typename Model::State;
@@ -155,7 +165,8 @@ class HybridIntegrator {
   static constexpr int kRayZero = Model::kWitnesses + 1;    // + c: frozen slip reaches zero
   static constexpr int kWitnessCount = Model::kWitnesses + 1 + kContacts;
 
-  explicit HybridIntegrator(Model& model) : m_(model), s_(model.settings()) {
+  explicit HybridIntegrator(Model& model)
+      : m_(model), s_(model.settings()), control_(kErrorOrder) {
     // A frozen slip may leave its ray by this much: then the held direction is wrong
     // by at most this over |u|, and the slip still lands below slip_zero. The floor is
     // the rounding of slips of size speed_scale.
@@ -171,6 +182,9 @@ class HybridIntegrator {
 
  private:
   static constexpr double kEps = std::numeric_limits<double>::epsilon();
+  static constexpr bool kHigh = kMethod == RkMethod::kDop853;
+  // The local error is O(h^kErrorOrder) (the order of the embedded estimate + 1).
+  static constexpr int kErrorOrder = kHigh ? 8 : 5;
   // A shrinking slip whose predicted zero is closer than this many steps is followed
   // in tau: that close, its direction varies too fast for steps in P_I.
   static constexpr double kLogClockReach = 8.0;
@@ -188,10 +202,10 @@ class HybridIntegrator {
   // Iterations allowed to locate one witness on the dense output.
   static constexpr int kMaxLocateIterations = 100;
   // Stiff threshold: h times a slip direction's relaxation rate above kStiffEnter
-  // (Dormand-Prince is stable to about 3.3) switches to Rosenbrock 2(3) until it falls
-  // below kStiffLeave.
-  static constexpr double kStiffEnter = 3.0;
-  static constexpr double kStiffLeave = 1.0;
+  // (Dormand-Prince 5(4) is stable to about 3.3 along the negative axis, 8(5,3) to
+  // about 6) switches to Rosenbrock 2(3) until it falls below kStiffLeave.
+  static constexpr double kStiffEnter = kHigh ? 5.5 : 3.0;
+  static constexpr double kStiffLeave = kHigh ? 2.0 : 1.0;
   // Loop passes allowed per step tried (a pass may change the clock or the plan
   // without taking a step).
   static constexpr int kPassesPerStep = 4;
@@ -202,12 +216,27 @@ class HybridIntegrator {
   static constexpr double kMaxStep = 2.0;
   static constexpr int kNoContact = -1;
 
+  using RkResult = std::conditional_t<kHigh, Dop853Result<State>, Dp54Result<State>>;
+  using RkDense = std::conditional_t<kHigh, Dop853Dense<State>, Dp54Dense<State>>;
   struct StepOut {
-    Dp54Result<State> step;
-    Aux aux1;  // at step.y1
-    bool hermite = false;  // dense output is the cubic Hermite (Rosenbrock step)
-    mutable Dp54Dense<State> dense;  // built on first use (Dense)
-    mutable bool dense_ready = false;
+    RkResult step;  // the Runge-Kutta step (y1 and the end derivative also for Rosenbrock)
+    Ros23Result<State> ros;
+    Aux aux1;  // at y1
+    bool hermite = false;  // a Rosenbrock step: its dense output is the cubic Hermite
+    RkDense dense;  // built on first use (Dense)
+    bool dense_ready = false;
+    const State& y1() const { return hermite ? ros.y1 : step.y1; }
+    const State& k_end() const {  // derivative at y1
+      if (hermite) return ros.k7;
+      if constexpr (kHigh) {
+        return step.k13;
+      } else {
+        return step.k7;
+      }
+    }
+    bool valid() const { return hermite ? ros.valid : step.valid; }
+    // DOP853's dense output met an undefined derivative: the cubic Hermite instead.
+    bool hermite_fallback = false;
     std::array<double, kContacts> min_dot;   // min over stages of u . (start direction)
     std::array<double, kContacts> max_perp;  // max over stages of |d x u|, frozen slips
   };
@@ -227,6 +256,7 @@ class HybridIntegrator {
   void Refresh() {  // the derivative at y_ after a mode or clock change
     F(y_, &k1_, &a1_);
     jac_ok_ = false;
+    control_.Reset();
   }
   void SetClock(int contact) {
     clock_ = contact;
@@ -234,6 +264,14 @@ class HybridIntegrator {
   }
   double ErrorNorm(const State& err) const {
     return err.cwiseProduct(m_.error_weights()).cwiseAbs().maxCoeff() / s_.tolerance;
+  }
+  double StepError(const StepOut& s) const {
+    if (s.hermite) return ErrorNorm(s.ros.err);
+    if constexpr (kHigh) {
+      return ErrorNorm853(ErrorNorm(s.step.err5), ErrorNorm(s.step.err3));
+    } else {
+      return ErrorNorm(s.step.err);
+    }
   }
   double FirstStep();
   // The first step in tau = -ln|u|: the shrink of |u| that the last steps towards
@@ -259,15 +297,23 @@ class HybridIntegrator {
   WitnessAction ActionOf(int w) const {
     return w < Model::kWitnesses ? m_.Action(w) : WitnessAction::kSwitch;
   }
-  State Dense(const StepOut& s, double h, double t) const {
-    if (s.hermite) return HermiteAt(y_, k1_, s.step.y1, s.step.k7, h, t);
+  State Dense(StepOut& s, double h, double t) {
+    if (s.hermite) return HermiteAt(y_, k1_, s.ros.y1, s.ros.k7, h, t);
     if (!s.dense_ready) {
-      s.dense = Dp54Dense<State>(y_, s.step);
+      if constexpr (kHigh) {
+        // Three more evaluations, in the step's mode and clock.
+        Aux aux{};
+        s.dense = RkDense(y_, s.step, [&](const State& y, State* dy) { return F(y, dy, &aux); });
+        if (!s.dense.valid()) s.hermite_fallback = true;
+      } else {
+        s.dense = RkDense(y_, s.step);
+      }
       s.dense_ready = true;
     }
+    if (s.hermite_fallback) return HermiteAt(y_, k1_, s.step.y1, s.k_end(), h, t);
     return s.dense.At(y_, t);
   }
-  double WitnessOnStep(int w, const StepOut& s, double h, double t) const {
+  double WitnessOnStep(int w, StepOut& s, double h, double t) {
     const State y = Dense(s, h, t);
     Aux aux{};
     if (NeedsAux(w)) m_.Auxiliary(y, &aux);
@@ -276,7 +322,7 @@ class HybridIntegrator {
   // The first witness to fire in (t0, 1] of step s (of length h), located on the
   // dense output; kRecord witnesses are recorded on the way. Returns it and its
   // fraction *t, or -1.
-  int LocateEvent(const StepOut& s, double h, double* t);
+  int LocateEvent(StepOut& s, double h, double* t);
   bool ApplyEvent(int w);  // true when the impact is over
   void SettleAt(int c) {
     std::array<bool, kContacts> at_zero{};
@@ -304,13 +350,13 @@ class HybridIntegrator {
 
 // ---------------------------------------------------------------------------
 
-template <HybridImpulseModel Model>
-double HybridIntegrator<Model>::FirstStep() {
+template <HybridImpulseModel Model, RkMethod kMethod>
+double HybridIntegrator<Model, kMethod>::FirstStep() {
   // The first step sized from the impact (after Hairer, Norsett & Wanner II.4, made
   // consistent in the units of P_I): the change of the derivative over a trial step
-  // h0 gives the scale L = |y'| / |y''| on which the solution bends, and a 5th-order
-  // step of length h errs by about |y'| L (h / L)^5 (weighted), so
-  // h = L (tol / (|y'| L))^(1/5). W and P_I are left out: W' is the normal speed, a
+  // h0 gives the scale L = |y'| / |y''| on which the solution bends, and a step of
+  // length h errs by about |y'| L (h / L)^q (weighted; q = kErrorOrder), so
+  // h = L (tol / (|y'| L))^(1/q). W and P_I are left out: W' is the normal speed, a
   // linear function of the velocities, and P_I' = 1. A derivative that does not change
   // (friction directions fixed) is integrated exactly: then the step is the whole
   // impulse scale.
@@ -330,12 +376,12 @@ double HybridIntegrator<Model>::FirstStep() {
   const double cap = kFirstStepCap * s_.impulse_scale;
   if (!(d2 > 0 && d1 > 0)) return cap;
   const double scale = d1 / d2;
-  const double h = 0.5 * scale * std::pow(s_.tolerance / (d1 * scale), 0.2);
+  const double h = 0.5 * scale * std::pow(s_.tolerance / (d1 * scale), 1.0 / kErrorOrder);
   return std::isfinite(h) ? std::clamp(h, 1e-6 * s_.impulse_scale, cap) : 0.05 * s_.impulse_scale;
 }
 
-template <HybridImpulseModel Model>
-void HybridIntegrator<Model>::TakeStep(double h, StepOut* out) {
+template <HybridImpulseModel Model, RkMethod kMethod>
+void HybridIntegrator<Model, kMethod>::TakeStep(double h, StepOut* out) {
   ++attempts_;
   std::array<Vec2, kContacts> u0dir;
   std::array<bool, kContacts> watch;
@@ -361,26 +407,26 @@ void HybridIntegrator<Model>::TakeStep(double h, StepOut* out) {
     }
   };
   out->hermite = false;
+  out->hermite_fallback = false;
   out->dense_ready = false;
   if constexpr (Model::kStiffSteps) {
     if (stiff_) {
-      Ros23Result<State> ros;
-      Ros23Step(y_, k1_, Jacobian(), h, rhs, observe, &ros);
-      out->step.y1 = ros.y1;
-      out->step.k7 = ros.k7;
-      out->step.err = ros.err;
-      out->step.valid = ros.valid;
+      Ros23Step(y_, k1_, Jacobian(), h, rhs, observe, &out->ros);
       out->hermite = true;
       out->aux1 = last;
       return;
     }
   }
-  Dp54Step(y_, k1_, h, rhs, observe, &out->step);
+  if constexpr (kHigh) {
+    Dop853Step(y_, k1_, h, rhs, observe, &out->step);
+  } else {
+    Dp54Step(y_, k1_, h, rhs, observe, &out->step);
+  }
   out->aux1 = last;  // the last evaluation is at y1
 }
 
-template <HybridImpulseModel Model>
-bool HybridIntegrator<Model>::Stiff(double h, double threshold, int except) const {
+template <HybridImpulseModel Model, RkMethod kMethod>
+bool HybridIntegrator<Model, kMethod>::Stiff(double h, double threshold, int except) const {
   if constexpr (!Model::kStiffSteps) {
     return false;
   } else {
@@ -394,8 +440,8 @@ bool HybridIntegrator<Model>::Stiff(double h, double threshold, int except) cons
   }
 }
 
-template <HybridImpulseModel Model>
-const typename Model::Jacobian& HybridIntegrator<Model>::Jacobian() {
+template <HybridImpulseModel Model, RkMethod kMethod>
+const typename Model::Jacobian& HybridIntegrator<Model, kMethod>::Jacobian() {
   if constexpr (Model::kStiffSteps) {
     if (!jac_ok_) {
       work_.rhs_evals += m_.JacobianAt(y_, a1_, &jac_);
@@ -405,8 +451,8 @@ const typename Model::Jacobian& HybridIntegrator<Model>::Jacobian() {
   return jac_;
 }
 
-template <HybridImpulseModel Model>
-int HybridIntegrator<Model>::LocateEvent(const StepOut& s, double h, double* t_event) {
+template <HybridImpulseModel Model, RkMethod kMethod>
+int HybridIntegrator<Model, kMethod>::LocateEvent(StepOut& s, double h, double* t_event) {
   double t0 = 0;
   State y0 = y_;
   Aux a0 = a1_;
@@ -427,7 +473,7 @@ int HybridIntegrator<Model>::LocateEvent(const StepOut& s, double h, double* t_e
         if (fired && t0 < first_t) first_t = t0, first = w;
         continue;
       }
-      const double ghi = WitnessAt(w, s.step.y1, s.aux1);
+      const double ghi = WitnessAt(w, s.y1(), s.aux1);
       if (ghi > 0) continue;
       const double guess = (t0 * ghi - glo) / (ghi - glo);  // regula falsi's first point
       const double t = IllinoisRoot([&](double tt) { return WitnessOnStep(w, s, h, tt); }, t0,
@@ -450,8 +496,8 @@ int HybridIntegrator<Model>::LocateEvent(const StepOut& s, double h, double* t_e
   return -1;
 }
 
-template <HybridImpulseModel Model>
-bool HybridIntegrator<Model>::ApplyEvent(int w) {
+template <HybridImpulseModel Model, RkMethod kMethod>
+bool HybridIntegrator<Model, kMethod>::ApplyEvent(int w) {
   ++work_.events;
   const int followed = clock_;
   clock_ = kNoContact;
@@ -467,8 +513,8 @@ bool HybridIntegrator<Model>::ApplyEvent(int w) {
   return false;
 }
 
-template <HybridImpulseModel Model>
-HybridStatus HybridIntegrator<Model>::Run(State* x) {
+template <HybridImpulseModel Model, RkMethod kMethod>
+HybridStatus HybridIntegrator<Model, kMethod>::Run(State* x) {
   y_ = *x;
   m_.Start(&y_);
   Refresh();
@@ -541,7 +587,7 @@ HybridStatus HybridIntegrator<Model>::Run(State* x) {
       unfreeze();
       continue;
     }
-    if (!s.step.valid) {
+    if (!s.valid()) {
       unfreeze();
       if (log_clock) {  // the followed slip stopped shrinking: back to P_I
         no_follow_ = clock_;
@@ -551,7 +597,7 @@ HybridStatus HybridIntegrator<Model>::Run(State* x) {
       }
       continue;
     }
-    const double err = std::max(ErrorNorm(s.step.err), 1e-10);
+    const double err = std::max(StepError(s), 1e-10);
     double shrink = err > 1 ? (stiff_ ? Ros23StepFactor(err) : control_.Rejected(err)) : 1.0;
     bool reversed = false;
     for (int c = 0; c < kContacts; ++c) {
@@ -596,12 +642,15 @@ HybridStatus HybridIntegrator<Model>::Run(State* x) {
     if (event >= 0) {
       y_ = Dense(s, h, t_event);  // ApplyEvent refreshes k1_ and a1_
     } else {
-      y_ = s.step.y1;
-      k1_ = s.step.k7;
+      y_ = s.y1();
+      k1_ = s.k_end();
       a1_ = s.aux1;
       jac_ok_ = false;
     }
-    const double grow = stiff_ ? Ros23StepFactor(err) : control_.Accepted(err);
+    // Rosenbrock steps have their own control; in tau the error follows the slip, not
+    // a trend the predictive factor could extrapolate.
+    if (stiff_ || log_clock) control_.Reset();
+    const double grow = stiff_ ? Ros23StepFactor(err) : control_.Accepted(err, h);
     (log_clock ? h_log : h_impulse) = h * grow;
     land_ratio_ = landing != kNoContact ? std::min(land_ratio_ * grow, kLandRatio) : kLandRatio;
 

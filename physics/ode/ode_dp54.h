@@ -143,33 +143,56 @@ double IllinoisRoot(G&& g, double lo, double g_lo, double hi, double g_hi, doubl
   return hi;
 }
 
-/// Hairer's PI step-size controller for DOPRI5 (Solving ODEs I, IV.2):
-/// h_new = h * safety * err^-(1/5 - 0.75 beta) * err_prev^beta, err the error norm
-/// of the step relative to the tolerance (accept when err <= 1).
+/// Step-size controller for an embedded Runge-Kutta pair whose local error is
+/// O(h^q) (q = 5 for DOPRI5, 8 for DOP853): Hairer's PI controller (Solving ODEs I,
+/// IV.2), h_new = h * safety * err^-(1/q - 0.75 beta) * err_prev^beta, capped by
+/// Gustafsson's predictive controller (Solving ODEs II, IV.8, as in RADAU5):
+/// h_new = h * safety * err^-1/q * (h / h_acc) * (err_acc / err)^(1/q), with h_acc,
+/// err_acc the previous accepted step. The predictive factor extrapolates a trend in
+/// the error: where it grows from step to step at a fixed length (a friction
+/// direction turning ever faster as its slip nears zero), the PI controller alone
+/// overshoots and every other step is rejected. err is the error norm of the step
+/// relative to the tolerance (accept when err <= 1). Reset() forgets the history (a
+/// mode or clock change: the trend does not carry across it).
 class PiStepControl {
  public:
+  /// `error_order`: the local error is O(h^error_order) (5 for DOPRI5, 8 for DOP853).
+  explicit PiStepControl(int error_order = 5)
+      : alpha_(1.0 / error_order - 0.75 * kBeta), inv_order_(1.0 / error_order) {}
   /// Factor for the step size after a step rejected with error norm `err` (> 1).
   double Rejected(double err) const {
-    const double f = kSafety * std::pow(std::max(err, kErrFloor), -kAlpha);
+    const double f = kSafety * std::pow(std::max(err, kErrFloor), -alpha_);
     return std::isfinite(f) ? std::max(kMinShrink, f) : kMinShrink;
   }
-  /// Factor for the next step after a step accepted with error norm `err`.
-  double Accepted(double err) {
+  /// Factor for the next step after a step of length `h` accepted with error norm `err`.
+  double Accepted(double err, double h) {
     const double log_err = std::log(std::max(err, kErrFloor));
-    const double f = kSafety * std::exp(-kAlpha * log_err + kBeta * log_err_prev_);
+    double f = kSafety * std::exp(-alpha_ * log_err + kBeta * log_err_prev_);
+    if (h_acc_ > 0 && h > 0) {
+      const double predictive =
+          kSafety * (h / h_acc_) * std::exp(inv_order_ * (log_err_acc_ - 2 * log_err));
+      if (std::isfinite(predictive)) f = std::min(f, predictive);
+    }
     log_err_prev_ = std::max(log_err, kLogErrPrevFloor);
+    h_acc_ = h;
+    log_err_acc_ = log_err;
     return std::clamp(f, kMinShrink, kMaxGrow);
   }
+  /// Forgets the accepted steps so far (the predictive factor needs two in a row).
+  void Reset() { h_acc_ = 0; }
 
  private:
   static constexpr double kSafety = 0.9;
   static constexpr double kBeta = 0.04;
-  static constexpr double kAlpha = 0.2 - 0.75 * kBeta;
   static constexpr double kMinShrink = 0.2;
   static constexpr double kMaxGrow = 5.0;
   static constexpr double kErrFloor = 1e-10;
   static constexpr double kLogErrPrevFloor = -9.210340371976182;  // ln 1e-4
+  double alpha_;      // exponent of the error in the PI factor
+  double inv_order_;  // 1 / error order
   double log_err_prev_ = kLogErrPrevFloor;
+  double h_acc_ = 0;        // length of the last accepted step (0: none)
+  double log_err_acc_ = 0;  // ln of its error norm
 };
 
 }  // namespace snooker::physics::ode

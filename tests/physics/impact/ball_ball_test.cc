@@ -441,6 +441,62 @@ TEST(SearchFidelityTest, MeetsItsDocumentedAccuracyForLessWork) {
   EXPECT_LT(2 * search_work, default_work);
 }
 
+// The two Runge-Kutta pairs (ImpulseSolverOptions::method) converge to the same
+// answer: on random shots, each at tolerance 1e-9 lies within 1e-7 m/s of a reference
+// the other computed at 1e-13; at that tolerance DOP853 is the more accurate of the two
+// over the set.
+TEST(MethodTest, BothPairsConvergeToTheSameAnswer) {
+  const BallParams ball;
+  std::mt19937_64 rng(2025);
+  std::uniform_real_distribution<double> u(0, 1);
+  ImpulseSolverOptions dp54 = Adaptive(1e-9), dop853 = Adaptive(1e-9);
+  dop853.method = ImpulseMethod::kDormandPrince853;
+  ImpulseSolverOptions ref54 = Adaptive(1e-13), ref853 = Adaptive(1e-13);
+  ref853.method = ImpulseMethod::kDormandPrince853;
+  double worst54 = 0, worst853 = 0, refs = 0;
+  for (int i = 0; i < 200; ++i) {
+    const double v0 = 0.05 + 7.95 * u(rng);
+    const double cut = DegToRad(89.9 * u(rng));
+    const double top = (2 * u(rng) - 1) * 2.5 * v0 / ball.radius;
+    const double side = (2 * u(rng) - 1) * 2.5 * v0 / ball.radius;
+    const ImpactState in = PaperIncidentState(v0, top, side, cut);
+    const ImpactResult a = ResolveImpact(in, ball, {}, 0.21, dp54);
+    const ImpactResult b = ResolveImpact(in, ball, {}, 0.21, dop853);
+    const ImpactResult ra = ResolveImpact(in, ball, {}, 0.21, ref54);
+    const ImpactResult rb = ResolveImpact(in, ball, {}, 0.21, ref853);
+    for (const ImpactResult* r : {&a, &b, &ra, &rb}) ASSERT_EQ(r->status, ImpactStatus::kOk) << i;
+    worst54 = std::max(worst54, MaxDifference(a.out, rb.out, ball.radius));
+    worst853 = std::max(worst853, MaxDifference(b.out, ra.out, ball.radius));
+    refs = std::max(refs, MaxDifference(ra.out, rb.out, ball.radius));
+  }
+  EXPECT_LT(refs, 1e-9);
+  EXPECT_LT(worst54, 1e-7);
+  EXPECT_LT(worst853, 1e-7);
+  EXPECT_LT(worst853, worst54);
+}
+
+TEST(MethodTest, UnknownMethodIsRejectedWithItsName) {
+  ImpulseSolverOptions o;
+  o.method = static_cast<ImpulseMethod>(5);
+  const ImpactState in = PaperIncidentState(1.0, 0.0, 0.0, 0.2);
+  EXPECT_EQ(ResolveImpact(in, {}, {}, 0.21, o).status, ImpactStatus::kInvalidInput);
+  EXPECT_NE(ValidateImpact(in, {}, {}, 0.21, o).find("method = 5"), std::string::npos);
+}
+
+// The search tier runs Dormand-Prince 5(4), the cheaper pair at its tolerance, whatever
+// the options ask for.
+TEST(SearchFidelityTest, UsesTheCheaperPairWhateverTheOptionsSay) {
+  const ImpactState in = PaperIncidentState(1.3, 20.0, -15.0, 0.4);
+  ImpulseSolverOptions search;
+  search.method = ImpulseMethod::kDormandPrince853;
+  search.fidelity = ImpulseFidelity::kSearch;
+  const ImpactResult a = ResolveImpact(in, {}, {}, 0.21, search);
+  const ImpactResult b = ResolveImpact(in, {}, {}, 0.21, Adaptive(kSearchTolerance));
+  ASSERT_EQ(a.status, ImpactStatus::kOk);
+  EXPECT_EQ(MaxDifference(a.out, b.out, BallParams{}.radius), 0.0);
+  EXPECT_EQ(EffectiveOptions(search).method, ImpulseMethod::kDormandPrince54);
+}
+
 TEST(SearchFidelityTest, UnknownFidelityIsRejectedWithItsName) {
   ImpulseSolverOptions o;
   o.fidelity = static_cast<ImpulseFidelity>(7);

@@ -654,6 +654,43 @@ TEST(CushionSearchFidelity, MeetsItsDocumentedAccuracyForLessWork) {
   EXPECT_LT(2 * search_work, default_work);
 }
 
+// Both Runge-Kutta pairs converge to the same cushion impact: on the random
+// inputs each at tolerance 1e-9 lies within 1e-7 of the speed scale of the other's
+// answer at 1e-13.
+TEST(CushionMethod, BothPairsConvergeToTheSameAnswer) {
+  RandomShots shots(23);
+  ImpulseSolverOptions dp54 = Adaptive(1e-9), dop853 = Adaptive(1e-9);
+  dop853.method = ImpulseMethod::kDormandPrince853;
+  ImpulseSolverOptions ref54 = Adaptive(1e-13), ref853 = Adaptive(1e-13);
+  ref853.method = ImpulseMethod::kDormandPrince853;
+  double worst54 = 0, worst853 = 0, refs = 0;
+  for (int i = 0; i < 200; ++i) {
+    const BallMotion in = shots.Next();
+    const double scale = std::max(in.v.norm(), kBall.radius * in.w.norm());
+    const CushionImpactResult a = ResolveCushionImpact(in, kBall, {}, dp54);
+    const CushionImpactResult b = ResolveCushionImpact(in, kBall, {}, dop853);
+    const CushionImpactResult ra = ResolveCushionImpact(in, kBall, {}, ref54);
+    const CushionImpactResult rb = ResolveCushionImpact(in, kBall, {}, ref853);
+    for (const CushionImpactResult* r : {&a, &b, &ra, &rb}) {
+      ASSERT_EQ(r->status, ImpactStatus::kOk) << i;
+    }
+    worst54 = std::max(worst54, Distance(a.out, rb.out) / scale);
+    worst853 = std::max(worst853, Distance(b.out, ra.out) / scale);
+    refs = std::max(refs, Distance(ra.out, rb.out) / scale);
+  }
+  EXPECT_LT(refs, 1e-10);
+  EXPECT_LT(worst54, 1e-7);
+  EXPECT_LT(worst853, 1e-7);
+}
+
+TEST(CushionMethod, UnknownMethodIsRejectedWithItsName) {
+  ImpulseSolverOptions o;
+  o.method = static_cast<ImpulseMethod>(9);
+  const BallMotion in = CushionIncidentState(1.0, 1.0, 0.0, 0.0);
+  EXPECT_EQ(ResolveCushionImpact(in, kBall, {}, o).status, ImpactStatus::kInvalidInput);
+  EXPECT_NE(ValidateCushionImpact(in, kBall, {}, o).find("method = 9"), std::string::npos);
+}
+
 TEST(CushionSearchFidelity, OverridesIntegratorAndToleranceAndRejectsUnknownTiers) {
   const BallMotion in = CushionIncidentState(1.7, DegToRad(70), 40.0, -20.0);
   ImpulseSolverOptions search = FixedStep(10);

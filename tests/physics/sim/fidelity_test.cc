@@ -18,9 +18,16 @@ TEST(FidelityTest, TiersSetTheImpactSolvers) {
   EXPECT_EQ(d.ball_ball_solver.tolerance, defaults.ball_ball_solver.tolerance);
   EXPECT_EQ(d.cushion_solver.tolerance, SimParams::kShotTolerance);
   EXPECT_EQ(d.cushion_solver.fidelity, ImpulseFidelity::kExact);
+  EXPECT_EQ(d.ball_ball_solver.method, defaults.ball_ball_solver.method);
+  EXPECT_EQ(d.cushion_solver.method, defaults.cushion_solver.method);
+  // The pairs measured cheaper at each tier (docs/impact-methods.md).
+  EXPECT_EQ(defaults.ball_ball_solver.method, ImpulseMethod::kDormandPrince853);
+  EXPECT_EQ(defaults.cushion_solver.method, ImpulseMethod::kDormandPrince54);
   const SimParams r = FidelityParams(Fidelity::kReference);
   EXPECT_EQ(r.ball_ball_solver.tolerance, 1e-12);
   EXPECT_EQ(r.cushion_solver.tolerance, 1e-12);
+  EXPECT_EQ(r.ball_ball_solver.method, ImpulseMethod::kDormandPrince853);
+  EXPECT_EQ(r.cushion_solver.method, ImpulseMethod::kDormandPrince853);
   const SimParams s = FidelityParams(Fidelity::kSearch);
   EXPECT_EQ(s.ball_ball_solver.fidelity, ImpulseFidelity::kSearch);
   EXPECT_EQ(s.cushion_solver.fidelity, ImpulseFidelity::kSearch);

@@ -306,8 +306,15 @@ TEST_F(SimulateTest, RandomShotsKeepTheInvariants) {
 //  * Issue 9: the simulation's impact tolerance, set from measured final positions
 //    (SimParams::kShotTolerance, 1e-10 -> 1e-9): on the break-offs of
 //    docs/shot-speed-vs-error.md that moves well-conditioned balls by at most 6 um.
-constexpr std::uint64_t kBreakOffHash = 0xa8fc69c579244801ULL;
-constexpr std::uint64_t kPairwiseBreakOffHash = 0xfff74af25ad2ac79ULL;
+//  * Issue 9: a different step sequence in the impact integrators (same model and
+//    tolerance): a predictive step-size controller, and ball-ball impacts with the
+//    Dormand-Prince 8(5,3) pair (docs/impact-methods.md), each impact within the
+//    tolerance of the converged answer. This break-off is not well conditioned -
+//    rounding-level changes in early impacts move balls of it by up to 2 m (no
+//    pocket changed) - so its hash changes with any step sequence; the accuracy of
+//    the default on break-offs is measured in docs/shot-speed-vs-error.md.
+constexpr std::uint64_t kBreakOffHash = 0x0d7045d4b909212eULL;
+constexpr std::uint64_t kPairwiseBreakOffHash = 0x63f7a32fa08735c1ULL;
 
 std::uint64_t HashFinalState(const Simulator& sim, int n) {
   std::uint64_t h = 1469598103934665603ULL;  // FNV-1a over the exact bits
