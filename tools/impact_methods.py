@@ -53,8 +53,9 @@ def main():
     w("## Per whole shot")
     w("")
     w("The seeded shots of bench/shot_count (tests/support/scenarios.h): the planner's workload, "
-      "several-cushion positional shots and break-offs, at the default tier (tolerance 1e-9) and the "
-      "reference tier (1e-12), with each pair for the ball-ball and the cushion solver.")
+      "several-cushion positional shots and break-offs, at the default tier "
+      "(SimParams::kShotTolerance, 1e-7) and the reference tier (1e-12), with each pair for the "
+      "ball-ball and the cushion solver.")
     w("")
     w("| workload | tier | ball-ball pair | cushion pair | instructions / shot | 5(4) for both / this |")
     w("|---|---|---|---|---:|---:|")
@@ -75,14 +76,14 @@ def main():
     ref = ratio(("shot", "planner", "reference:dp54:dp54"), ("shot", "planner", "reference:dop853:dop853"))
     w("## The choice")
     w("")
-    w(f"* **Cushion, default tolerance: Dormand-Prince 5(4).** At 1e-9 DOP853 takes "
-      f"{cu9:.2f}x the instructions of 5(4) per impact. The cushion's steps are held down by its "
-      "friction directions turning round near small slips (a slip that passes close to zero, a "
-      "tau-clock approach, a stiff start), where the step is limited by the distance to the "
-      "singularity whatever the order: DOP853 takes fewer steps but not half as many.")
-    w(f"* **Ball-ball, default tolerance: DOP853.** At 1e-9 it takes {bb9:.2f}x fewer instructions "
-      "per impact than 5(4) and errs an order of magnitude less; a planner-workload shot takes "
-      f"{plan:.2f}x fewer instructions.")
+    w("* **Default tier (SimParams::kShotTolerance): Dormand-Prince 5(4) for both.** With DOP853 "
+      f"for ball-ball a planner-workload shot takes {1 / plan:.2f}x the instructions, with DOP853 "
+      "for both more still. The cushion's steps are held down by its friction directions turning "
+      "round near small slips (a slip that passes close to zero, a tau-clock approach, a stiff "
+      "start), where the step is limited by the distance to the singularity whatever the order: "
+      f"DOP853 takes fewer steps but not half as many (at 1e-9 it costs {cu9:.2f}x the "
+      "instructions of 5(4) per cushion impact). For ball-ball alone it pays from about 1e-9 "
+      f"({bb9:.2f}x fewer instructions an impact there, and ten times more accurate).")
     w(f"* **Reference tier (1e-12): DOP853 for both.** {cu12:.2f}x fewer instructions per cushion "
       f"impact, {ref:.2f}x per planner-workload shot.")
     bb6 = ratio(("impact", "ball-ball", "dop853", 1e-6), ("impact", "ball-ball", "dp54", 1e-6))

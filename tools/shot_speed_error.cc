@@ -5,6 +5,7 @@
 // (scripts/shot-speed-error runs it and adds callgrind instruction counts.)
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <random>
@@ -93,22 +94,33 @@ int main(int argc, char** argv) {
   // How converged the reference is: the same shots one decade looser.
   const std::vector<Outcome> check = RunAll(with_tolerance(kCheck), shots, &check_seconds);
   // How well conditioned each shot is: the reference again with the cue ball's speed
-  // changed by one part in 1e9, far below any cue's precision. A shot whose balls
-  // then move by more than 1 um decides something (a graze, a jaw) on a knife edge:
-  // any numerical error, however small, may flip it, so its error measures the shot,
-  // not the integrator. Those shots are counted, and left out of the second set of
-  // error columns.
-  std::vector<std::vector<BallState>> nudged = shots;
-  for (auto& balls : nudged) balls[0].v *= 1 + 1e-9;
-  const std::vector<Outcome> nudge = RunAll(with_tolerance(kReference), nudged, &nudged_seconds);
+  // changed by one part in 1e9, and again with its direction turned by 1e-9 rad, both
+  // far below any cue's precision. A shot whose balls then move by more than 1 um
+  // decides something (a graze, a jaw, a ball running along a cushion) on a knife
+  // edge: any numerical error, however small, may flip it, so its error measures the
+  // shot, not the integrator. Those shots are counted, and left out of the second set
+  // of error columns. (Both nudges: a speed change alone leaves a path's geometry
+  // nearly unchanged - the impact maps scale with speed - and misses knife edges of
+  // direction, which are the common ones after several cushions.)
+  std::vector<std::vector<BallState>> faster = shots, turned = shots;
+  for (auto& balls : faster) balls[0].v *= 1 + 1e-9;
+  for (auto& balls : turned) {
+    const Vec3 v = balls[0].v;
+    const double a = 1e-9;
+    balls[0].v = Vec3(std::cos(a) * v.x() - std::sin(a) * v.y(), std::sin(a) * v.x() + std::cos(a) * v.y(), v.z());
+  }
+  const std::vector<Outcome> nudge_speed = RunAll(with_tolerance(kReference), faster, &nudged_seconds);
+  const std::vector<Outcome> nudge_turn = RunAll(with_tolerance(kReference), turned, &nudged_seconds);
   constexpr double kIllConditionedMm = 1e-3;
   std::vector<bool> well(shots.size(), true);
   int ill = 0;
   for (size_t s = 0; s < shots.size(); ++s) {
-    for (size_t i = 0; i < ref[s].r.size(); ++i) {
-      const bool moved = nudge[s].pocket[i] != ref[s].pocket[i] ||
-                         1e3 * (nudge[s].r[i] - ref[s].r[i]).norm() > kIllConditionedMm;
-      if (moved && well[s]) well[s] = false, ++ill;
+    for (const std::vector<Outcome>* nudge : {&nudge_speed, &nudge_turn}) {
+      for (size_t i = 0; i < ref[s].r.size(); ++i) {
+        const bool moved = (*nudge)[s].pocket[i] != ref[s].pocket[i] ||
+                           1e3 * ((*nudge)[s].r[i] - ref[s].r[i]).norm() > kIllConditionedMm;
+        if (moved && well[s]) well[s] = false, ++ill;
+      }
     }
   }
   struct Errors {

@@ -15,13 +15,13 @@ enum class Fidelity : std::uint8_t {
   /// Converged: impact integrators at 1e-12. For references and tests.
   kReference,
   /// SimParams' own: impact integrators at SimParams::kShotTolerance, set from the
-  /// final positions it gives (within 0.12 mm of the reference on well-conditioned
+  /// final positions it gives (within 0.1 mm of the reference on well-conditioned
   /// shots).
   kDefault,
   /// For a search whose answers are checked at kDefault before anyone sees them: the
-  /// impact solvers' ImpulseFidelity::kSearch (tolerance 1e-6, about half the
-  /// instructions of kDefault per shot; final positions within about 2 mm on the
-  /// planner's workload, a few cm after several cushions).
+  /// impact solvers' ImpulseFidelity::kSearch (tolerance 1e-6, about 15 % fewer
+  /// instructions than kDefault per shot; final positions within about 0.6 mm of the
+  /// reference on well-conditioned shots).
   kSearch,
 };
 

@@ -83,19 +83,16 @@ struct SimParams {
     return c;
   }();
   /// The impact integrators within a whole shot. Their tolerance is set from the
-  /// final positions it gives, not by habit: at kShotTolerance every ball of the
-  /// planner's workload, of several-cushion shots and of break-offs ends within
-  /// 0.12 mm of a converged run (well-conditioned shots; docs/shot-speed-vs-error.md,
-  /// scripts/shot-speed-error), a tenth of the 1 mm the issue allows, for 20-25 %
-  /// fewer instructions than the single collision's default of 1e-10.
-  static constexpr double kShotTolerance = 1e-9;
-  /// The Runge-Kutta pair of each (docs/impact-methods.md, scripts/impact-methods): at
-  /// kShotTolerance DOP853 solves a ball-ball impact ten times more accurately than
-  /// Dormand-Prince 5(4) for slightly less work (1-3 % fewer instructions a shot); the
-  /// cushion's steps are held down by its friction directions turning near small
-  /// slips, where the higher order does not pay (13 % more instructions an impact), so
-  /// it keeps 5(4).
-  ImpulseSolverOptions ball_ball_solver = ShotImpactOptions(ImpulseMethod::kDormandPrince853);
+  /// final positions it gives, not by habit: the largest tolerance at which every ball
+  /// of the planner's workload, of several-cushion shots and of break-offs ends within
+  /// a tenth of the 1 mm the issue allows of a converged run (measured: 0.07 mm) on
+  /// every well-conditioned shot - one that a change of 1e-9 in the cue ball's speed
+  /// (relative) or direction (rad) does not move by more than 1 um
+  /// (docs/shot-speed-vs-error.md, scripts/shot-speed-error).
+  static constexpr double kShotTolerance = 1e-7;
+  /// The Runge-Kutta pair of each: Dormand-Prince 5(4), the cheaper at kShotTolerance
+  /// (docs/impact-methods.md, scripts/impact-methods; 8(5,3) pays at tighter ones).
+  ImpulseSolverOptions ball_ball_solver = ShotImpactOptions(ImpulseMethod::kDormandPrince54);
   ImpulseSolverOptions cushion_solver = ShotImpactOptions(ImpulseMethod::kDormandPrince54);
   /// After an impact, a ball whose centre and contact point both move slower than
   /// this is set at rest (its Z spin kept). m/s. Without it a slow ball pushing a

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -21,7 +22,7 @@ TEST(FidelityTest, TiersSetTheImpactSolvers) {
   EXPECT_EQ(d.ball_ball_solver.method, defaults.ball_ball_solver.method);
   EXPECT_EQ(d.cushion_solver.method, defaults.cushion_solver.method);
   // The pairs measured cheaper at each tier (docs/impact-methods.md).
-  EXPECT_EQ(defaults.ball_ball_solver.method, ImpulseMethod::kDormandPrince853);
+  EXPECT_EQ(defaults.ball_ball_solver.method, ImpulseMethod::kDormandPrince54);
   EXPECT_EQ(defaults.cushion_solver.method, ImpulseMethod::kDormandPrince54);
   const SimParams r = FidelityParams(Fidelity::kReference);
   EXPECT_EQ(r.ball_ball_solver.tolerance, 1e-12);
@@ -38,12 +39,13 @@ TEST(FidelityTest, TiersSetTheImpactSolvers) {
 }
 
 // On seeded planner-workload shots, the default's final positions lie within
-// 0.12 mm of a converged run (docs/shot-speed-vs-error.md measured 0.008 mm on 300
+// 0.1 mm of a converged run (docs/shot-speed-vs-error.md measured 0.04 mm on 300
 // shots), on every shot that is well conditioned: one whose outcome a change of one
-// part in 1e9 in the cue ball's speed does not move by more than 1 um at the
-// reference's precision. The search tier stays within 5 mm there.
+// part in 1e9 in the cue ball's speed, or of 1e-9 rad in its direction, does not move
+// by more than 1 um at the reference's precision. The search tier stays within 1 mm
+// there (measured 0.41 mm).
 TEST(FidelityTest, DefaultStaysWithinTheMeasuredBoundOfTheReference) {
-  constexpr double kDefaultBound = 0.12e-3, kSearchBound = 5e-3, kNudgeMoves = 1e-6;  // m
+  constexpr double kDefaultBound = 0.1e-3, kSearchBound = 1e-3, kNudgeMoves = 1e-6;  // m
   std::mt19937_64 rng(77);
   Simulator ref(DefaultTable(), FidelityParams(Fidelity::kReference));
   Simulator nudged(DefaultTable(), FidelityParams(Fidelity::kReference));
@@ -52,15 +54,21 @@ TEST(FidelityTest, DefaultStaysWithinTheMeasuredBoundOfTheReference) {
   int well = 0;
   for (int shot = 0; shot < 60; ++shot) {
     const std::vector<BallState> balls = scenarios::PlannerWorkloadShot(rng);
-    std::vector<BallState> nudge = balls;
-    nudge[0].v *= 1 + 1e-9;
-    for (Simulator* s : {&ref, &nudged, &def, &search}) {
-      ASSERT_EQ(s->Run(s == &nudged ? nudge : balls, RunOptions::Lean()), SimStatus::kAtRest);
+    for (Simulator* s : {&ref, &def, &search}) {
+      ASSERT_EQ(s->Run(balls, RunOptions::Lean()), SimStatus::kAtRest);
     }
+    std::vector<BallState> faster = balls, turned = balls;
+    faster[0].v *= 1 + 1e-9;
+    const double a = 1e-9;
+    const Vec3 v = balls[0].v;
+    turned[0].v = Vec3(std::cos(a) * v.x() - std::sin(a) * v.y(), std::sin(a) * v.x() + std::cos(a) * v.y(), 0);
     bool conditioned = true;
-    for (size_t i = 0; i < balls.size(); ++i) {
-      conditioned &= nudged.pocket_of(static_cast<int>(i)) == ref.pocket_of(static_cast<int>(i)) &&
-                     (nudged.final_balls()[i].r - ref.final_balls()[i].r).norm() <= kNudgeMoves;
+    for (const std::vector<BallState>* nudge : {&faster, &turned}) {
+      ASSERT_EQ(nudged.Run(*nudge, RunOptions::Lean()), SimStatus::kAtRest);
+      for (size_t i = 0; i < balls.size(); ++i) {
+        conditioned &= nudged.pocket_of(static_cast<int>(i)) == ref.pocket_of(static_cast<int>(i)) &&
+                       (nudged.final_balls()[i].r - ref.final_balls()[i].r).norm() <= kNudgeMoves;
+      }
     }
     if (!conditioned) continue;
     ++well;
@@ -75,7 +83,8 @@ TEST(FidelityTest, DefaultStaysWithinTheMeasuredBoundOfTheReference) {
       }
     }
   }
-  EXPECT_GE(well, 55);
+  // About four shots in five are well conditioned (docs/shot-speed-vs-error.md: 242 of 300).
+  EXPECT_GE(well, 40);
 }
 
 }  // namespace
