@@ -12,7 +12,6 @@
 #include <cstdio>
 #include <algorithm>
 #include <cstdlib>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -48,13 +47,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "shot_count: bad workload '%s' or SHOTS '%s'\n", argv[1], argv[2]);
     return 2;
   }
-  std::mt19937_64 rng(2026);
-  std::vector<std::vector<BallState>> inputs;
-  for (int i = 0; i < shots; ++i) {
-    if (workload == "planner") inputs.push_back(scenarios::PlannerWorkloadShot(rng));
-    if (workload == "cushions") inputs.push_back(scenarios::CushionsShot(rng));
-    if (workload == "break-off") inputs.push_back(scenarios::RandomBreakOff(1e-4, rng));
-  }
+  const std::vector<std::vector<BallState>> inputs = scenarios::WorkloadShots(workload, shots);
   Simulator sim(DefaultTable(), params);
   long events = 0, bb = 0, cushion = 0;
   for (int pass = 0; pass < passes; ++pass) {

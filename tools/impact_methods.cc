@@ -15,7 +15,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -139,13 +138,7 @@ int Count(const std::string& model, ImpulseMethod m, double tol, int runs) {
 
 int Shots(const std::string& workload, int n, const std::string& tier, ImpulseMethod bb,
           ImpulseMethod cu, int passes) {
-  std::mt19937_64 rng(2026);  // the shots of bench/shot_count
-  std::vector<std::vector<BallState>> inputs;
-  for (int i = 0; i < n; ++i) {
-    if (workload == "planner") inputs.push_back(scenarios::PlannerWorkloadShot(rng));
-    if (workload == "cushions") inputs.push_back(scenarios::CushionsShot(rng));
-    if (workload == "break-off") inputs.push_back(scenarios::RandomBreakOff(1e-4, rng));
-  }
+  const std::vector<std::vector<BallState>> inputs = scenarios::WorkloadShots(workload, n);
   SimParams params = FidelityParams(tier == "reference" ? Fidelity::kReference : Fidelity::kDefault);
   params.ball_ball_solver.method = bb;
   params.cushion_solver.method = cu;

@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -67,13 +66,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "shot_speed_error: bad workload '%s' or SHOTS '%s'\n", argv[1], argv[2]);
     return 2;
   }
-  std::mt19937_64 rng(2026);  // the shots of bench/shot_count
-  std::vector<std::vector<BallState>> shots;
-  for (int i = 0; i < n; ++i) {
-    if (workload == "planner") shots.push_back(scenarios::PlannerWorkloadShot(rng));
-    if (workload == "cushions") shots.push_back(scenarios::CushionsShot(rng));
-    if (workload == "break-off") shots.push_back(scenarios::RandomBreakOff(1e-4, rng));
-  }
+  const std::vector<std::vector<BallState>> shots = scenarios::WorkloadShots(workload, n);
   auto with_tolerance = [](double tol) {
     SimParams p;
     p.ball_ball_solver.tolerance = p.cushion_solver.tolerance = tol;

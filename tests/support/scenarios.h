@@ -156,6 +156,22 @@ std::vector<BallState> CushionsShot(Rng& rng, const TableModel& table = DefaultT
   return balls;
 }
 
+/// The seeded shot sets of the whole-shot benchmarks (bench/shot_count,
+/// tools/shot_speed_error, tools/impact_methods): `n` shots of "planner"
+/// (PlannerWorkloadShot), "cushions" (CushionsShot) or "break-off" (RandomBreakOff with
+/// the reds 1e-4 m apart), from one generator seeded 2026; empty for an unknown name.
+inline std::vector<std::vector<BallState>> WorkloadShots(const std::string& workload, int n) {
+  std::mt19937_64 rng(2026);
+  std::vector<std::vector<BallState>> shots;
+  if (workload != "planner" && workload != "cushions" && workload != "break-off") return shots;
+  for (int i = 0; i < n; ++i) {
+    if (workload == "planner") shots.push_back(PlannerWorkloadShot(rng));
+    if (workload == "cushions") shots.push_back(CushionsShot(rng));
+    if (workload == "break-off") shots.push_back(RandomBreakOff(1e-4, rng));
+  }
+  return shots;
+}
+
 /// "pot-empty", "pot-full", "break-off"; empty for an unknown name.
 inline std::vector<BallState> Scenario(const std::string& name) {
   if (name == "pot-empty") return TwoBallPot(false);
