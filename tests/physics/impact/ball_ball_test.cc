@@ -113,16 +113,26 @@ struct IntegratorCase {
 // gtest and ctest show the case by its name.
 void PrintTo(const IntegratorCase& c, std::ostream* os) { *os << c.name; }
 
+// A random incident state (the shots): V0 in 0.05-8 m/s, cut 0-max_cut_deg,
+// top- and sidespin within +-2.5 V0/R; four draws of `rng`, in that order.
+struct RandomIncident {
+  ImpactState in;
+  double v0 = 0;  // m/s
+};
+RandomIncident NextRandomIncident(std::mt19937_64& rng, double max_cut_deg, double radius) {
+  std::uniform_real_distribution<double> u(0, 1);
+  const double v0 = 0.05 + 7.95 * u(rng);
+  const double cut = DegToRad(max_cut_deg * u(rng));
+  const double top = (2 * u(rng) - 1) * 2.5 * v0 / radius;
+  const double side = (2 * u(rng) - 1) * 2.5 * v0 / radius;
+  return {PaperIncidentState(v0, top, side, cut), v0};
+}
+
 class LawsTest : public testing::TestWithParam<IntegratorCase> {
  protected:
   // Random incident states: V0 in 0.05-8 m/s, cut 0-89 deg, spins +-2.5 V0/R.
   ImpactState RandomShot(std::mt19937_64& rng) const {
-    std::uniform_real_distribution<double> u(0, 1);
-    const double v0 = 0.05 + 7.95 * u(rng);
-    const double cut = DegToRad(89.0 * u(rng));
-    const double top = (2 * u(rng) - 1) * 2.5 * v0 / ball_.radius;
-    const double side = (2 * u(rng) - 1) * 2.5 * v0 / ball_.radius;
-    return PaperIncidentState(v0, top, side, cut);
+    return NextRandomIncident(rng, 89.0, ball_.radius).in;
   }
   BallParams ball_;
   BallBallParams contact_;
@@ -325,14 +335,9 @@ TEST(AdaptiveTest, DefaultToleranceIsAccurateOnRandomShots) {
   constexpr double kConvergedTol = 1e-9;   // m/s between the two references
   const BallParams ball;
   std::mt19937_64 rng(2024);
-  std::uniform_real_distribution<double> u(0, 1);
   double worst_v = 0, worst_w = 0, worst_ref = 0;
   for (int i = 0; i < kShots; ++i) {
-    const double v0 = 0.05 + 7.95 * u(rng);
-    const double cut = DegToRad(89.9 * u(rng));
-    const double top = (2 * u(rng) - 1) * 2.5 * v0 / ball.radius;
-    const double side = (2 * u(rng) - 1) * 2.5 * v0 / ball.radius;
-    const ImpactState in = PaperIncidentState(v0, top, side, cut);
+    const auto [in, v0] = NextRandomIncident(rng, 89.9, ball.radius);
     const ImpactResult r = ResolveImpact(in, ball, {}, 0.21, Adaptive());
     const ImpactResult ref = ResolveImpact(in, ball, {}, 0.21, Adaptive(kReferenceTol));
     ASSERT_EQ(r.status, ImpactStatus::kOk) << i;
@@ -419,15 +424,10 @@ TEST(SearchFidelityTest, MeetsItsDocumentedAccuracyForLessWork) {
   constexpr double kSearchRelTol = 2e-5;  // of V0, velocities and R * spins
   const BallParams ball;
   std::mt19937_64 rng(2024);
-  std::uniform_real_distribution<double> u(0, 1);
   double worst = 0;
   long search_work = 0, default_work = 0;
   for (int i = 0; i < 1000; ++i) {
-    const double v0 = 0.05 + 7.95 * u(rng);
-    const double cut = DegToRad(89.9 * u(rng));
-    const double top = (2 * u(rng) - 1) * 2.5 * v0 / ball.radius;
-    const double side = (2 * u(rng) - 1) * 2.5 * v0 / ball.radius;
-    const ImpactState in = PaperIncidentState(v0, top, side, cut);
+    const auto [in, v0] = NextRandomIncident(rng, 89.9, ball.radius);
     const ImpactResult s = ResolveImpact(in, ball, {}, 0.21, test::Search());
     const ImpactResult ref = ResolveImpact(in, ball, {}, 0.21, Adaptive(1e-13));
     const ImpactResult d = ResolveImpact(in, ball, {}, 0.21, Adaptive());
@@ -448,18 +448,13 @@ TEST(SearchFidelityTest, MeetsItsDocumentedAccuracyForLessWork) {
 TEST(MethodTest, BothPairsConvergeToTheSameAnswer) {
   const BallParams ball;
   std::mt19937_64 rng(2025);
-  std::uniform_real_distribution<double> u(0, 1);
   ImpulseSolverOptions dp54 = Adaptive(1e-9), dop853 = Adaptive(1e-9);
   dop853.method = ImpulseMethod::kDormandPrince853;
   ImpulseSolverOptions ref54 = Adaptive(1e-13), ref853 = Adaptive(1e-13);
   ref853.method = ImpulseMethod::kDormandPrince853;
   double worst54 = 0, worst853 = 0, refs = 0;
   for (int i = 0; i < 200; ++i) {
-    const double v0 = 0.05 + 7.95 * u(rng);
-    const double cut = DegToRad(89.9 * u(rng));
-    const double top = (2 * u(rng) - 1) * 2.5 * v0 / ball.radius;
-    const double side = (2 * u(rng) - 1) * 2.5 * v0 / ball.radius;
-    const ImpactState in = PaperIncidentState(v0, top, side, cut);
+    const auto [in, v0] = NextRandomIncident(rng, 89.9, ball.radius);
     const ImpactResult a = ResolveImpact(in, ball, {}, 0.21, dp54);
     const ImpactResult b = ResolveImpact(in, ball, {}, 0.21, dop853);
     const ImpactResult ra = ResolveImpact(in, ball, {}, 0.21, ref54);
