@@ -7,14 +7,6 @@
 #include <limits>
 
 namespace snooker::physics::detail {
-using impulse::Forces;
-using impulse::Law;
-using impulse::Model;
-using impulse::State;
-using impulse::kA;
-using impulse::kB;
-using impulse::kD;
-
 namespace hybrid {
 
 void BallBallHybrid::SnapSlipToZero(int c, State* x) const {

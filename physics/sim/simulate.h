@@ -62,10 +62,9 @@
 namespace snooker::physics {
 
 struct SimParams {
-  static ImpulseSolverOptions ShotImpactOptions(ImpulseMethod method) {
+  static ImpulseSolverOptions ShotImpactOptions() {
     ImpulseSolverOptions o;
     o.tolerance = kShotTolerance;
-    o.method = method;
     return o;
   }
 
@@ -90,10 +89,11 @@ struct SimParams {
   /// (relative) or direction (rad) does not move by more than 1 um
   /// (docs/shot-speed-vs-error.md, scripts/shot-speed-error).
   static constexpr double kShotTolerance = 1e-7;
-  /// The Runge-Kutta pair of each: Dormand-Prince 5(4), the cheaper at kShotTolerance
-  /// (docs/impact-methods.md, scripts/impact-methods; 8(5,3) pays at tighter ones).
-  ImpulseSolverOptions ball_ball_solver = ShotImpactOptions(ImpulseMethod::kDormandPrince54);
-  ImpulseSolverOptions cushion_solver = ShotImpactOptions(ImpulseMethod::kDormandPrince54);
+  /// Both with ImpulseSolverOptions' own Runge-Kutta pair, Dormand-Prince 5(4): the
+  /// cheaper at kShotTolerance (docs/impact-methods.md, scripts/impact-methods; 8(5,3)
+  /// pays at tighter ones).
+  ImpulseSolverOptions ball_ball_solver = ShotImpactOptions();
+  ImpulseSolverOptions cushion_solver = ShotImpactOptions();
   /// After an impact, a ball whose centre and contact point both move slower than
   /// this is set at rest (its Z spin kept). m/s. Without it a slow ball pushing a
   /// resting one makes an endless cascade of ever smaller collisions (inelastic
