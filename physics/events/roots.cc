@@ -236,6 +236,34 @@ double FirstDownCrossingQuadratic(const Poly4& p, double lo, double hi) {
   return in(r2) && r1 < r2 ? r2 : kInf;
 }
 
+// True when p is certainly positive on [lo, hi], beyond the band in which the
+// general solver takes a value for zero: p's Bernstein coefficients on the interval
+// bound it from below (the convex-hull property), so all of them above 4x that band
+// prove there is no root and no tangency. About 40 flops, against ~1,500
+// instructions for the roots; most quartic gaps that pass the detectors' culls have
+// no contact, and the answer (+infinity) is the same either way.
+bool CertainlyPositive(const Poly4& p, double lo, double hi) {
+  const double h = hi - lo;
+  // Taylor coefficients at lo, scaled to s in [0, 1]: p(lo + h s) = sum c_k s^k.
+  std::array<double, kMaxPolyDegree + 1> c = p;
+  for (int k = 0; k < kMaxPolyDegree; ++k) {  // synthetic division by (t - lo), repeated
+    for (int i = kMaxPolyDegree - 1; i >= k; --i) c[i] += lo * c[i + 1];
+  }
+  double hk = 1.0;
+  for (double& ck : c) {
+    ck *= hk;
+    hk *= h;
+  }
+  const double b[5] = {c[0], c[0] + c[1] / 4, c[0] + c[1] / 2 + c[2] / 6,
+                       c[0] + 0.75 * c[1] + c[2] / 2 + c[3] / 4, c[0] + c[1] + c[2] + c[3] + c[4]};
+  const double scale = EvaluateAbs(p, std::max(std::abs(lo), std::abs(hi)));
+  const double floor = 4.0 * kZeroBandFactor * scale;
+  for (double bi : b) {
+    if (!(bi > floor)) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 double FindFirstDownCrossing(const Poly4& p, double lo, double hi) {
@@ -244,6 +272,7 @@ double FindFirstDownCrossing(const Poly4& p, double lo, double hi) {
       std::isfinite(p[2]) && !std::isnan(hi)) {
     return FirstDownCrossingQuadratic(p, lo, hi);
   }
+  if (std::isfinite(hi) && AllFinite(p) && CertainlyPositive(p, lo, hi)) return kInf;
   const RealRoots r = FindRealRoots(p, lo, hi);
   if (r.status == RootStatus::kInvalidInput || r.status == RootStatus::kIdenticallyZero) {
     return kInf;

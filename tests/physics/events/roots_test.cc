@@ -303,5 +303,48 @@ TEST(RootsTest, FirstDownCrossingAgreesWithBruteForceScan) {
   }
 }
 
+// FindFirstDownCrossing answers "no crossing" for a quartic its Bernstein bound
+// proves positive, without the root finder. The answer must be the general solver's
+// in every case: random quartics positive at lo, many of them grazing zero (a double
+// root shifted up or down by a hair), on intervals that do not start at 0.
+TEST(RootsTest, PositiveQuarticCullChangesNoAnswer) {
+  std::mt19937_64 rng(2029);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int culled_kind = 0, crossings = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const double r = 1.0 + u(rng), s = 1.0 + u(rng), q = u(rng);
+    // (t - r)^2 ((t - s)^2 + q^2) + shift: touches, misses or crosses zero near r.
+    const double shift = trial % 3 == 0 ? 0.0 : std::pow(10.0, -14 + 13 * (u(rng) + 1) / 2) * (trial % 3 == 1 ? 1 : -1);
+    Poly4 p = FromRoots({r, r}, 1.0);
+    const Poly4 f = FromRoots({s, s}, 1.0);
+    Poly4 prod{};
+    for (int i = 0; i <= 2; ++i) {
+      for (int j = 0; j <= 2; ++j) prod[i + j] += p[i] * (f[j] + (j == 0 ? q * q : 0.0));
+    }
+    prod[0] += shift;
+    const double lo = 0.25 * (u(rng) + 1), hi = lo + 2.0 * (u(rng) + 1.05);
+    const RealRoots roots = FindRealRoots(prod, lo, hi);
+    double expected = kInf, prev = lo;
+    for (int i = 0; i < roots.count; ++i) {
+      if (roots.t[i] <= lo) continue;
+      if (EvaluatePoly(prod, prev + 0.5 * (roots.t[i] - prev)) > 0.0) {
+        expected = roots.t[i];
+        break;
+      }
+      prev = roots.t[i];
+    }
+    const double found = FindFirstDownCrossing(prod, lo, hi);
+    if (expected == kInf) {
+      ++culled_kind;
+      EXPECT_EQ(found, kInf) << "trial " << trial;
+    } else {
+      ++crossings;
+      EXPECT_EQ(found, expected) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(culled_kind, 2000);
+  EXPECT_GT(crossings, 2000);
+}
+
 }  // namespace
 }  // namespace snooker::physics
