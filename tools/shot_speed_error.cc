@@ -67,8 +67,11 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::vector<std::vector<BallState>> shots = scenarios::WorkloadShots(workload, n);
+  // The exact solvers at one tolerance, every impact solved (no impact tables): the
+  // references, and the tolerance rows (the default tier is the 1e-7 row plus tables).
   auto with_tolerance = [](double tol) {
     SimParams p;
+    p.impact_tables = false;
     p.ball_ball_solver.tolerance = p.cushion_solver.tolerance = tol;
     return p;
   };

@@ -92,6 +92,9 @@ struct ImpulseWork {
   std::int32_t rejected_steps = 0;  ///< steps rejected by error control or event search
   std::int32_t rhs_evals = 0;       ///< right-hand-side evaluations
   std::int32_t events = 0;          ///< located mode switches and phase ends
+  /// Impacts answered from a precomputed table instead (physics/impact/impact_table.h;
+  /// they add no steps).
+  std::int32_t table_lookups = 0;
 };
 
 }  // namespace snooker::physics

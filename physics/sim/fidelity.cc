@@ -18,6 +18,9 @@ SimParams FidelityParams(Fidelity f, SimParams base) {
   const std::pair<ImpulseSolverOptions*, const ImpulseSolverOptions*> solvers[] = {
       {&base.ball_ball_solver, &defaults.ball_ball_solver},
       {&base.cushion_solver, &defaults.cushion_solver}};
+  // The impact tables' errors are those of the solvers at the shot tolerance, so the
+  // converged tier solves every impact.
+  base.impact_tables = f != Fidelity::kReference && base.impact_tables;
   for (const auto& [o, d] : solvers) {
     switch (f) {
       case Fidelity::kReference:

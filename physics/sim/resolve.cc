@@ -16,7 +16,8 @@ Eigen::Matrix3d FrameAlong(const Vec2& y) {
 BallBallResolution ResolveBallBallOnTable(const BallState& a, const BallState& b,
                                           const BallParams& ball, const BallBallParams& contact,
                                           const ClothParams& cloth,
-                                          const ImpulseSolverOptions& options) {
+                                          const ImpulseSolverOptions& options,
+                                          const BallBallTable* table) {
   BallBallResolution out;
   out.a = a;
   out.b = b;
@@ -30,6 +31,29 @@ BallBallResolution ResolveBallBallOnTable(const BallState& a, const BallState& b
   ImpactState in;
   in.c = {q * a.v, q * a.w};
   in.o = {q * b.v, q * b.w};
+  if (table != nullptr) {
+    // The table's C is the moving ball, at -Y: a as given, or b in the frame turned
+    // by pi about Z (X and Y change sign, so a's and b's states do).
+    ImpactState looked_up;
+    const Eigen::Matrix3d flip = Eigen::Vector3d(-1, -1, 1).asDiagonal();
+    const bool direct = table->Lookup(in, ball.radius, &looked_up);
+    const ImpactState turned{{flip * in.o.v, flip * in.o.w}, {flip * in.c.v, flip * in.c.w}};
+    const bool swapped = !direct && table->Lookup(turned, ball.radius, &looked_up);
+    if (direct || swapped) {
+      if (swapped) {
+        looked_up = {{flip * looked_up.o.v, flip * looked_up.o.w},
+                     {flip * looked_up.c.v, flip * looked_up.c.w}};
+      }
+      out.work.table_lookups = 1;
+      out.a.v = q.transpose() * looked_up.c.v;
+      out.a.w = q.transpose() * looked_up.c.w;
+      out.b.v = q.transpose() * looked_up.o.v;
+      out.b.w = q.transpose() * looked_up.o.w;
+      out.a = Settle(out.a, ball);
+      out.b = Settle(out.b, ball);
+      return out;
+    }
+  }
   const ImpactResult r = ResolveImpact(in, ball, contact, cloth.mu_s, options);
   out.status = r.status;
   out.work = r.work;
@@ -45,12 +69,22 @@ BallBallResolution ResolveBallBallOnTable(const BallState& a, const BallState& b
 
 CushionResolution ResolveBallCushionOnTable(const BallState& s, const Vec2& normal,
                                             const BallParams& ball, const CushionParams& cushion,
-                                            const ImpulseSolverOptions& options) {
+                                            const ImpulseSolverOptions& options,
+                                            const CushionTable* table) {
   CushionResolution out;
   out.ball = s;
   const Eigen::Matrix3d q = FrameAlong(-normal);  // Y into the cushion
-  const CushionImpactResult r =
-      ResolveCushionImpact({q * s.v, q * s.w}, ball, cushion, options);
+  const BallMotion in{q * s.v, q * s.w};
+  BallMotion looked_up;
+  if (table != nullptr &&
+      table->Lookup(in, ball.radius, CushionRestitution(cushion, in.v.y()), &looked_up)) {
+    out.work.table_lookups = 1;
+    out.ball.v = q.transpose() * looked_up.v;
+    out.ball.w = q.transpose() * looked_up.w;
+    out.ball = Settle(out.ball, ball);
+    return out;
+  }
+  const CushionImpactResult r = ResolveCushionImpact(in, ball, cushion, options);
   out.status = r.status;
   out.work = r.work;
   if (r.status != ImpactStatus::kOk) return out;

@@ -15,6 +15,7 @@
 
 #include "physics/impact/ball_ball.h"
 #include "physics/impact/ball_cushion.h"
+#include "physics/impact/impact_table.h"
 #include "physics/core/ball_state.h"
 #include "physics/core/params.h"
 
@@ -30,11 +31,15 @@ struct BallBallResolution {
   ImpulseWork work;
 };
 
-/// Resolves the impact of two touching balls `a` and `b` (centres 2R apart).
+/// Resolves the impact of two touching balls `a` and `b` (centres 2R apart). With a
+/// `table` (built for these parameters: BallBallTable::Matches) the impact of a
+/// rolling ball on one at rest is looked up where the table covers it
+/// (work.table_lookups = 1); every other impact goes to the solver.
 BallBallResolution ResolveBallBallOnTable(const BallState& a, const BallState& b,
                                           const BallParams& ball, const BallBallParams& contact,
                                           const ClothParams& cloth,
-                                          const ImpulseSolverOptions& options);
+                                          const ImpulseSolverOptions& options,
+                                          const BallBallTable* table = nullptr);
 
 struct CushionResolution {
   ImpactStatus status = ImpactStatus::kOk;
@@ -43,9 +48,13 @@ struct CushionResolution {
 };
 
 /// Resolves the impact of a ball on a cushion whose unit normal at the contact,
-/// horizontal and pointing from the cushion towards the ball, is `normal`.
+/// horizontal and pointing from the cushion towards the ball, is `normal`. With a
+/// `table` (built for these parameters: CushionTable::Matches) a rolling ball's impact
+/// is looked up where the table covers it (work.table_lookups = 1); every other impact
+/// goes to the solver.
 CushionResolution ResolveBallCushionOnTable(const BallState& s, const Vec2& normal,
                                             const BallParams& ball, const CushionParams& cushion,
-                                            const ImpulseSolverOptions& options);
+                                            const ImpulseSolverOptions& options,
+                                            const CushionTable* table = nullptr);
 
 }  // namespace snooker::physics

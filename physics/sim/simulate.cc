@@ -21,12 +21,21 @@ bool Moving(MotionState s) { return s == MotionState::kSliding || s == MotionSta
 
 // A lower bound on the distance from `q` to the path p(t) = c + b t + a t^2 over
 // [0, w]: the path stays within |a| w^2 / 4 of its chord from p(0) to p(w).
+// The chord and the bulge are computed once per path (PathChord) when many points
+// are tested against it.
+struct PathChord {
+  PathChord(const PositionPoly& p, double w)
+      : p0(p.c), d(p.At(w) - p.c), len2(d.squaredNorm()), bulge(p.a.norm() * w * w / 4) {}
+  double Bound(const Vec2& q) const {
+    const double u = len2 > 0 ? std::clamp((q - p0).dot(d) / len2, 0.0, 1.0) : 0.0;
+    return (q - (p0 + u * d)).norm() - bulge;
+  }
+  Vec2 p0, d;
+  double len2, bulge;
+};
+
 double PathDistanceBound(const PositionPoly& p, double w, const Vec2& q) {
-  const Vec2 p0 = p.c, p1 = p.At(w);
-  const Vec2 d = p1 - p0;
-  const double len2 = d.squaredNorm();
-  const double u = len2 > 0 ? std::clamp((q - p0).dot(d) / len2, 0.0, 1.0) : 0.0;
-  return (q - (p0 + u * d)).norm() - p.a.norm() * w * w / 4;
+  return PathChord(p, w).Bound(q);
 }
 
 // The state with the normal velocity component (along the unit horizontal n) removed.
@@ -82,6 +91,17 @@ Simulator::Simulator(const TableModel& table, const SimParams& params)
   // One source for the cushion's contact geometry: the table's nose height.
   params_.cushion.contact_height = table.spec().cushion_height;
   contact_distance_ = table.cushion_contact_distance();
+  if (params_.impact_tables) {
+    const CushionTable* cushion = DefaultCushionTable();
+    if (cushion != nullptr && cushion->Matches(params_.ball, params_.cushion)) {
+      cushion_table_ = cushion;
+    }
+    const BallBallTable* ball_ball = DefaultBallBallTable();
+    if (ball_ball != nullptr &&
+        ball_ball->Matches(params_.ball, params_.ball_ball, params_.cloth.mu_s)) {
+      ball_ball_table_ = ball_ball;
+    }
+  }
   events_.reserve(256);
   for (auto& row : pair_) {
     for (double& t : row) t = kInf;
@@ -429,10 +449,11 @@ void Simulator::RecomputeOwn(int i) {
     // Nothing behind the first straight contact can happen first: search the rounded
     // shapes (quartics) only up to it, and only those near the path.
     window = std::min(window, own.time - s.t);
+    const PathChord chord(s.poly, window);
     const auto jaws = table_.jaws();
     for (int k = 0; k < static_cast<int>(jaws.size()); ++k) {
       const JawCircle& jaw = jaws[static_cast<size_t>(k)];
-      if (PathDistanceBound(s.poly, window, jaw.centre) > jaw.radius + contact_distance_) continue;
+      if (chord.Bound(jaw.centre) > jaw.radius + contact_distance_) continue;
       // The knuckle meets the ball at the nose height too: centre distance
       // r_jaw + R cos(theta), which DetectBallJaw computes from this "radius".
       consider(DetectBallJaw(s.poly, jaw, contact_distance_, window), EventKind::kKnuckle, k);
@@ -440,7 +461,7 @@ void Simulator::RecomputeOwn(int i) {
     const auto pockets = table_.pockets();
     for (int k = 0; k < static_cast<int>(pockets.size()); ++k) {
       const Pocket& p = pockets[static_cast<size_t>(k)];
-      if (PathDistanceBound(s.poly, window, p.capture_centre) > p.capture_radius) continue;
+      if (chord.Bound(p.capture_centre) > p.capture_radius) continue;
       consider(DetectBallPocket(s.poly, p, window), EventKind::kPocket, k);
     }
   }
@@ -627,9 +648,11 @@ SimStatus Simulator::ResolvePair(int bi, int bj, double te) {
   switch (ev.contact) {
     case ContactStart::kApproaching: {
       const BallBallResolution r = ResolveBallBallOnTable(sa, sb, params_.ball, params_.ball_ball,
-                                                          params_.cloth, params_.ball_ball_solver);
+                                                          params_.cloth, params_.ball_ball_solver,
+                                                          ball_ball_table_);
       impact_work_.steps += r.work.steps;
       impact_work_.rhs_evals += r.work.rhs_evals;
+      impact_work_.table_lookups += r.work.table_lookups;
       if (r.status == ImpactStatus::kOk) {
         a = AfterImpact(r.a);
         b = AfterImpact(r.b);
@@ -710,9 +733,10 @@ SimStatus Simulator::ResolveOwn(int bi, double te) {
       switch (ev.contact) {
         case ContactStart::kApproaching: {
           const CushionResolution r = ResolveBallCushionOnTable(
-              s, normal, params_.ball, params_.cushion, params_.cushion_solver);
+              s, normal, params_.ball, params_.cushion, params_.cushion_solver, cushion_table_);
           impact_work_.steps += r.work.steps;
           impact_work_.rhs_evals += r.work.rhs_evals;
+          impact_work_.table_lookups += r.work.table_lookups;
           if (r.status == ImpactStatus::kOk) {
             after = HoldIfReturning(AfterImpact(r.ball), normal);
           } else if (r.status == ImpactStatus::kNotApproaching) {

@@ -52,6 +52,7 @@
 
 #include "physics/impact/ball_ball.h"
 #include "physics/impact/ball_cushion.h"
+#include "physics/impact/impact_table.h"
 #include "physics/core/ball_state.h"
 #include "physics/core/limits.h"
 #include "physics/motion/motion.h"
@@ -94,6 +95,13 @@ struct SimParams {
   /// pays at tighter ones).
   ImpulseSolverOptions ball_ball_solver = ShotImpactOptions();
   ImpulseSolverOptions cushion_solver = ShotImpactOptions();
+  /// Answer the impacts of a rolling ball on a cushion or on a ball at rest from the
+  /// precomputed tables (DefaultCushionTable, DefaultBallBallTable; physics/impact/
+  /// impact_table.h) where they cover them and were built for these parameters; every
+  /// other impact goes to its solver. The tables' errors are within those of the
+  /// solvers at kShotTolerance (docs/impact-tables.md). The reference fidelity tier
+  /// turns them off.
+  bool impact_tables = true;
   /// After an impact, a ball whose centre and contact point both move slower than
   /// this is set at rest (its Z spin kept). m/s. Without it a slow ball pushing a
   /// resting one makes an endless cascade of ever smaller collisions (inelastic
@@ -301,6 +309,8 @@ class Simulator {
   const TableModel& table_;
   SimParams params_;
   double contact_distance_ = 0;  // ball centre to cushion nose at contact, m
+  const CushionTable* cushion_table_ = nullptr;     // when params_.impact_tables and
+  const BallBallTable* ball_ball_table_ = nullptr;  // they match the parameters
   int n_ = 0;
   double time_ = 0;
   std::int32_t event_count_ = 0;
