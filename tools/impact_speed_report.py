@@ -115,6 +115,14 @@ def main():
       "tolerance 1e-6**. A search at 1e-6 followed by a check of the chosen shots at the "
       "default tolerance is the intended use.")
     w("")
+    w("Later the tables were adopted after all, in a different form "
+      "([impact-tables.md](impact-tables.md)): only for rolling balls (a map of two numbers, "
+      "three with the cushion's speed-dependent restitution), with every cell checked "
+      "against the solver when the table is built and declined where its interpolant "
+      "misses by more than 3e-6 of the speed - the check this uniform table lacks. The "
+      "default and search tiers answer those impacts from the tables, and the solvers "
+      "take every impact the tables decline.")
+    w("")
     w("## Instructions (valgrind --tool=callgrind; repeatable)")
     w("")
     w("Per impact over the shot set, and per simulated shot (bench/simulate_count: the "

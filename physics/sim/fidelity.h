@@ -12,15 +12,17 @@
 namespace snooker::physics {
 
 enum class Fidelity : std::uint8_t {
-  /// Converged: impact integrators at 1e-12. For references and tests.
+  /// Converged: impact integrators at 1e-12, every impact solved (no impact tables).
+  /// For references and tests.
   kReference,
   /// SimParams' own: impact integrators at SimParams::kShotTolerance, set from the
   /// final positions it gives (within 0.1 mm of the reference on well-conditioned
-  /// shots).
+  /// shots), and the impacts of rolling balls from the impact tables (within 0.25 mm
+  /// with them; docs/shot-speed-vs-error.md).
   kDefault,
   /// For a search whose answers are checked at kDefault before anyone sees them: the
-  /// impact solvers' ImpulseFidelity::kSearch (tolerance 1e-6, about 15 % fewer
-  /// instructions than kDefault per shot; final positions within about 0.6 mm of the
+  /// impact solvers' ImpulseFidelity::kSearch (tolerance 1e-6, about 11 % fewer
+  /// instructions than kDefault per shot; final positions within about 0.7 mm of the
   /// reference on well-conditioned shots).
   kSearch,
 };
