@@ -355,6 +355,7 @@ ApiStatus GetModel(const v1::GetModelRequest& /*request*/, v1::GetModelResponse*
   d->set_tolerance(sim.ball_ball_solver.tolerance);
   d->set_path_sample_s(kDefaultPathSampleS);
   d->set_rest_speed(sim.rest_speed);
+  d->set_impact_tables(sim.impact_tables);
   *response->mutable_service() =
       limits.service != nullptr ? *limits.service : DefaultServiceLimits(limits);
   return ApiStatus::Ok();

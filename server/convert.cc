@@ -372,6 +372,7 @@ physics::SimParams SimParamsFrom(const v1::SimulationOptions& o) {
   if (o.has_max_events()) p.max_events = o.max_events();
   if (o.has_max_time_s()) p.max_time = o.max_time_s();
   if (o.has_tolerance()) p.ball_ball_solver.tolerance = p.cushion_solver.tolerance = o.tolerance();
+  if (o.has_impact_tables()) p.impact_tables = o.impact_tables();
   return p;
 }
 

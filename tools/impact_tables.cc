@@ -114,7 +114,7 @@ void Print(const std::string& kind, const Errors& e, const GridTable& g) {
       " \"table_error\": {\"median\": %.2e, \"p99\": %.2e, \"max\": %.2e},\n"
       " \"solver_error\": {\"median\": %.2e, \"p99\": %.2e, \"max\": %.2e}}\n",
       kind.c_str(), e.samples, e.answered, g.cells(), g.marked_cells(),
-      1e6 * e.lookup_s / std::max(1, e.answered), 1e6 * e.solve_s / std::max<std::size_t>(1, e.shot.size()),
+      1e6 * e.lookup_s / std::max(1, e.answered), 1e6 * e.solve_s / static_cast<double>(std::max<std::size_t>(1, e.shot.size())),
       Quantile(e.table, 0.5), Quantile(e.table, 0.99), Quantile(e.table, 1.0), Quantile(e.shot, 0.5),
       Quantile(e.shot, 0.99), Quantile(e.shot, 1.0));
 }

@@ -86,6 +86,12 @@ const char* ToString(SimStatus s) {
   return "unknown";
 }
 
+bool TablesCarry(const ImpulseSolverOptions& solver) {
+  if (!FidelityValid(solver.fidelity)) return false;
+  const ImpulseSolverOptions o = EffectiveOptions(solver);
+  return o.integrator == ImpulseIntegrator::kAdaptive && o.tolerance >= SimParams::kShotTolerance;
+}
+
 Simulator::Simulator(const TableModel& table, const SimParams& params)
     : table_(table), params_(params) {
   // One source for the cushion's contact geometry: the table's nose height.
@@ -93,11 +99,12 @@ Simulator::Simulator(const TableModel& table, const SimParams& params)
   contact_distance_ = table.cushion_contact_distance();
   if (params_.impact_tables) {
     const CushionTable* cushion = DefaultCushionTable();
-    if (cushion != nullptr && cushion->Matches(params_.ball, params_.cushion)) {
+    if (cushion != nullptr && TablesCarry(params_.cushion_solver) &&
+        cushion->Matches(params_.ball, params_.cushion)) {
       cushion_table_ = cushion;
     }
     const BallBallTable* ball_ball = DefaultBallBallTable();
-    if (ball_ball != nullptr &&
+    if (ball_ball != nullptr && TablesCarry(params_.ball_ball_solver) &&
         ball_ball->Matches(params_.ball, params_.ball_ball, params_.cloth.mu_s)) {
       ball_ball_table_ = ball_ball;
     }

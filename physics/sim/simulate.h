@@ -99,8 +99,11 @@ struct SimParams {
   /// precomputed tables (DefaultCushionTable, DefaultBallBallTable; physics/impact/
   /// impact_table.h) where they cover them and were built for these parameters; every
   /// other impact goes to its solver. The tables' errors are within those of the
-  /// solvers at kShotTolerance (docs/impact-tables.md). The reference fidelity tier
-  /// turns them off.
+  /// solvers at kShotTolerance (docs/impact-tables.md), so a table is used only while
+  /// its solver is the adaptive one at a tolerance of at least kShotTolerance
+  /// (TablesCarry): asking a solver for more precision, or for the paper's fixed-step
+  /// scheme, solves every impact of its kind. The reference fidelity tier turns them
+  /// off.
   bool impact_tables = true;
   /// After an impact, a ball whose centre and contact point both move slower than
   /// this is set at rest (its Z spin kept). m/s. Without it a slow ball pushing a
@@ -134,6 +137,11 @@ struct SimParams {
   /// Cap on simulated time, s.
   double max_time = 600.0;
 };
+
+/// True when an impact table may stand in for a solver run with these options: the
+/// adaptive integrator (after the options' fidelity) at a tolerance no tighter than
+/// SimParams::kShotTolerance, the precision the tables carry.
+bool TablesCarry(const ImpulseSolverOptions& solver);
 
 enum class EventKind : std::uint8_t {
   kBallBall,    ///< two balls collide

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "physics/motion/motion.h"
@@ -131,6 +132,28 @@ TEST(SimulateApiTest, PotsTheBlackAndReportsEventsAndFinalBalls) {
   }
   EXPECT_TRUE(pot_event);
   EXPECT_EQ(resp.paths_size(), 0);  // only on request
+}
+
+// options.impact_tables reaches the simulator: the pot's impact of the rolling cue
+// ball on the black is answered from the table by default (a different rounding of
+// the same answer) and by the integrator when told, within 0.1 mm of each other.
+TEST(SimulateApiTest, ImpactTablesOptionSwitchesTheTablesOff) {
+  EXPECT_TRUE(SimParamsFrom({}).impact_tables);
+  v1::SimulationOptions off;
+  off.set_impact_tables(false);
+  EXPECT_FALSE(SimParamsFrom(off).impact_tables);
+  v1::SimulateRequest req = PotRequest();
+  v1::SimulateResponse with, without;
+  ASSERT_TRUE(Simulate(req, &with).ok());
+  *req.mutable_options() = off;
+  ASSERT_TRUE(Simulate(req, &without).ok());
+  ASSERT_EQ(with.final_balls_size(), 2);
+  ASSERT_EQ(without.final_balls_size(), 2);
+  EXPECT_TRUE(without.final_balls(1).pocketed());
+  const v1::Vec2& a = with.final_balls(0).position();
+  const v1::Vec2& b = without.final_balls(0).position();
+  EXPECT_NE(std::make_pair(a.x(), a.y()), std::make_pair(b.x(), b.y()));
+  EXPECT_LE(std::hypot(a.x() - b.x(), a.y() - b.y()), 1e-4);
 }
 
 TEST(SimulateApiTest, PathsOnRequestStartAtTheBallsAndEndAtTheirFinalPositions) {

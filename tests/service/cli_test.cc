@@ -217,6 +217,28 @@ TEST(CliSimulateTest, JsonHasTheContractedFields) {
   EXPECT_GT(Number(Object(finals.list_value().values(1).struct_value(), "position"), "y"), 1.6);
 }
 
+// --no-impact-tables integrates every impact: the cue ball's impact on the red (it
+// rolls by then) is no longer looked up, so the answer differs by rounding-level
+// amounts and agrees within 0.1 mm.
+TEST(CliSimulateTest, NoImpactTablesIntegratesEveryImpact) {
+  auto red_y = [](const RunResult& r) {
+    Struct json;
+    EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &json).ok()) << r.out;
+    const Value& finals = Field(json, "finalBalls");
+    return Number(Object(finals.list_value().values(1).struct_value(), "position"), "y");
+  };
+  const std::string files =
+      " --table " + TempFile("t3.json", kTable) + " --shot " + TempFile("s3.json", kShot) + " --json";
+  const RunResult tables = RunCli("simulate" + files);
+  const RunResult integrated = RunCli("simulate --no-impact-tables" + files);
+  ASSERT_EQ(tables.exit_code, 0) << tables.err;
+  ASSERT_EQ(integrated.exit_code, 0) << integrated.err;
+  const double a = red_y(tables), b = red_y(integrated);
+  EXPECT_NE(a, b);
+  EXPECT_NEAR(a, b, 1e-4);
+  EXPECT_NE(RunCli("simulate --help").out.find("--no-impact-tables"), std::string::npos);
+}
+
 TEST(CliSimulateTest, SvgDrawsTheTableAndPaths) {
   const std::string svg = testing::TempDir() + std::to_string(getpid()) + "_shot.svg";
   const RunResult r = RunCli("simulate --table " + TempFile("t2.json", kTable) + " --shot " +

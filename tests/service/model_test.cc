@@ -75,6 +75,8 @@ TEST(GetModelTest, DescribesTheTableTheServerSimulatesOn) {
   EXPECT_EQ(m.cushion().restitution_speed_size(), m.cushion().restitution_size());
   EXPECT_EQ(m.simulation().max_events(), 5000);
   EXPECT_DOUBLE_EQ(m.simulation().path_sample_s(), 0.02);
+  EXPECT_DOUBLE_EQ(m.simulation().tolerance(), physics::SimParams::kShotTolerance);
+  EXPECT_TRUE(m.simulation().impact_tables());
 
   // The pocket names are those a Simulate answer uses: pot the black and look.
   std::set<std::string> pockets;

@@ -220,6 +220,19 @@ TEST(ImpactTableTest, BuildWriteAndReadBack) {
 // onto a ball at rest ends within 0.1 mm of the same shot with every impact solved.
 TEST(ImpactTableTest, SimulatorUsesTheTablesWhereTheyApply) {
   EXPECT_TRUE(SimParams{}.impact_tables);
+  // The tables carry the precision of the adaptive solvers at the shot tolerance:
+  // a tighter tolerance, or the fixed-step scheme, solves every impact.
+  ImpulseSolverOptions solver = SimParams::ShotImpactOptions();
+  EXPECT_TRUE(TablesCarry(solver));
+  solver.tolerance = 1e-8;
+  EXPECT_FALSE(TablesCarry(solver));
+  solver.fidelity = ImpulseFidelity::kSearch;  // 1e-6 whatever the tolerance says
+  EXPECT_TRUE(TablesCarry(solver));
+  solver = SimParams::ShotImpactOptions();
+  solver.integrator = ImpulseIntegrator::kFixedStep;
+  EXPECT_FALSE(TablesCarry(solver));
+  solver.fidelity = static_cast<ImpulseFidelity>(99);
+  EXPECT_FALSE(TablesCarry(solver));
   EXPECT_FALSE(FidelityParams(Fidelity::kReference).impact_tables);
   EXPECT_TRUE(FidelityParams(Fidelity::kSearch).impact_tables);
   const TableModel& table = DefaultTable();
@@ -236,6 +249,11 @@ TEST(ImpactTableTest, SimulatorUsesTheTablesWhereTheyApply) {
   EXPECT_GT(with.impact_work().table_lookups, 0);
   ASSERT_EQ(without.Run(balls, o), SimStatus::kAtRest);
   EXPECT_EQ(without.impact_work().table_lookups, 0);
+  SimParams tight;
+  tight.ball_ball_solver.tolerance = tight.cushion_solver.tolerance = 1e-10;
+  Simulator precise(table, tight);
+  ASSERT_EQ(precise.Run(balls, o), SimStatus::kAtRest);
+  EXPECT_EQ(precise.impact_work().table_lookups, 0);
   for (size_t i = 0; i < balls.size(); ++i) {
     EXPECT_LE((with.final_balls()[i].r - without.final_balls()[i].r).norm(), 1e-4) << "ball " << i;
   }
