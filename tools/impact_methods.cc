@@ -20,6 +20,7 @@
 
 #include "bench/collision_shots.h"
 #include "physics/sim/fidelity.h"
+#include "tests/physics/impact/impact_test_support.h"
 #include "tests/support/scenarios.h"
 
 namespace {
@@ -44,11 +45,6 @@ ImpulseSolverOptions Options(ImpulseMethod m, double tol) {
   return o;
 }
 
-// Largest difference of velocities and R x spins, m/s.
-double Diff(const BallMotion& a, const BallMotion& b, double r) {
-  return std::max((a.v - b.v).cwiseAbs().maxCoeff(), r * (a.w - b.w).cwiseAbs().maxCoeff());
-}
-
 int Errors() {
   const BallParams ball;
   const double mu_s = ClothParams{}.mu_s;
@@ -66,13 +62,12 @@ int Errors() {
   for (const ImpactState& s : bb) {
     bb_ref.push_back(ResolveImpact(s, ball, {}, mu_s, ref));
     const ImpactResult r8 = ResolveImpact(s, ball, {}, mu_s, ref8);
-    spread = std::max({spread, Diff(r8.out.c, bb_ref.back().out.c, ball.radius),
-                       Diff(r8.out.o, bb_ref.back().out.o, ball.radius)});
+    spread = std::max(spread, test::MaxDifference(r8.out, bb_ref.back().out, ball.radius));
   }
   for (const BallMotion& m : cu) {
     cu_ref.push_back(ResolveCushionImpact(m, ball, cushion, ref));
-    spread = std::max(spread, Diff(ResolveCushionImpact(m, ball, cushion, ref8).out,
-                                   cu_ref.back().out, ball.radius));
+    spread = std::max(spread, test::MaxDifference(ResolveCushionImpact(m, ball, cushion, ref8).out,
+                                                  cu_ref.back().out, ball.radius));
   }
   std::printf("{\"reference_spread_mps\": %.3g, \"ball_ball_impacts\": %zu, \"cushion_impacts\": %zu,\n"
               " \"rows\": [\n", spread, bb.size(), cu.size());
@@ -94,13 +89,12 @@ int Errors() {
         if (std::string(model) == "ball-ball") {
           for (size_t i = 0; i < bb.size(); ++i) {
             const ImpactResult r = ResolveImpact(bb[i], ball, {}, mu_s, o);
-            add(r.status, r.work,
-                std::max(Diff(r.out.c, bb_ref[i].out.c, ball.radius), Diff(r.out.o, bb_ref[i].out.o, ball.radius)));
+            add(r.status, r.work, test::MaxDifference(r.out, bb_ref[i].out, ball.radius));
           }
         } else {
           for (size_t i = 0; i < cu.size(); ++i) {
             const CushionImpactResult r = ResolveCushionImpact(cu[i], ball, cushion, o);
-            add(r.status, r.work, Diff(r.out, cu_ref[i].out, ball.radius));
+            add(r.status, r.work, test::MaxDifference(r.out, cu_ref[i].out, ball.radius));
           }
         }
         std::printf("%s  {\"model\": \"%s\", \"method\": \"%s\", \"tolerance\": %g, \"worst_error_mps\": %.3g, "

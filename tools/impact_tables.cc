@@ -26,6 +26,7 @@
 #include "physics/impact/impact_table.h"
 #include "physics/sim/simulate.h"
 #include "physics/table/table.h"
+#include "tests/physics/impact/impact_test_support.h"
 
 namespace {
 
@@ -36,13 +37,6 @@ CushionParams DefaultCushion() {
   CushionParams c = SimParams{}.cushion;
   c.contact_height = TableSpec{}.cushion_height;
   return c;
-}
-
-double Diff(const BallMotion& a, const BallMotion& b, double r) {
-  return std::max((a.v - b.v).cwiseAbs().maxCoeff(), r * (a.w - b.w).cwiseAbs().maxCoeff());
-}
-double Diff(const ImpactState& a, const ImpactState& b, double r) {
-  return std::max(Diff(a.c, b.c, r), Diff(a.o, b.o, r));
 }
 
 double Quantile(std::vector<double> v, double q) {
@@ -154,14 +148,14 @@ int Check(const std::string& kind, const char* path, int samples, unsigned seed)
       const CushionImpactResult loose = ResolveCushionImpact(m, sim.ball, cushion, shot);
       e.solve_s += Seconds(t0);
       if (exact.status != ImpactStatus::kOk || loose.status != ImpactStatus::kOk) continue;
-      e.shot.push_back(Diff(loose.out, exact.out, R) / v);
+      e.shot.push_back(test::MaxDifference(loose.out, exact.out, R) / v);
       BallMotion out;
       t0 = Clock::now();
       const bool hit = t.Lookup(m, R, CushionRestitution(cushion, m.v.y()), &out);
       e.lookup_s += Seconds(t0);
       if (!hit) continue;
       ++e.answered;
-      e.table.push_back(Diff(out, exact.out, R) / v);
+      e.table.push_back(test::MaxDifference(out, exact.out, R) / v);
     }
     Print(kind, e, t.grid());
     return 0;
@@ -183,14 +177,14 @@ int Check(const std::string& kind, const char* path, int samples, unsigned seed)
     const ImpactResult loose = ResolveImpact(in, sim.ball, sim.ball_ball, sim.cloth.mu_s, shot);
     e.solve_s += Seconds(t0);
     if (exact.status != ImpactStatus::kOk || loose.status != ImpactStatus::kOk) continue;
-    e.shot.push_back(Diff(loose.out, exact.out, R) / v);
+    e.shot.push_back(test::MaxDifference(loose.out, exact.out, R) / v);
     ImpactState out;
     t0 = Clock::now();
     const bool hit = t.Lookup(in, R, &out);
     e.lookup_s += Seconds(t0);
     if (!hit) continue;
     ++e.answered;
-    e.table.push_back(Diff(out, exact.out, R) / v);
+    e.table.push_back(test::MaxDifference(out, exact.out, R) / v);
   }
   Print(kind, e, t.grid());
   return 0;

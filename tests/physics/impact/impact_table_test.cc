@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "physics/sim/fidelity.h"
+#include "tests/physics/impact/impact_test_support.h"
 #include "tests/support/scenarios.h"
 
 namespace snooker::physics {
@@ -32,10 +33,6 @@ ImpulseSolverOptions Converged() {
   o.tolerance = 1e-12;
   o.method = ImpulseMethod::kDormandPrince853;
   return o;
-}
-
-double Diff(const BallMotion& a, const BallMotion& b, double r) {
-  return std::max((a.v - b.v).cwiseAbs().maxCoeff(), r * (a.w - b.w).cwiseAbs().maxCoeff());
 }
 
 BallMotion Mirrored(const BallMotion& m) {
@@ -79,7 +76,7 @@ TEST(ImpactTableTest, CushionTableAgreesWithTheSolver) {
     BallMotion out;
     if (!t.Lookup(in, R, CushionRestitution(cushion, in.v.y()), &out)) continue;
     ++answered;
-    EXPECT_LE(Diff(out, exact.out, R), kTableError * v) << "sample " << i;
+    EXPECT_LE(test::MaxDifference(out, exact.out, R), kTableError * v) << "sample " << i;
   }
   EXPECT_GE(answered, kSamples * 9 / 10);  // measured 96 %
 }
@@ -100,8 +97,7 @@ TEST(ImpactTableTest, BallBallTableAgreesWithTheSolver) {
     ImpactState out;
     if (!t.Lookup(in, R, &out)) continue;
     ++answered;
-    EXPECT_LE(Diff(out.c, exact.out.c, R), kTableError * v) << "sample " << i;
-    EXPECT_LE(Diff(out.o, exact.out.o, R), kTableError * v) << "sample " << i;
+    EXPECT_LE(test::MaxDifference(out, exact.out, R), kTableError * v) << "sample " << i;
   }
   EXPECT_GE(answered, kSamples * 95 / 100);  // measured 99.5 %
 }
@@ -117,9 +113,9 @@ TEST(ImpactTableTest, OutcomesScaleWithSpeedAndMirror) {
   twice.v *= 2.5;
   twice.w *= 2.5;
   ASSERT_TRUE(t.Lookup(twice, R, e, &b));
-  EXPECT_LE(Diff(b, {a.v * 2.5, a.w * 2.5}, R), 1e-14);
+  EXPECT_LE(test::MaxDifference(b, {a.v * 2.5, a.w * 2.5}, R), 1e-14);
   ASSERT_TRUE(t.Lookup(Mirrored(in), R, e, &m));
-  EXPECT_LE(Diff(m, Mirrored(a), R), 1e-15);
+  EXPECT_LE(test::MaxDifference(m, Mirrored(a), R), 1e-15);
 }
 
 TEST(ImpactTableTest, TablesDeclineWhatTheyDoNotCover) {
@@ -187,7 +183,7 @@ TEST(ImpactTableTest, BuildWriteAndReadBack) {
       const bool ha = built.Lookup(in, R, &a), hb = read.Lookup(in, R, &b);
       ASSERT_EQ(ha, hb);
       if (ha) {
-        EXPECT_EQ(Diff(a.c, b.c, R) + Diff(a.o, b.o, R), 0.0);
+        EXPECT_EQ(test::MaxDifference(a, b, R), 0.0);
       }
     }
   }

@@ -1,5 +1,6 @@
-// Helpers shared by the impact tests (tests/physics/impact/): solver options, distances
-// between outcomes in velocity units, and names for gtest's messages. Test-only.
+// Helpers shared by the impact tests (tests/physics/impact/) and the impact report
+// tools (tools/impact_methods, tools/impact_tables): solver options, distances between
+// outcomes in velocity units, and names for gtest's messages. Not part of the library.
 #pragma once
 
 #include <algorithm>
