@@ -118,73 +118,83 @@ std::vector<std::uint8_t> ReadFile(const char* path) {
   return {std::istreambuf_iterator<char>(in), {}};
 }
 
-int Check(const std::string& kind, const char* path, int samples, unsigned seed) {
-  const std::vector<std::uint8_t> bytes = ReadFile(path);
-  const SimParams sim;
-  const double R = sim.ball.radius;
+// One random impact: the converged answer, the solver at the shot tolerance (timed)
+// and the table (timed). `solve(options)` returns a solver's result, `lookup(&out)`
+// the table's answer.
+template <class Solve, class Lookup>
+void Measure(double v, double radius, const Solve& solve, const Lookup& lookup, Errors* e) {
   ImpulseSolverOptions reference, shot = SimParams::ShotImpactOptions();
   reference.tolerance = 1e-12;
   reference.method = ImpulseMethod::kDormandPrince853;
+  const auto exact = solve(reference);
+  auto t0 = Clock::now();
+  const auto loose = solve(shot);
+  e->solve_s += Seconds(t0);
+  if (exact.status != ImpactStatus::kOk || loose.status != ImpactStatus::kOk) return;
+  e->shot.push_back(test::MaxDifference(loose.out, exact.out, radius) / v);
+  decltype(exact.out) out;
+  t0 = Clock::now();
+  const bool hit = lookup(&out);
+  e->lookup_s += Seconds(t0);
+  if (!hit) return;
+  ++e->answered;
+  e->table.push_back(test::MaxDifference(out, exact.out, radius) / v);
+}
+
+// Reads a table of type T from `path`; false (with a message) if it is unreadable or
+// was built for other parameters.
+template <class T, class Matches>
+bool Load(const char* path, const Matches& matches, T* t) {
+  const std::vector<std::uint8_t> bytes = ReadFile(path);
+  const std::string error = T::Deserialize(bytes.data(), bytes.size(), false, t);
+  if (error.empty() && matches(*t)) return true;
+  std::fprintf(stderr, "%s: %s\n", path, error.empty() ? "built for other parameters" : error.c_str());
+  return false;
+}
+
+int Check(const std::string& kind, const char* path, int samples, unsigned seed) {
+  const SimParams sim;
+  const double R = sim.ball.radius;
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> speed(0.2, 4.0), coin(0, 1);
   Errors e;
   e.samples = samples;
   if (kind == "cushion") {
-    CushionTable t;
-    const std::string error = CushionTable::Deserialize(bytes.data(), bytes.size(), false, &t);
     const CushionParams cushion = DefaultCushion();
-    if (!error.empty() || !t.Matches(sim.ball, cushion)) {
-      std::fprintf(stderr, "%s: %s\n", path, error.empty() ? "built for other parameters" : error.c_str());
-      return 1;
-    }
+    CushionTable t;
+    if (!Load(path, [&](const CushionTable& c) { return c.Matches(sim.ball, cushion); }, &t)) return 1;
     const auto& ax = t.grid().axes();
     std::uniform_real_distribution<double> angle(ax[0].lo, ax[0].hi), side(ax[1].lo, ax[1].hi);
     for (int i = 0; i < samples; ++i) {
       const double a = angle(rng), sd = side(rng), v = speed(rng);
       BallMotion m = CushionIncidentState(v, a, v / R, sd * v / R);
       if (coin(rng) < 0.5) m = {Vec3(-m.v.x(), m.v.y(), 0), Vec3(m.w.x(), -m.w.y(), -m.w.z())};
-      const CushionImpactResult exact = ResolveCushionImpact(m, sim.ball, cushion, reference);
-      auto t0 = Clock::now();
-      const CushionImpactResult loose = ResolveCushionImpact(m, sim.ball, cushion, shot);
-      e.solve_s += Seconds(t0);
-      if (exact.status != ImpactStatus::kOk || loose.status != ImpactStatus::kOk) continue;
-      e.shot.push_back(test::MaxDifference(loose.out, exact.out, R) / v);
-      BallMotion out;
-      t0 = Clock::now();
-      const bool hit = t.Lookup(m, R, CushionRestitution(cushion, m.v.y()), &out);
-      e.lookup_s += Seconds(t0);
-      if (!hit) continue;
-      ++e.answered;
-      e.table.push_back(test::MaxDifference(out, exact.out, R) / v);
+      auto solve = [&](const ImpulseSolverOptions& o) {
+        return ResolveCushionImpact(m, sim.ball, cushion, o);
+      };
+      auto lookup = [&](BallMotion* out) {
+        return t.Lookup(m, R, CushionRestitution(cushion, m.v.y()), out);
+      };
+      Measure(v, R, solve, lookup, &e);
     }
     Print(kind, e, t.grid());
     return 0;
   }
   BallBallTable t;
-  const std::string error = BallBallTable::Deserialize(bytes.data(), bytes.size(), false, &t);
-  if (!error.empty() || !t.Matches(sim.ball, sim.ball_ball, sim.cloth.mu_s)) {
-    std::fprintf(stderr, "%s: %s\n", path, error.empty() ? "built for other parameters" : error.c_str());
-    return 1;
-  }
+  auto matches = [&](const BallBallTable& b) {
+    return b.Matches(sim.ball, sim.ball_ball, sim.cloth.mu_s);
+  };
+  if (!Load(path, matches, &t)) return 1;
   const auto& ax = t.grid().axes();
   std::uniform_real_distribution<double> cut(ax[0].lo, ax[0].hi), side(ax[1].lo, ax[1].hi);
   for (int i = 0; i < samples; ++i) {
     const double c = cut(rng), sd = side(rng), v = speed(rng);
     const double sign = coin(rng) < 0.5 ? -1.0 : 1.0;
     const ImpactState in = PaperIncidentState(v, v / R, sd * v / R, sign * c);
-    const ImpactResult exact = ResolveImpact(in, sim.ball, sim.ball_ball, sim.cloth.mu_s, reference);
-    auto t0 = Clock::now();
-    const ImpactResult loose = ResolveImpact(in, sim.ball, sim.ball_ball, sim.cloth.mu_s, shot);
-    e.solve_s += Seconds(t0);
-    if (exact.status != ImpactStatus::kOk || loose.status != ImpactStatus::kOk) continue;
-    e.shot.push_back(test::MaxDifference(loose.out, exact.out, R) / v);
-    ImpactState out;
-    t0 = Clock::now();
-    const bool hit = t.Lookup(in, R, &out);
-    e.lookup_s += Seconds(t0);
-    if (!hit) continue;
-    ++e.answered;
-    e.table.push_back(test::MaxDifference(out, exact.out, R) / v);
+    auto solve = [&](const ImpulseSolverOptions& o) {
+      return ResolveImpact(in, sim.ball, sim.ball_ball, sim.cloth.mu_s, o);
+    };
+    Measure(v, R, solve, [&](ImpactState* out) { return t.Lookup(in, R, out); }, &e);
   }
   Print(kind, e, t.grid());
   return 0;
