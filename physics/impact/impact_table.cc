@@ -15,7 +15,9 @@ constexpr double kRollingSlip = 1e-9;
 constexpr double kKeyMatch = 1e-12;
 constexpr char kMagic[8] = {'S', 'N', 'K', 'G', 'R', 'I', 'D', '1'};
 constexpr std::uint32_t kFailed = 0xffffffffu;
-constexpr double kCushionKind = 1, kBallBallKind = 2;
+constexpr double kCushionKind = 1, kBallBallKind = 2;  // key[0] of each kind of table
+constexpr int kCushionOutputs = 5;    // v_x, v_y, R w after, over V
+constexpr int kBallBallOutputs = 12;  // v, R w of C and of O after, over V
 
 bool Near(double a, double b) { return std::abs(a - b) <= kKeyMatch * std::max(1.0, std::abs(b)); }
 
@@ -81,6 +83,17 @@ bool Get(const std::uint8_t* data, std::size_t size, std::size_t* at, T* v) {
   return true;
 }
 
+// Nodes of a grid, and the index of node (i0, i1, i2) (axis 0 fastest).
+std::size_t NodeCount(const std::array<TableAxis, 3>& axes) {
+  return static_cast<std::size_t>(axes[0].nodes) * static_cast<std::size_t>(axes[1].nodes) *
+         static_cast<std::size_t>(axes[2].nodes);
+}
+std::size_t NodeIndex(const std::array<TableAxis, 3>& axes, int i0, int i1, int i2) {
+  return (static_cast<std::size_t>(i2) * static_cast<std::size_t>(axes[1].nodes) +
+          static_cast<std::size_t>(i1)) * static_cast<std::size_t>(axes[0].nodes) +
+         static_cast<std::size_t>(i0);
+}
+
 // The reflection X -> -X of a ball's state: v_x, w_y and w_z change sign.
 BallMotion Mirror(const BallMotion& m) {
   return {Vec3(-m.v.x(), m.v.y(), m.v.z()), Vec3(m.w.x(), -m.w.y(), -m.w.z())};
@@ -89,6 +102,22 @@ BallMotion Mirror(const BallMotion& m) {
 bool Rolling(const BallMotion& m, double radius, double speed) {
   const double slip = std::abs(m.v.x() - radius * m.w.y()) + std::abs(m.v.y() + radius * m.w.x());
   return slip <= kRollingSlip * speed;  // false for NaN
+}
+
+}  // namespace
+
+namespace {
+
+// GridTable::Deserialize, and then a check that the table is of the expected kind;
+// `out` is untouched on error.
+std::string DeserializeKind(const std::uint8_t* data, std::size_t size, bool borrow, double kind,
+                            int outputs, const char* name, GridTable* out) {
+  GridTable g;
+  std::string error = GridTable::Deserialize(data, size, borrow, &g);
+  if (!error.empty()) return error;
+  if (g.key()[0] != kind || g.outputs() != outputs) return std::string("not a ") + name + " table";
+  *out = std::move(g);
+  return {};
 }
 
 }  // namespace
@@ -108,9 +137,7 @@ std::uint32_t TransitionSignature(std::initializer_list<ContactTransitions> cont
 // ---- GridTable --------------------------------------------------------------------
 
 std::size_t GridTable::Node(const std::array<int, kDims>& i) const {
-  return (static_cast<std::size_t>(i[2]) * static_cast<std::size_t>(axes_[1].nodes) +
-          static_cast<std::size_t>(i[1])) * static_cast<std::size_t>(axes_[0].nodes) +
-         static_cast<std::size_t>(i[0]);
+  return NodeIndex(axes_, i[0], i[1], i[2]);
 }
 std::size_t GridTable::Cell(const std::array<int, kDims>& i) const {
   return (static_cast<std::size_t>(i[2]) * static_cast<std::size_t>(Cells(axes_[1].nodes)) +
@@ -131,9 +158,7 @@ GridTable GridTable::Build(const Key& key, const std::array<TableAxis, kDims>& a
   t.axes_ = axes;
   t.outputs_ = std::clamp(outputs, 1, kMaxOutputs);
   t.cell_tolerance_ = cell_tolerance;
-  const std::size_t nodes = static_cast<std::size_t>(axes[0].nodes) *
-                            static_cast<std::size_t>(axes[1].nodes) *
-                            static_cast<std::size_t>(axes[2].nodes);
+  const std::size_t nodes = NodeCount(axes);
   const std::size_t k_out = static_cast<std::size_t>(t.outputs_);
   t.owned_.assign(nodes * k_out, 0.0);
   t.values_ = t.owned_.data();
@@ -195,28 +220,26 @@ GridTable GridTable::Build(const Key& key, const std::array<TableAxis, kDims>& a
 
 namespace {
 
-// The tensor sum over the stencils, for a fixed output count (the compiler unrolls
-// the inner loop; lookups are on the simulator's hot path).
+// The tensor sum over the stencils of `outputs` values a node. K > 0 fixes the count
+// at compile time (the compiler unrolls the inner loop: lookups are on the
+// simulator's hot path); K = 0 takes it at run time.
 template <int K>
 void SumStencils(const double* values, const std::array<TableAxis, 3>& axes, const Stencil& s0,
-                 const Stencil& s1, const Stencil& s2, double* outputs) {
-  std::array<double, K> acc{};
-  const std::size_t n0 = static_cast<std::size_t>(axes[0].nodes);
-  const std::size_t n1 = static_cast<std::size_t>(axes[1].nodes);
+                 const Stencil& s1, const Stencil& s2, int outputs, double* out) {
+  const int k_out = K > 0 ? K : outputs;
+  std::array<double, GridTable::kMaxOutputs> acc{};
   for (int d2 = 0; d2 < s2.count; ++d2) {
     for (int d1 = 0; d1 < s1.count; ++d1) {
       const double w12 = s2.w[static_cast<std::size_t>(d2)] * s1.w[static_cast<std::size_t>(d1)];
-      const std::size_t node = (static_cast<std::size_t>(s2.first + d2) * n1 +
-                                static_cast<std::size_t>(s1.first + d1)) * n0 +
-                               static_cast<std::size_t>(s0.first);
-      const double* row = values + node * K;
+      const double* row = values + NodeIndex(axes, s0.first, s1.first + d1, s2.first + d2) *
+                                       static_cast<std::size_t>(k_out);
       for (int d0 = 0; d0 < s0.count; ++d0) {
         const double w = w12 * s0.w[static_cast<std::size_t>(d0)];
-        for (int k = 0; k < K; ++k) acc[static_cast<std::size_t>(k)] += w * row[d0 * K + k];
+        for (int k = 0; k < k_out; ++k) acc[static_cast<std::size_t>(k)] += w * row[d0 * k_out + k];
       }
     }
   }
-  std::copy(acc.begin(), acc.end(), outputs);
+  std::copy(acc.begin(), acc.begin() + k_out, out);
 }
 
 }  // namespace
@@ -225,26 +248,15 @@ void GridTable::Interpolate(const std::array<double, kDims>& g, double* outputs)
   const Stencil s0 = AxisStencil(g[0], axes_[0].nodes);
   const Stencil s1 = AxisStencil(g[1], axes_[1].nodes);
   const Stencil s2 = AxisStencil(g[2], axes_[2].nodes);
-  switch (outputs_) {
-    case 5: SumStencils<5>(values_, axes_, s0, s1, s2, outputs); return;
-    case 12: SumStencils<12>(values_, axes_, s0, s1, s2, outputs); return;
-    default: break;
+  switch (outputs_) {  // the two tables' counts, unrolled
+    case kCushionOutputs:
+      SumStencils<kCushionOutputs>(values_, axes_, s0, s1, s2, outputs_, outputs);
+      return;
+    case kBallBallOutputs:
+      SumStencils<kBallBallOutputs>(values_, axes_, s0, s1, s2, outputs_, outputs);
+      return;
+    default: SumStencils<0>(values_, axes_, s0, s1, s2, outputs_, outputs);
   }
-  const int k_out = outputs_;
-  std::array<double, kMaxOutputs> acc{};
-  for (int d2 = 0; d2 < s2.count; ++d2) {
-    for (int d1 = 0; d1 < s1.count; ++d1) {
-      const double w12 = s2.w[static_cast<std::size_t>(d2)] * s1.w[static_cast<std::size_t>(d1)];
-      const double* row = values_ + Node({s0.first, s1.first + d1, s2.first + d2}) *
-                                        static_cast<std::size_t>(k_out);
-      for (int d0 = 0; d0 < s0.count; ++d0) {
-        const double w = w12 * s0.w[static_cast<std::size_t>(d0)];
-        const double* v = row + d0 * k_out;
-        for (int k = 0; k < k_out; ++k) acc[static_cast<std::size_t>(k)] += w * v[k];
-      }
-    }
-  }
-  std::copy(acc.begin(), acc.begin() + k_out, outputs);
 }
 
 bool GridTable::Lookup(const std::array<double, kDims>& x, double* outputs) const {
@@ -272,10 +284,7 @@ std::vector<std::uint8_t> GridTable::Serialize() const {
   }
   Put(&out, static_cast<std::int64_t>(outputs_));
   Put(&out, cell_tolerance_);
-  const std::size_t nodes = static_cast<std::size_t>(axes_[0].nodes) *
-                            static_cast<std::size_t>(axes_[1].nodes) *
-                            static_cast<std::size_t>(axes_[2].nodes);
-  const std::uint64_t nv = nodes * static_cast<std::size_t>(outputs_);
+  const std::uint64_t nv = NodeCount(axes_) * static_cast<std::size_t>(outputs_);
   Put(&out, nv);
   Put(&out, static_cast<std::uint64_t>(marked_.size()));
   PutBytes(&out, values_, nv * sizeof(double));
@@ -311,9 +320,7 @@ std::string GridTable::Deserialize(const std::uint8_t* data, std::size_t size, b
   }
   if (outputs < 1 || outputs > kMaxOutputs) return "impact table has an invalid output count";
   t.outputs_ = static_cast<int>(outputs);
-  const std::uint64_t nodes = static_cast<std::uint64_t>(t.axes_[0].nodes) *
-                              static_cast<std::uint64_t>(t.axes_[1].nodes) *
-                              static_cast<std::uint64_t>(t.axes_[2].nodes);
+  const std::uint64_t nodes = NodeCount(t.axes_);  // each axis at most 1e5 nodes: no overflow
   if (nv != nodes * static_cast<std::uint64_t>(outputs) ||
       nm != static_cast<std::uint64_t>(t.cells())) {
     return "impact table sizes do not match its grid";
@@ -372,25 +379,20 @@ CushionTable CushionTable::Build(const BallParams& ball, const CushionParams& cu
     const CushionImpactResult r =
         ResolveCushionImpact(CushionIncidentState(1.0, x[0], 1.0 / R, x[1] / R), ball, p, o);
     if (r.status != ImpactStatus::kOk) return false;
-    const double out[5] = {r.out.v.x(), r.out.v.y(), R * r.out.w.x(), R * r.out.w.y(),
+    const double out[kCushionOutputs] = {r.out.v.x(), r.out.v.y(), R * r.out.w.x(), R * r.out.w.y(),
                            R * r.out.w.z()};
-    std::copy(out, out + 5, g);
+    std::copy(out, out + kCushionOutputs, g);
     *sig = TransitionSignature({r.cushion, r.cloth});
     return true;
   };
   CushionTable t;
-  t.table_ = GridTable::Build(key, axes, 5, grid.cell_tolerance, sample);
+  t.table_ = GridTable::Build(key, axes, kCushionOutputs, grid.cell_tolerance, sample);
   return t;
 }
 
 std::string CushionTable::Deserialize(const std::uint8_t* data, std::size_t size, bool borrow,
                                       CushionTable* out) {
-  GridTable g;
-  std::string error = GridTable::Deserialize(data, size, borrow, &g);
-  if (!error.empty()) return error;
-  if (g.key()[0] != kCushionKind || g.outputs() != 5) return "not a cushion table";
-  out->table_ = std::move(g);
-  return {};
+  return DeserializeKind(data, size, borrow, kCushionKind, kCushionOutputs, "cushion", &out->table_);
 }
 
 bool CushionTable::Matches(const BallParams& ball, const CushionParams& cushion) const {
@@ -409,7 +411,7 @@ bool CushionTable::Lookup(const BallMotion& in, double radius, double e, BallMot
   if (!Rolling(in, R, V)) return false;
   const bool mirror = vx < 0;
   const std::array<double, 3> x{std::atan2(vy, std::abs(vx)), (mirror ? -R : R) * in.w.z() / V, e};
-  double g[5];
+  double g[kCushionOutputs];
   if (!table_.Lookup(x, g)) return false;
   const BallMotion m{Vec3(V * g[0], V * g[1], 0.0), Vec3(g[2], g[3], g[4]) * (V / R)};
   *out = mirror ? Mirror(m) : m;
@@ -443,28 +445,25 @@ BallBallTable BallBallTable::Build(const BallParams& ball, const BallBallParams&
         ResolveImpact(PaperIncidentState(1.0, 1.0 / R, x[1] / R, x[0]), ball, constant, mu_s, o);
     if (r.status != ImpactStatus::kOk) return false;
     const ImpactState& s = r.out;
-    const double out[12] = {s.c.v.x(),     s.c.v.y(),     s.c.v.z(),     R * s.c.w.x(),
+    const double out[kBallBallOutputs] = {s.c.v.x(),     s.c.v.y(),     s.c.v.z(),     R * s.c.w.x(),
                             R * s.c.w.y(), R * s.c.w.z(), s.o.v.x(),     s.o.v.y(),
                             s.o.v.z(),     R * s.o.w.x(), R * s.o.w.y(), R * s.o.w.z()};
-    std::copy(out, out + 12, g);
+    std::copy(out, out + kBallBallOutputs, g);
     *sig = TransitionSignature({r.a, r.d, r.b}) ^
            (static_cast<std::uint32_t>(std::min<int>(r.c_liftoffs, 3)) << 28) ^
            (static_cast<std::uint32_t>(std::min<int>(r.o_liftoffs, 3)) << 30);
     return true;
   };
   BallBallTable t;
-  t.table_ = GridTable::Build(BallBallKey(ball, contact, mu_s), axes, 12, grid.cell_tolerance, sample);
+  t.table_ = GridTable::Build(BallBallKey(ball, contact, mu_s), axes, kBallBallOutputs,
+                              grid.cell_tolerance, sample);
   return t;
 }
 
 std::string BallBallTable::Deserialize(const std::uint8_t* data, std::size_t size, bool borrow,
                                        BallBallTable* out) {
-  GridTable g;
-  std::string error = GridTable::Deserialize(data, size, borrow, &g);
-  if (!error.empty()) return error;
-  if (g.key()[0] != kBallBallKind || g.outputs() != 12) return "not a ball-ball table";
-  out->table_ = std::move(g);
-  return {};
+  return DeserializeKind(data, size, borrow, kBallBallKind, kBallBallOutputs, "ball-ball",
+                         &out->table_);
 }
 
 bool BallBallTable::Matches(const BallParams& ball, const BallBallParams& contact,
@@ -486,7 +485,7 @@ bool BallBallTable::Lookup(const ImpactState& in, double radius, ImpactState* ou
   if (!Rolling(c, R, V)) return false;
   const bool mirror = vx < 0;
   const std::array<double, 3> x{std::atan2(std::abs(vx), vy), (mirror ? -R : R) * c.w.z() / V, 0.0};
-  double g[12];
+  double g[kBallBallOutputs];
   if (!table_.Lookup(x, g)) return false;
   const double w = V / R;
   ImpactState s;

@@ -3,7 +3,6 @@
 // library has no such default table, and those impacts go to the solvers.
 #include <cstddef>
 #include <cstdint>
-#include <string>
 
 #include "physics/impact/impact_table.h"
 
@@ -28,17 +27,23 @@ SNOOKER_INCBIN(snooker_ball_ball_table, SNOOKER_BALL_BALL_TABLE_FILE)
 #endif
 
 namespace snooker::physics {
+namespace {
+
+// The table of type T held by the bytes [begin, end), read in place once (one
+// instance per table type); nullptr if they are unreadable.
+template <class T>
+const T* Embedded(const std::uint8_t* begin, const std::uint8_t* end) {
+  static T table;
+  static const bool ok =
+      T::Deserialize(begin, static_cast<std::size_t>(end - begin), true, &table).empty();
+  return ok ? &table : nullptr;
+}
+
+}  // namespace
 
 const CushionTable* DefaultCushionTable() {
 #ifdef SNOOKER_CUSHION_TABLE_FILE
-  static const CushionTable* const table = [] {
-    static CushionTable t;
-    const std::string error = CushionTable::Deserialize(
-        snooker_cushion_table_begin,
-        static_cast<std::size_t>(snooker_cushion_table_end - snooker_cushion_table_begin), true, &t);
-    return error.empty() ? &t : nullptr;
-  }();
-  return table;
+  return Embedded<CushionTable>(snooker_cushion_table_begin, snooker_cushion_table_end);
 #else
   return nullptr;
 #endif
@@ -46,15 +51,7 @@ const CushionTable* DefaultCushionTable() {
 
 const BallBallTable* DefaultBallBallTable() {
 #ifdef SNOOKER_BALL_BALL_TABLE_FILE
-  static const BallBallTable* const table = [] {
-    static BallBallTable t;
-    const std::string error = BallBallTable::Deserialize(
-        snooker_ball_ball_table_begin,
-        static_cast<std::size_t>(snooker_ball_ball_table_end - snooker_ball_ball_table_begin), true,
-        &t);
-    return error.empty() ? &t : nullptr;
-  }();
-  return table;
+  return Embedded<BallBallTable>(snooker_ball_ball_table_begin, snooker_ball_ball_table_end);
 #else
   return nullptr;
 #endif
