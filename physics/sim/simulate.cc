@@ -38,6 +38,13 @@ double PathDistanceBound(const PositionPoly& p, double w, const Vec2& q) {
   return PathChord(p, w).Bound(q);
 }
 
+// Adds one impact's work to a run's totals (the counters Simulator::impact_work reports).
+void AddImpactWork(const ImpulseWork& w, ImpulseWork* total) {
+  total->steps += w.steps;
+  total->rhs_evals += w.rhs_evals;
+  total->table_lookups += w.table_lookups;
+}
+
 // The state with the normal velocity component (along the unit horizontal n) removed.
 BallState WithoutNormalVelocity(const BallState& s, const Vec2& n) {
   BallState out = s;
@@ -657,9 +664,7 @@ SimStatus Simulator::ResolvePair(int bi, int bj, double te) {
       const BallBallResolution r = ResolveBallBallOnTable(sa, sb, params_.ball, params_.ball_ball,
                                                           params_.cloth, params_.ball_ball_solver,
                                                           ball_ball_table_);
-      impact_work_.steps += r.work.steps;
-      impact_work_.rhs_evals += r.work.rhs_evals;
-      impact_work_.table_lookups += r.work.table_lookups;
+      AddImpactWork(r.work, &impact_work_);
       if (r.status == ImpactStatus::kOk) {
         a = AfterImpact(r.a);
         b = AfterImpact(r.b);
@@ -741,9 +746,7 @@ SimStatus Simulator::ResolveOwn(int bi, double te) {
         case ContactStart::kApproaching: {
           const CushionResolution r = ResolveBallCushionOnTable(
               s, normal, params_.ball, params_.cushion, params_.cushion_solver, cushion_table_);
-          impact_work_.steps += r.work.steps;
-          impact_work_.rhs_evals += r.work.rhs_evals;
-          impact_work_.table_lookups += r.work.table_lookups;
+          AddImpactWork(r.work, &impact_work_);
           if (r.status == ImpactStatus::kOk) {
             after = HoldIfReturning(AfterImpact(r.ball), normal);
           } else if (r.status == ImpactStatus::kNotApproaching) {

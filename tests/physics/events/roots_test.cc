@@ -232,6 +232,20 @@ TEST(RootsTest, FirstDownCrossingCases) {
 // it must agree with the general solver (FindRealRoots, derivative recursion and
 // Newton refinement) on random quadratics over a wide range of scales, tangencies
 // and nearly linear ones included.
+// The first down-crossing in (lo, hi] read off the general solver's full root list
+// (p's sign midway between consecutive roots): what FindFirstDownCrossing's fast
+// paths must reproduce.
+double FirstDownCrossingOfAllRoots(const Poly4& p, double lo, double hi) {
+  const RealRoots r = FindRealRoots(p, lo, hi);
+  double prev = lo;
+  for (int i = 0; i < r.count; ++i) {
+    if (r.t[i] <= lo) continue;
+    if (EvaluatePoly(p, prev + 0.5 * (r.t[i] - prev)) > 0.0) return r.t[i];
+    prev = r.t[i];
+  }
+  return kInf;
+}
+
 TEST(RootsTest, QuadraticFastPathAgreesWithTheGeneralSolver) {
   std::mt19937_64 rng(1234);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -242,16 +256,7 @@ TEST(RootsTest, QuadraticFastPathAgreesWithTheGeneralSolver) {
     if (trial % 4 == 1) p[0] = p[1] * p[1] / (4 * p[2]);  // a double root
     if (trial % 4 == 2) p[2] *= 1e-12;                    // nearly linear
     const double lo = 0.0, hi = 2.0 / scale;
-    const RealRoots r = FindRealRoots(p, lo, hi);
-    double expected = kInf, prev = lo;
-    for (int i = 0; i < r.count; ++i) {
-      if (r.t[i] <= lo) continue;
-      if (EvaluatePoly(p, prev + 0.5 * (r.t[i] - prev)) > 0.0) {
-        expected = r.t[i];
-        break;
-      }
-      prev = r.t[i];
-    }
+    const double expected = FirstDownCrossingOfAllRoots(p, lo, hi);
     const double found = FindFirstDownCrossing(p, lo, hi);
     if (expected == kInf) {
       // Only a tangency within rounding may be found where the general solver saw none.
@@ -323,16 +328,7 @@ TEST(RootsTest, PositiveQuarticCullChangesNoAnswer) {
     }
     prod[0] += shift;
     const double lo = 0.25 * (u(rng) + 1), hi = lo + 2.0 * (u(rng) + 1.05);
-    const RealRoots roots = FindRealRoots(prod, lo, hi);
-    double expected = kInf, prev = lo;
-    for (int i = 0; i < roots.count; ++i) {
-      if (roots.t[i] <= lo) continue;
-      if (EvaluatePoly(prod, prev + 0.5 * (roots.t[i] - prev)) > 0.0) {
-        expected = roots.t[i];
-        break;
-      }
-      prev = roots.t[i];
-    }
+    const double expected = FirstDownCrossingOfAllRoots(prod, lo, hi);
     const double found = FindFirstDownCrossing(prod, lo, hi);
     if (expected == kInf) {
       ++culled_kind;
