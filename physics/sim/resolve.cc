@@ -13,6 +13,27 @@ Eigen::Matrix3d FrameAlong(const Vec2& y) {
   return q;
 }
 
+namespace {
+
+// A state seen from the impact frame turned by pi about Z: X and Y change sign, and
+// the two balls swap places (C at -Y becomes O). Its own inverse.
+ImpactState Turned(const ImpactState& s) {
+  auto turn = [](const Vec3& v) { return Vec3(-v.x(), -v.y(), v.z()); };
+  return {{turn(s.o.v), turn(s.o.w)}, {turn(s.c.v), turn(s.c.w)}};
+}
+
+// The table's answer for an impact of a rolling ball on one at rest, in the impact
+// frame. The table's C is the moving ball: a as given, or b seen from the turned frame.
+bool LookUp(const BallBallTable* table, const ImpactState& in, double radius, ImpactState* out) {
+  if (table == nullptr) return false;
+  if (table->Lookup(in, radius, out)) return true;
+  if (!table->Lookup(Turned(in), radius, out)) return false;
+  *out = Turned(*out);
+  return true;
+}
+
+}  // namespace
+
 BallBallResolution ResolveBallBallOnTable(const BallState& a, const BallState& b,
                                           const BallParams& ball, const BallBallParams& contact,
                                           const ClothParams& cloth,
@@ -31,37 +52,20 @@ BallBallResolution ResolveBallBallOnTable(const BallState& a, const BallState& b
   ImpactState in;
   in.c = {q * a.v, q * a.w};
   in.o = {q * b.v, q * b.w};
-  if (table != nullptr) {
-    // The table's C is the moving ball, at -Y: a as given, or b in the frame turned
-    // by pi about Z (X and Y change sign, so a's and b's states do).
-    ImpactState looked_up;
-    const Eigen::Matrix3d flip = Eigen::Vector3d(-1, -1, 1).asDiagonal();
-    const bool direct = table->Lookup(in, ball.radius, &looked_up);
-    const ImpactState turned{{flip * in.o.v, flip * in.o.w}, {flip * in.c.v, flip * in.c.w}};
-    const bool swapped = !direct && table->Lookup(turned, ball.radius, &looked_up);
-    if (direct || swapped) {
-      if (swapped) {
-        looked_up = {{flip * looked_up.o.v, flip * looked_up.o.w},
-                     {flip * looked_up.c.v, flip * looked_up.c.w}};
-      }
-      out.work.table_lookups = 1;
-      out.a.v = q.transpose() * looked_up.c.v;
-      out.a.w = q.transpose() * looked_up.c.w;
-      out.b.v = q.transpose() * looked_up.o.v;
-      out.b.w = q.transpose() * looked_up.o.w;
-      out.a = Settle(out.a, ball);
-      out.b = Settle(out.b, ball);
-      return out;
-    }
+  ImpactState after;  // in the impact frame: from the table where it covers it
+  if (LookUp(table, in, ball.radius, &after)) {
+    out.work.table_lookups = 1;
+  } else {
+    const ImpactResult r = ResolveImpact(in, ball, contact, cloth.mu_s, options);
+    out.status = r.status;
+    out.work = r.work;
+    if (r.status != ImpactStatus::kOk) return out;
+    after = r.out;
   }
-  const ImpactResult r = ResolveImpact(in, ball, contact, cloth.mu_s, options);
-  out.status = r.status;
-  out.work = r.work;
-  if (r.status != ImpactStatus::kOk) return out;
-  out.a.v = q.transpose() * r.out.c.v;
-  out.a.w = q.transpose() * r.out.c.w;
-  out.b.v = q.transpose() * r.out.o.v;
-  out.b.w = q.transpose() * r.out.o.w;
+  out.a.v = q.transpose() * after.c.v;
+  out.a.w = q.transpose() * after.c.w;
+  out.b.v = q.transpose() * after.o.v;
+  out.b.w = q.transpose() * after.o.w;
   out.a = Settle(out.a, ball);  // drops the jump (v.z) and reclassifies
   out.b = Settle(out.b, ball);
   return out;
@@ -75,21 +79,19 @@ CushionResolution ResolveBallCushionOnTable(const BallState& s, const Vec2& norm
   out.ball = s;
   const Eigen::Matrix3d q = FrameAlong(-normal);  // Y into the cushion
   const BallMotion in{q * s.v, q * s.w};
-  BallMotion looked_up;
+  BallMotion after;  // in the cushion frame: from the table where it covers it
   if (table != nullptr &&
-      table->Lookup(in, ball.radius, CushionRestitution(cushion, in.v.y()), &looked_up)) {
+      table->Lookup(in, ball.radius, CushionRestitution(cushion, in.v.y()), &after)) {
     out.work.table_lookups = 1;
-    out.ball.v = q.transpose() * looked_up.v;
-    out.ball.w = q.transpose() * looked_up.w;
-    out.ball = Settle(out.ball, ball);
-    return out;
+  } else {
+    const CushionImpactResult r = ResolveCushionImpact(in, ball, cushion, options);
+    out.status = r.status;
+    out.work = r.work;
+    if (r.status != ImpactStatus::kOk) return out;
+    after = r.out;
   }
-  const CushionImpactResult r = ResolveCushionImpact(in, ball, cushion, options);
-  out.status = r.status;
-  out.work = r.work;
-  if (r.status != ImpactStatus::kOk) return out;
-  out.ball.v = q.transpose() * r.out.v;
-  out.ball.w = q.transpose() * r.out.w;
+  out.ball.v = q.transpose() * after.v;
+  out.ball.w = q.transpose() * after.w;
   out.ball = Settle(out.ball, ball);
   return out;
 }
