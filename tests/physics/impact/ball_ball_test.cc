@@ -448,10 +448,9 @@ TEST(SearchFidelityTest, MeetsItsDocumentedAccuracyForLessWork) {
 TEST(MethodTest, BothPairsConvergeToTheSameAnswer) {
   const BallParams ball;
   std::mt19937_64 rng(2025);
-  ImpulseSolverOptions dp54 = Adaptive(1e-9), dop853 = Adaptive(1e-9);
-  dop853.method = ImpulseMethod::kDormandPrince853;
-  ImpulseSolverOptions ref54 = Adaptive(1e-13), ref853 = Adaptive(1e-13);
-  ref853.method = ImpulseMethod::kDormandPrince853;
+  constexpr ImpulseMethod kDop853 = ImpulseMethod::kDormandPrince853;
+  const ImpulseSolverOptions dp54 = Adaptive(1e-9), dop853 = Adaptive(1e-9, kDop853);
+  const ImpulseSolverOptions ref54 = Adaptive(1e-13), ref853 = Adaptive(1e-13, kDop853);
   double worst54 = 0, worst853 = 0, refs = 0;
   for (int i = 0; i < 200; ++i) {
     const auto [in, v0] = NextRandomIncident(rng, 89.9, ball.radius);

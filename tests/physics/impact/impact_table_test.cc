@@ -29,10 +29,7 @@ CushionParams TableCushion() {
 }
 
 ImpulseSolverOptions Converged() {
-  ImpulseSolverOptions o;
-  o.tolerance = 1e-12;
-  o.method = ImpulseMethod::kDormandPrince853;
-  return o;
+  return test::Adaptive(1e-12, ImpulseMethod::kDormandPrince853);
 }
 
 BallMotion Mirrored(const BallMotion& m) {

@@ -35,11 +35,14 @@ inline ImpulseSolverOptions FixedStep(int n) {
   return o;
 }
 
-/// The hybrid integrator at `tolerance` (default: the library's default).
-inline ImpulseSolverOptions Adaptive(double tolerance = ImpulseSolverOptions{}.tolerance) {
+/// The hybrid integrator at `tolerance` (default: the library's default) with the
+/// Runge-Kutta pair `method` (default: the library's default).
+inline ImpulseSolverOptions Adaptive(double tolerance = ImpulseSolverOptions{}.tolerance,
+                                     ImpulseMethod method = ImpulseSolverOptions{}.method) {
   ImpulseSolverOptions o;
   o.integrator = ImpulseIntegrator::kAdaptive;
   o.tolerance = tolerance;
+  o.method = method;
   return o;
 }
 
