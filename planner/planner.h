@@ -1,5 +1,5 @@
 // The shot planner: given a table state from vision, the ranked shots that pot a
-// ball on and leave the cue ball well (issue 8).
+// ball on and leave the cue ball well.
 //
 // One request runs, within its time budget:
 //  1. candidates: every legal object ball with every pocket, pruned by geometry
@@ -9,7 +9,8 @@
 //     of the work follows their estimate;
 //  3. verification: each candidate's best shot is simulated again at full
 //     fidelity, to the end, and dropped if it fails there: no shot leaves the
-//     planner that its own full simulation says fails;
+//     planner that its own full simulation says fails, and a shot's label (object
+//     ball and pocket) is what that simulation did;
 //  4. robustness: seeded Monte Carlo of the best few under execution and vision
 //     noise (robustness.h); the final ranking is by the Monte Carlo mean of the
 //     objective (success x (points + position)), and potProbability is the
@@ -43,6 +44,7 @@
 #include "physics/sim/fidelity.h"
 #include "physics/sim/simulate.h"
 #include "planner/candidates.h"
+#include "planner/limits.h"
 #include "planner/pocket_model.h"
 #include "planner/position.h"
 #include "planner/rules.h"
@@ -69,7 +71,7 @@ struct PlanRequest {
   /// balls use noise.position.
   std::vector<double> position_sigma;
   /// Time budget. s.
-  double time_budget = 0.08;
+  double time_budget = limits::kDefaultTimeBudget;
   /// How many shots to return (best first).
   int max_shots = 3;
   std::uint64_t seed = 1;
@@ -102,13 +104,18 @@ struct PlannedShot {
   physics::Shot shot;
   /// Cut angle (geometry.h's sign), rad.
   double cut = 0;
-  /// Index of the object ball in the request's table, and the pocket.
+  /// Index of the object ball in the request's table (the first ball the cue ball
+  /// hits), and the pocket it drops into: both from the shot's verification run, so
+  /// the label is what the shot did, whatever pocket the search aimed at.
   int object_ball = -1;
   physics::PocketId pocket = physics::PocketId::kBaulkLeft;
-  /// Probability that the object ball drops without a foul under execution and
-  /// vision noise: the Monte Carlo success rate (the fast estimate when no Monte
-  /// Carlo ran).
+  /// Probability, under execution and vision noise, that the stroke is legal (no
+  /// foul) and pots the object ball, in any pocket: the Monte Carlo success rate
+  /// (the fast estimate for the aimed-at pocket when no Monte Carlo ran).
   double pot_probability = 0;
+  /// The same for the named pocket only (equal to pot_probability when no Monte
+  /// Carlo ran).
+  double pocket_probability = 0;
   /// Value of the position left (position.h: weighted next pot probabilities).
   double position_value = 0;
   /// The ball the position sets up (index in the request's table; -1 if none).
@@ -128,8 +135,9 @@ struct PlannedShot {
 enum class PlanStatus : std::uint8_t {
   kOk,              ///< at least one shot
   kNoPot,           ///< no candidate survived pruning, or none was found to pot
-  kInvalidRequest,  ///< reason names the field
-  kDeadline,        ///< time ran out before any shot was verified
+  kInvalidRequest,  ///< reason names the field (validate.h)
+  kBudgetSpent,     ///< the time budget ran out before any shot was verified
+  kDeadline,        ///< the caller's deadline passed before any shot was verified
   kCancelled,       ///< the cancel flag stopped it (shots found so far are kept)
 };
 const char* ToString(PlanStatus s);
@@ -197,6 +205,15 @@ struct PlannerConfig {
   /// Candidates searched at most, and the smallest evaluation count worth a search.
   int max_candidates = 12;
   int min_evaluations = 8;
+  /// A candidate whose prior (estimated points) is under this share of the best
+  /// prior is not searched: a tenth of the best is not worth the time it takes.
+  double min_prior_share = 0.1;
+  /// The search evaluations are shared by weight: the weight halves after every
+  /// search_weight_band candidates in order of prior, down to min_search_weight.
+  int search_weight_band = 4;
+  double min_search_weight = 0.25;
+  /// The weight of the candidate of this rank (0: the best prior).
+  double SearchWeight(int rank) const;
 };
 
 class Planner {
@@ -209,16 +226,12 @@ class Planner {
   /// A planner with the default configuration, built on first use.
   static const Planner& Default();
 
-  /// Plans a shot. Thread-safe (const); any number of plans may run at once.
+  /// Plans a shot. Thread-safe (const); any number of plans may run at once. A
+  /// request that ValidatePlanRequest (validate.h) refuses is kInvalidRequest.
   PlanAnswer Plan(const PlanRequest& request) const;
-
-  /// Empty when the request is valid; otherwise a message naming each bad field
-  /// and value (the names of PlanRequest's members).
-  std::string Validate(const PlanRequest& request) const;
 
   const Config& config() const { return config_; }
   const PocketModel& pockets() const { return *pockets_; }
-  const ThrowModel& throws() const { return *throws_; }
   /// The geometric context of a request (noise, sigmas, models).
   PotContext ContextFor(const PlanRequest& request) const;
 

@@ -57,6 +57,7 @@ physics::Shot SampleExecution(const physics::Shot& shot, const NoiseModel& noise
 void MonteCarloTally::Add(const MonteCarloTally& o) {
   samples += o.samples;
   successes += o.successes;
+  pocket_successes += o.pocket_successes;
   score_sum += o.score_sum;
   position_sum += o.position_sum;
   interrupted = interrupted || o.interrupted;
@@ -70,7 +71,6 @@ MonteCarloTally RunSamples(const TableState& table, BallOn on, int object, physi
   Rng rng(seed);
   const ShotSetup setup{&table, table.cue_index(), object, pocket, on};
   const physics::Interrupt interrupt = stop.AsInterrupt();
-  const int value = Value(table.balls[static_cast<size_t>(object)].kind);
   PotContext after_ctx = ctx;
   after_ctx.position_sigma.clear();
   std::vector<Vec2> truth, finals;
@@ -89,14 +89,12 @@ MonteCarloTally RunSamples(const TableState& table, BallOn on, int object, physi
     ++tally.samples;
     if (!out.success) continue;
     ++tally.successes;
+    if (out.object_pocket == static_cast<int>(pocket)) ++tally.pocket_successes;
     finals.clear();
     for (const physics::BallState& b : sim.final_balls()) finals.push_back(b.r);
-    const TableState after = ApplyShot(table, on, finals, out.potted, false, *ctx.table);
-    const auto next_on = NextBallOn(on, table.balls[static_cast<size_t>(object)].kind, after);
-    PositionValue pos;
-    if (next_on) pos = EvaluatePosition(after, *next_on, after_ctx, settings.position);
-    tally.score_sum += ShotScore(1.0, value, pos, settings.position_play);
-    tally.position_sum += pos.value;
+    const Leave leave = ScoreLeave(table, on, object, finals, out.potted, 1.0, after_ctx, settings);
+    tally.score_sum += leave.score;
+    tally.position_sum += leave.position.value;
   }
   return tally;
 }

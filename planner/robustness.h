@@ -5,7 +5,8 @@
 // error per axis: NoiseModel::position or the ball's own sigma; balls pushed apart
 // if the draw overlaps them, and kept on the bed) and the shot as the robot plays
 // it (speed x (1 + e_v), heading + e_h, topspin + e_t, sidespin + e_s), then
-// simulates it at full fidelity. Success = the object ball drops and no foul. A
+// simulates it at full fidelity. Success = the object ball drops, in any pocket,
+// and no foul; the tally also counts the successes in the named pocket. A
 // success also scores the position it really left (position.h), so the ranking
 // prefers shots whose position play survives the noise.
 //
@@ -37,6 +38,8 @@ physics::Shot SampleExecution(const physics::Shot& shot, const NoiseModel& noise
 struct MonteCarloTally {
   int samples = 0;
   int successes = 0;
+  /// Successes with the object ball in the named pocket.
+  int pocket_successes = 0;
   /// Sum over samples of the objective the sample achieved (0 on failure).
   double score_sum = 0;
   /// Sum over successful samples of the position value they left.
@@ -45,11 +48,12 @@ struct MonteCarloTally {
 
   void Add(const MonteCarloTally& o);
   double success_rate() const { return samples > 0 ? static_cast<double>(successes) / samples : 0; }
+  double pocket_rate() const { return samples > 0 ? static_cast<double>(pocket_successes) / samples : 0; }
   double mean_score() const { return samples > 0 ? score_sum / samples : 0; }
 };
 
-/// Runs samples [first, first + count) of block stream `seed` for `shot` aimed at
-/// ball `object` into `pocket`. `sim` should run at full fidelity.
+/// Runs samples [first, first + count) of block stream `seed` for `shot` of ball
+/// `object`, named for `pocket`. `sim` should run at full fidelity.
 MonteCarloTally RunSamples(const TableState& table, BallOn on, int object, physics::PocketId pocket,
                            const physics::Shot& shot, const PotContext& ctx,
                            const SearchSettings& settings, ShotSimulator& sim,

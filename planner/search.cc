@@ -92,8 +92,6 @@ class Search {
     cue_ = table.cue_index();
     setup_ = {&table_, cue_, cand.object, cand.pocket, on};
     std::tie(v_lo_, v_hi_) = SpeedRange(table, cue_, cand, settings.limits, sim.params());
-    value_ = Value(table.balls[static_cast<size_t>(cand.object)].kind);
-    after_.balls.reserve(table.balls.size());
     // The next shot is seen afresh by vision: every ball with the default sigma
     // (the balls' indices change once some drop).
     after_ctx_ = ctx;
@@ -225,18 +223,16 @@ class Search {
     // The table the shot leaves, by the rules, and the ball on then.
     final_positions_.clear();
     for (const physics::BallState& b : sim_.final_balls()) final_positions_.push_back(b.r);
-    after_ = ApplyShot(table_, on_, final_positions_, out.potted, false, *ctx_.table);
-    const auto next_on = NextBallOn(on_, table_.balls[static_cast<size_t>(cand_.object)].kind, after_);
-    PositionValue pos;
-    if (next_on) pos = EvaluatePosition(after_, *next_on, after_ctx_, settings_.position);
-    const double score = ShotScore(p, value_, pos, settings_.position_play);
+    const Leave leave =
+        ScoreLeave(table_, on_, cand_.object, final_positions_, out.potted, p, after_ctx_, settings_);
+    const double score = leave.score;
     if (!result_.best || score > result_.best->score) {
       ShotCandidate c;
       c.shot = shot;
       c.cut = cut;
       c.score = score;
       c.pot_estimate = p;
-      c.position = pos;
+      c.position = leave.position;
       c.cue_end = final_positions_[static_cast<size_t>(cue_)];
       result_.best = c;
     }
@@ -277,7 +273,6 @@ class Search {
   physics::Interrupt interrupt_;
   ShotSetup setup_;
   int cue_ = -1;
-  int value_ = 0;
   double v_lo_ = 0, v_hi_ = 0;
   nlopt::opt* opt_ = nullptr;
   std::exception_ptr pending_;
@@ -286,7 +281,6 @@ class Search {
   double best_f_ = 0;
   bool best_x_valid_ = false;
   SearchResult result_;
-  TableState after_;
   PotContext after_ctx_;
   std::vector<Vec2> final_positions_;
 };
@@ -379,6 +373,21 @@ std::optional<physics::Shot> RollingPotShot(const Vec2& cue, const Vec2& object,
 double ShotScore(double pot_probability, int value, const PositionValue& position,
                  bool position_play) {
   return pot_probability * (value + (position_play ? position.expected_points : 0.0));
+}
+
+Leave ScoreLeave(const TableState& table, BallOn on, int object, std::span<const Vec2> finals,
+                 std::span<const int> potted, double pot_probability, const PotContext& after_ctx,
+                 const SearchSettings& settings) {
+  std::vector<int> origin;
+  const TableState after = ApplyShot(table, on, finals, potted, false, *after_ctx.table, &origin);
+  const BallKind object_kind = table.balls[static_cast<size_t>(object)].kind;
+  Leave leave;
+  if (const auto next_on = NextBallOn(on, object_kind, after)) {
+    leave.position = EvaluatePosition(after, *next_on, after_ctx, settings.position);
+  }
+  if (leave.position.next_ball >= 0) leave.next_ball = origin[static_cast<size_t>(leave.position.next_ball)];
+  leave.score = ShotScore(pot_probability, Value(object_kind), leave.position, settings.position_play);
+  return leave;
 }
 
 SearchResult SearchCandidate(const TableState& table, BallOn on, const Candidate& cand,

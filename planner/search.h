@@ -48,6 +48,7 @@
 #include <atomic>
 #include <chrono>
 #include <optional>
+#include <span>
 #include <string>
 
 #include "physics/core/shot.h"
@@ -149,10 +150,29 @@ SearchResult SearchCandidate(const TableState& table, BallOn on, const Candidate
                              const PotContext& ctx, const SearchSettings& settings,
                              ShotSimulator& sim, const StopControl& stop);
 
-/// The score of an evaluated succeeding shot, as the search computes it (for the
-/// verification and the Monte Carlo of the planner). `after` is the table the
-/// shot left (rules applied), `next_on` the ball on then (nullopt: cleared).
+/// The objective of a succeeding shot: pot_probability x (value + the expected
+/// points of the position left; the latter only with position_play).
 double ShotScore(double pot_probability, int value, const PositionValue& position,
                  bool position_play);
+
+/// What a succeeding shot leaves, scored.
+struct Leave {
+  PositionValue position;
+  /// ShotScore of the shot with the given pot probability.
+  double score = 0;
+  /// The ball the position sets up, as an index of the table before the shot (-1:
+  /// none).
+  int next_ball = -1;
+};
+
+/// Scores what a succeeding shot of `object` with `on` leaves, the one sequence the
+/// search, the verification and the Monte Carlo share: the table after the rules
+/// (ApplyShot: potted balls off, colours re-spotted), the ball on then, the value of
+/// that position (EvaluatePosition with `after_ctx`, whose per-ball vision sigmas
+/// no longer apply: the balls have moved) and ShotScore. `finals` are where the
+/// simulation left every ball of `table`, `potted` the balls that dropped.
+Leave ScoreLeave(const TableState& table, BallOn on, int object, std::span<const physics::Vec2> finals,
+                 std::span<const int> potted, double pot_probability, const PotContext& after_ctx,
+                 const SearchSettings& settings);
 
 }  // namespace snooker::planner

@@ -1,6 +1,7 @@
 // Bounds of the service that are not physics: request and response sizes, message
 // lengths, the wall time of a call, the worker pool, and the API's angles in degrees.
-// Validation ranges of physical quantities live in physics/core/limits.h.
+// Validation ranges of physical quantities live in physics/core/limits.h, those of a
+// plan request in planner/limits.h.
 //
 // Why each bound: every request must cost a bounded amount of CPU, memory, time and
 // output, whatever its content; docs in proto/snooker/v1/*.proto state the same values.
@@ -11,6 +12,7 @@
 #include <cstdint>
 
 #include "physics/core/limits.h"
+#include "planner/limits.h"
 
 namespace snooker::server::limits {
 
@@ -74,11 +76,12 @@ inline constexpr Range kVisionToleranceMm{0, 10};
 // --- Plans --------------------------------------------------------------------------
 /// A Plan request without a budget gets this, ms (`--default-budget-ms`; the
 /// planner's own default).
-inline constexpr double kDefaultPlanBudgetMs = 80;
-/// The largest budget a request may ask for, ms (`--max-budget-ms`), and the most
-/// that flag accepts (the planner's own bound).
+inline constexpr double kDefaultPlanBudgetMs = planner::limits::kDefaultTimeBudget * 1e3;
+/// The largest budget a request may ask for, ms (`--max-budget-ms`), and what that
+/// flag accepts: the planner's own range of budgets (planner/limits.h), in ms.
 inline constexpr double kDefaultMaxPlanBudgetMs = 10'000;
-inline constexpr Range kPlanBudgetMs{1, 60'000};
+inline constexpr Range kPlanBudgetMs{planner::limits::kTimeBudget.lo * 1e3,
+                                     planner::limits::kTimeBudget.hi * 1e3};
 /// Plans in the server at once, running or waiting for a worker; further Plan calls
 /// are refused at once with RESOURCE_EXHAUSTED (`--max-plans`).
 inline constexpr int kDefaultMaxPlans = 32;

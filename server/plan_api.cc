@@ -29,6 +29,23 @@ void ForwardProgress(const planner::PlannedShot& best, void* context) {
 
 void WarmUpPlanner() { (void)planner::Planner::Default(); }
 
+ApiStatus StatusOf(const planner::PlanAnswer& answer) {
+  using planner::PlanStatus;
+  const std::string work = std::to_string(answer.simulations) + " simulations";
+  switch (answer.status) {
+    case PlanStatus::kOk:
+    case PlanStatus::kNoPot:
+    case PlanStatus::kBudgetSpent: return ApiStatus::Ok();  // an answer; `reason` says why it has no shot
+    case PlanStatus::kInvalidRequest: return ApiStatus::Invalid(answer.reason);
+    case PlanStatus::kDeadline:
+      return {ApiStatus::Code::kDeadlineExceeded,
+              "the call's deadline passed before any shot was verified (" + work + "; " + answer.reason + ")"};
+    case PlanStatus::kCancelled:
+      return {ApiStatus::Code::kCancelled, "the call was cancelled while planning (" + work + ")"};
+  }
+  return {ApiStatus::Code::kInternal, "unknown plan status " + std::to_string(static_cast<int>(answer.status))};
+}
+
 ApiStatus Plan(const v1::PlanRequest& request, v1::PlanResponse* response, const PlanControl& control) {
   const auto start = std::chrono::steady_clock::now();
   // Validate before the planner is first built (its pocket and throw tables take a
@@ -56,14 +73,10 @@ ApiStatus Plan(const v1::PlanRequest& request, v1::PlanResponse* response, const
     p.progress_context = &sink;
   }
   const planner::PlanAnswer answer = planner.Plan(p);
-  if (answer.status == planner::PlanStatus::kInvalidRequest) {
-    // The API checks should have caught it: the library names its own field.
-    return ApiStatus::Invalid(answer.reason);
-  }
   ToProto(answer, planned->table(), *planner.config().table, response);
   response->set_final(true);
   for (v1::Warning& w : check.warnings) *response->add_warnings() = std::move(w);
-  return ApiStatus::Ok();
+  return StatusOf(answer);
 }
 
 }  // namespace snooker::server

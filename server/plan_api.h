@@ -9,6 +9,7 @@
 #include <functional>
 
 #include "server/api_status.h"
+#include "planner/planner.h"
 #include "server/limits.h"
 #include "snooker/v1/plan.pb.h"
 
@@ -39,10 +40,15 @@ struct PlanControl {
 /// before it reports SERVING.
 void WarmUpPlanner();
 
+/// The API status of a planner's answer, the one mapping of every planner outcome:
+/// shots, no pot and a spent budget are OK (an answer without shots has its
+/// reason); an invalid request is INVALID_ARGUMENT, the caller's deadline before any
+/// shot DEADLINE_EXCEEDED, a cancelled plan CANCELLED.
+ApiStatus StatusOf(const planner::PlanAnswer& answer);
+
 /// Plans shots for the request's table. INVALID_ARGUMENT names each bad field and
-/// value; an answer without shots is OK with its reason (no pot, or time ran out
-/// first: the caller compares its deadline). The answer has final = true and the
-/// vision repair's warnings.
+/// value; otherwise StatusOf the planner's answer, which `response` holds whatever
+/// the status (final = true, the work done, the vision repair's warnings).
 ApiStatus Plan(const v1::PlanRequest& request, v1::PlanResponse* response,
                const PlanControl& control = {});
 

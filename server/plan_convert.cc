@@ -1,24 +1,113 @@
 #include "server/plan_convert.h"
 
-#include <cmath>
 #include <algorithm>
-#include <sstream>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
-#include "physics/core/limits.h"
+#include "planner/validate.h"
 
 namespace snooker::server {
 namespace {
 
-std::string Num(double x) { return FormatNumber(x); }
+// A planner field's API name, and the factor from its SI unit to the API's unit.
+struct ApiField {
+  const char* planner;
+  const char* api;
+  double scale;
+  const char* unit;
+};
 
-// Adds an error when an optional double field is set and outside [lo, hi].
-template <typename Msg, typename Has, typename Get>
-void CheckRange(std::vector<FieldError>* errors, const Msg& m, Has has, Get get, const char* field,
-                double lo, double hi, const char* unit) {
-  if (!(m.*has)()) return;
-  const double x = (m.*get)();
-  if (std::isfinite(x) && x >= lo && x <= hi) return;
-  errors->push_back({field, Num(x), "must be a number in [" + Num(lo) + ", " + Num(hi) + "]" + unit});
+constexpr ApiField kApiFields[] = {
+    {"limits.min_speed", "limits.min_speed", 1, "m/s"},
+    {"limits.max_speed", "limits.max_speed", 1, "m/s"},
+    {"limits.max_topspin_fraction", "limits.max_topspin_fraction", 1, "of the rolling spin"},
+    {"limits.max_sidespin_fraction", "limits.max_sidespin_fraction", 1, "of the rolling spin"},
+    {"limits.cue.length", "limits.cue_clearance_m", 1, "m"},
+    {"limits.cue.radius", "limits.cue_radius_m", 1, "m"},
+    {"noise.heading", "noise.heading_sigma_deg", 180 / physics::kPi, "deg"},
+    {"noise.speed_fraction", "noise.speed_sigma_fraction", 1, ""},
+    {"noise.topspin", "noise.topspin_sigma", 1, "rad/s"},
+    {"noise.sidespin", "noise.sidespin_sigma", 1, "rad/s"},
+    {"noise.position", "noise.position_sigma_mm", 1e3, "mm"},
+    {"position_sigma", "noise.ball_position_sigma_mm", 1e3, "mm"},
+    {"time_budget", "time_budget_ms", 1e3, "ms"},
+    {"max_shots", "max_shots", 1, ""},
+    {"max_simulations", "max_simulations", 1, ""},
+    {"monte_carlo_samples", "monte_carlo_samples", 1, ""},
+    {"table.balls", "table.balls", 1, ""},
+    {"ball_on", "ball_on", 1, ""},
+};
+
+// x in the API's unit, without the last bits a unit conversion leaves (0.05 deg,
+// not 0.050000000000000003).
+std::string Converted(double x) {
+  if (!std::isfinite(x)) return FormatNumber(x);
+  char text[32];
+  std::snprintf(text, sizeof text, "%.12g", x);
+  return FormatNumber(std::strtod(text, nullptr));
+}
+
+const ApiField* ApiFieldOf(const std::string& planner_field) {
+  for (const ApiField& f : kApiFields) {
+    if (planner_field == f.planner) return &f;
+  }
+  return nullptr;
+}
+
+// One planner error in the API's terms: its field name, the table's ids and the API's
+// units. nullopt when the API has reported the field already in its own terms (a
+// per-ball sigma that is the request's default, a budget over the server's bound).
+std::optional<FieldError> ToApiError(const planner::FieldError& e, const v1::PlanRequest& r) {
+  const ApiField* f = ApiFieldOf(e.field);
+  if (f == nullptr) {
+    // A field the API does not have (threads): the server set it, so it is a bug.
+    return FieldError{e.field, e.value ? Converted(*e.value) : e.value_text,
+                      "the server set an invalid value: " + e.rule};
+  }
+  FieldError out{f->api, e.value ? Converted(*e.value * f->scale) : e.value_text, e.rule};
+  if (e.ball >= 0 && e.ball < r.table().balls_size()) {
+    const v1::Ball& b = r.table().balls(e.ball);
+    if (e.field == "position_sigma") {
+      if (!r.noise().ball_position_sigma_mm().contains(b.id())) return std::nullopt;
+      out.field += "[\"" + b.id() + "\"]";
+    } else {
+      out.field += "[" + std::to_string(e.ball) + "]";
+      out.value = "(" + FormatNumber(b.position().x()) + ", " + FormatNumber(b.position().y()) +
+                  ") (ball " + QuoteId(b.id()) + ")";
+    }
+  }
+  if (e.field == "ball_on") out.value = v1::BallOn_Name(r.ball_on());
+  if (e.range) {
+    out.rule = "must be in [" + Converted(e.range->lo * f->scale) + ", " + Converted(e.range->hi * f->scale) +
+               "]" + (f->unit[0] != '\0' ? std::string(" ") + f->unit : std::string());
+  }
+  return out;
+}
+
+// What only the API has: its enum values, the ids of the per-ball sigmas, and the
+// server's largest budget (--max-budget-ms, within the planner's range).
+void CheckApiFields(const v1::PlanRequest& r, const PlanBounds& bounds, std::vector<FieldError>* errors) {
+  if (!v1::BallOn_IsValid(r.ball_on())) {
+    errors->push_back({"ball_on", std::to_string(r.ball_on()), "must be a BallOn value"});
+  }
+  for (const auto& [id, sigma] : r.noise().ball_position_sigma_mm()) {
+    bool known = false;
+    for (const v1::Ball& b : r.table().balls()) known = known || b.id() == id;
+    if (!known) {
+      errors->push_back({"noise.ball_position_sigma_mm[" + QuoteId(id) + "]", FormatNumber(sigma),
+                         "names no ball of the table"});
+    }
+  }
+  if (r.has_time_budget_ms()) {
+    const physics::Range allowed{limits::kPlanBudgetMs.lo, bounds.max_budget_ms};
+    if (!allowed.Contains(r.time_budget_ms())) {
+      errors->push_back({"time_budget_ms", FormatNumber(r.time_budget_ms()),
+                         "must be in [" + FormatNumber(allowed.lo) + ", " + FormatNumber(allowed.hi) +
+                             "] ms: " + FormatNumber(allowed.hi) +
+                             " ms is the server's largest budget (--max-budget-ms)"});
+    }
+  }
 }
 
 }  // namespace
@@ -81,88 +170,33 @@ PlanCheck CheckPlanRequest(const v1::PlanRequest& r, const physics::TableModel& 
   TableCheck check = CheckTable(r.table(), table, tolerance.value_or(bounds.vision_tolerance_mm * 1e-3));
   std::vector<FieldError>& errors = result.errors;
   errors = std::move(check.errors);
+  const bool table_ok = errors.empty();
   errors.insert(errors.end(), tolerance_errors.begin(), tolerance_errors.end());
   result.repaired = std::move(check.repaired);
   result.warnings = std::move(check.warnings);
-  const v1::TableState& t = r.table();
-  int reds = 0, colours[9] = {};
-  for (const v1::Ball& b : t.balls()) {
-    if (b.kind() == v1::RED) ++reds;
-    if (b.kind() >= v1::YELLOW && b.kind() <= v1::BLACK) ++colours[b.kind()];
+  CheckApiFields(r, bounds, &errors);
+  // The planner's own rules (snooker's counts, the ball on, every range), renamed.
+  // Its table checks only once the table is one: a bad table has been reported.
+  const v1::PlanRequest* checked = &r;
+  v1::PlanRequest repaired;
+  if (result.repaired) {
+    repaired = r;
+    *repaired.mutable_table() = *result.repaired;
+    checked = &repaired;
   }
-  if (reds > physics::kRedCount) {
-    errors.push_back({"table.balls", std::to_string(reds) + " RED balls", "at most 15"});
+  const planner::PlanRequest p = PlanRequestFrom(*checked);
+  std::vector<planner::FieldError> rules = planner::ValidateSettings(p);
+  if (table_ok) {
+    std::vector<planner::FieldError> more = planner::ValidateTable(p.table, p.ball_on, table);
+    rules.insert(rules.begin(), more.begin(), more.end());
   }
-  for (int k = v1::YELLOW; k <= v1::BLACK; ++k) {
-    if (colours[k] > 1) {
-      errors.push_back({"table.balls", std::to_string(colours[k]) + " " +
-                                           v1::BallKind_Name(static_cast<v1::BallKind>(k)) + " balls",
-                        "at most one of each colour"});
-    }
-  }
-  if (!v1::BallOn_IsValid(r.ball_on())) {
-    errors.push_back({"ball_on", std::to_string(r.ball_on()), "must be a BallOn value"});
-  } else if (const auto on = BallOnFrom(r.ball_on())) {
-    bool present = false;
-    for (const v1::Ball& b : t.balls()) {
-      if (b.kind() != v1::BALL_KIND_UNSPECIFIED && v1::BallKind_IsValid(b.kind())) {
-        present = present || planner::IsLegalTarget(*on, BallKindFrom(b.kind()));
-      }
-    }
-    if (!present) {
-      errors.push_back({"ball_on", v1::BallOn_Name(r.ball_on()), "no such ball on the table"});
-    }
-  }
-  using L = v1::RobotLimits;
-  const L& l = r.limits();
-  const double hi = physics::limits::kShotSpeed.hi;
-  CheckRange(&errors, l, &L::has_min_speed, &L::min_speed, "limits.min_speed", 0, hi, " m/s");
-  CheckRange(&errors, l, &L::has_max_speed, &L::max_speed, "limits.max_speed", 0.05, hi, " m/s");
-  const planner::RobotLimits defaults;
-  const double lo_speed = l.has_min_speed() ? l.min_speed() : defaults.min_speed;
-  const double hi_speed = l.has_max_speed() ? l.max_speed() : defaults.max_speed;
-  if (std::isfinite(lo_speed) && std::isfinite(hi_speed) && !(hi_speed > lo_speed)) {
-    errors.push_back({"limits.max_speed", Num(hi_speed), "must exceed limits.min_speed (" + Num(lo_speed) + ")"});
-  }
-  CheckRange(&errors, l, &L::has_max_topspin_fraction, &L::max_topspin_fraction,
-             "limits.max_topspin_fraction", 0, 3, " of the rolling spin");
-  CheckRange(&errors, l, &L::has_max_sidespin_fraction, &L::max_sidespin_fraction,
-             "limits.max_sidespin_fraction", 0, 3, " of the rolling spin");
-  CheckRange(&errors, l, &L::has_cue_clearance_m, &L::cue_clearance_m, "limits.cue_clearance_m", 0, 2, " m");
-  CheckRange(&errors, l, &L::has_cue_radius_m, &L::cue_radius_m, "limits.cue_radius_m", 0, 0.05, " m");
-  using N = v1::NoiseModel;
-  const N& n = r.noise();
-  CheckRange(&errors, n, &N::has_heading_sigma_deg, &N::heading_sigma_deg, "noise.heading_sigma_deg", 0, 10, " deg");
-  CheckRange(&errors, n, &N::has_speed_sigma_fraction, &N::speed_sigma_fraction, "noise.speed_sigma_fraction", 0, 0.5, "");
-  CheckRange(&errors, n, &N::has_topspin_sigma, &N::topspin_sigma, "noise.topspin_sigma", 0, 100, " rad/s");
-  CheckRange(&errors, n, &N::has_sidespin_sigma, &N::sidespin_sigma, "noise.sidespin_sigma", 0, 100, " rad/s");
-  CheckRange(&errors, n, &N::has_position_sigma_mm, &N::position_sigma_mm, "noise.position_sigma_mm", 0, 50, " mm");
-  for (const auto& [id, sigma] : n.ball_position_sigma_mm()) {
-    bool known = false;
-    for (const v1::Ball& b : t.balls()) known = known || b.id() == id;
-    const std::string field = "noise.ball_position_sigma_mm[\"" + id + "\"]";
-    if (!known) errors.push_back({field, Num(sigma), "names no ball of the table"});
-    if (!(std::isfinite(sigma) && sigma >= 0 && sigma <= 50)) {
-      errors.push_back({field, Num(sigma), "must be a number in [0, 50] mm"});
-    }
-  }
-  if (r.has_time_budget_ms()) {
-    const double budget = r.time_budget_ms();
-    const double most = std::min(bounds.max_budget_ms, kMaxPlanBudgetMs);
-    if (!(std::isfinite(budget) && budget >= 1 && budget <= most)) {
-      errors.push_back({"time_budget_ms", Num(budget),
-                        "must be in [1, " + Num(most) + "] ms: " + Num(most) +
-                            " ms is the server's largest budget (--max-budget-ms)"});
-    }
-  }
-  if (r.has_max_shots() && (r.max_shots() < 1 || r.max_shots() > 20)) {
-    errors.push_back({"max_shots", std::to_string(r.max_shots()), "must be in [1, 20]"});
-  }
-  if (r.has_max_simulations() && (r.max_simulations() < 0 || r.max_simulations() > 100'000'000)) {
-    errors.push_back({"max_simulations", std::to_string(r.max_simulations()), "must be in [0, 100000000]"});
-  }
-  if (r.has_monte_carlo_samples() && (r.monte_carlo_samples() < 0 || r.monte_carlo_samples() > 100'000)) {
-    errors.push_back({"monte_carlo_samples", std::to_string(r.monte_carlo_samples()), "must be in [0, 100000]"});
+  const auto api_end = static_cast<std::ptrdiff_t>(errors.size());
+  for (const planner::FieldError& e : rules) {
+    std::optional<FieldError> api = ToApiError(e, *checked);
+    if (!api) continue;
+    const bool reported = std::any_of(errors.begin(), errors.begin() + api_end,
+                                      [&](const FieldError& x) { return x.field == api->field; });
+    if (!reported) errors.push_back(std::move(*api));
   }
   return result;
 }
@@ -217,6 +251,7 @@ void ToProto(const planner::PlannedShot& s, const v1::TableState& table,
   out->set_object_ball(id(s.object_ball));
   out->set_pocket(physics::ToString(s.pocket));
   out->set_pot_probability(s.pot_probability);
+  out->set_pocket_probability(s.pocket_probability);
   out->set_position_value(s.position_value);
   if (s.next_ball >= 0) out->set_next_ball(id(s.next_ball));
   ToProto(s.cue_ball_end, out->mutable_cue_ball_end());

@@ -9,12 +9,10 @@
 #include "physics/table/table.h"
 #include "planner/planner.h"
 #include "server/convert.h"
+#include "server/limits.h"
 #include "snooker/v1/plan.pb.h"
 
 namespace snooker::server {
-
-/// Largest plan budget a request may ask for, ms.
-inline constexpr double kMaxPlanBudgetMs = 60'000;
 
 /// What a server allows a plan request (snooker serve's flags).
 struct PlanBounds {
@@ -22,7 +20,7 @@ struct PlanBounds {
   /// the most one may ask for; 0: no repair (every overlap is an error).
   double vision_tolerance_mm = 0;
   /// The largest time budget a request may ask for, ms.
-  double max_budget_ms = kMaxPlanBudgetMs;
+  double max_budget_ms = limits::kPlanBudgetMs.hi;
 };
 
 /// What CheckPlanRequest found, and what the vision repair changed.
@@ -34,10 +32,11 @@ struct PlanCheck {
   std::vector<v1::Warning> warnings;
 };
 
-/// Checks the table (as Simulate does, with its vision repair within the bounds'
-/// tolerance, plus at most 15 reds and one ball of each colour, a ball on that is
-/// on the table), the limits (min_speed < max_speed), the noise, the budget (1 ms to
-/// bounds.max_budget_ms) and the counts; every error names the field and value.
+/// Checks the table as Simulate does (with its vision repair within the bounds'
+/// tolerance), what only the API has (enum values, the ids of per-ball sigmas, the
+/// server's largest budget), and the planner's own rules (planner/validate.h:
+/// snooker's counts, the ball on, the ranges of planner/limits.h) renamed to the
+/// API's fields and converted to its units; every error names the field and value.
 PlanCheck CheckPlanRequest(const v1::PlanRequest& request, const physics::TableModel& table,
                            const PlanBounds& bounds);
 

@@ -1,13 +1,20 @@
 // Tests of Plan at the API edge (server/plan_api.h, server/plan_convert.h):
 // validation names each bad field and value, units are converted at the edge, and
-// the answer carries the table's ids.
+// the answer carries the table's ids, every planner outcome has one API status,
+// and the proto's comments quote the planner's ranges.
 #include "server/plan_api.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
+
+#include "planner/limits.h"
 
 #include "server/plan_convert.h"
 #include "tests/service/requests.h"
@@ -56,17 +63,28 @@ TEST(ValidatePlanRequestTest, NamesEveryBadField) {
   r.set_max_shots(0);
   r.set_monte_carlo_samples(-3);
   const std::vector<FieldError> errors = ValidatePlanRequest(r, physics::DefaultTable());
-  EXPECT_EQ(Fields(errors),
-            (std::vector<std::string>{"ball_on", "limits.max_speed", "limits.max_topspin_fraction",
-                                      "noise.heading_sigma_deg", "noise.position_sigma_mm",
-                                      "noise.ball_position_sigma_mm[\"nobody\"]", "time_budget_ms",
-                                      "max_shots", "monte_carlo_samples"}));
+  std::vector<std::string> fields = Fields(errors);
+  std::sort(fields.begin(), fields.end());
+  EXPECT_EQ(fields, (std::vector<std::string>{"ball_on", "limits.max_speed", "limits.max_topspin_fraction",
+                                              "max_shots", "monte_carlo_samples",
+                                              "noise.ball_position_sigma_mm[\"nobody\"]",
+                                              "noise.heading_sigma_deg", "noise.position_sigma_mm",
+                                              "time_budget_ms"}));
   EXPECT_NE(Describe(errors).find("ball_on = BALL_ON_PINK (no such ball on the table)"), std::string::npos)
       << Describe(errors);
   // The message lists the first few problems and counts the rest; each error still
   // carries its value.
   EXPECT_NE(Describe(errors).find("and 4 more"), std::string::npos) << Describe(errors);
-  EXPECT_EQ(errors[6].value, "0");
+  for (const FieldError& e : errors) {
+    if (e.field == "time_budget_ms") {
+      EXPECT_EQ(e.value, "0");
+    } else if (e.field == "noise.position_sigma_mm") {
+      EXPECT_EQ(e.value, "100");
+      EXPECT_EQ(e.rule, "must be in [0, 50] mm");  // planner/limits.h's 0.05 m, in the API's unit
+    } else if (e.field == "noise.heading_sigma_deg") {
+      EXPECT_EQ(e.rule, "must be in [0, 10] deg");
+    }
+  }
 }
 
 TEST(ValidatePlanRequestTest, MoreBallsOfAKindThanSnookerHas) {
@@ -74,8 +92,8 @@ TEST(ValidatePlanRequestTest, MoreBallsOfAKindThanSnookerHas) {
   AddBall(&r, "black-2", v1::BLACK, 0.3, 0.3);
   for (int i = 0; i < 15; ++i) AddBall(&r, "x" + std::to_string(i), v1::RED, 0.2 + 0.1 * i, 1.0);
   const std::string d = Describe(ValidatePlanRequest(r, physics::DefaultTable()));
-  EXPECT_NE(d.find("16 RED balls (at most 15)"), std::string::npos) << d;
-  EXPECT_NE(d.find("2 BLACK balls"), std::string::npos) << d;
+  EXPECT_NE(d.find("table.balls = 16 (reds: at most 15)"), std::string::npos) << d;
+  EXPECT_NE(d.find("table.balls = 2 (black balls: at most one)"), std::string::npos) << d;
 }
 
 TEST(ValidatePlanRequestTest, TheTableIsCheckedAsSimulateChecksIt) {
@@ -145,6 +163,87 @@ TEST(PlanTest, BadRequestIsInvalidArgument) {
   const ApiStatus st = Plan(r, &resp);
   EXPECT_EQ(st.code, ApiStatus::Code::kInvalidArgument);
   EXPECT_NE(st.message.find("max_shots = 99"), std::string::npos) << st.message;
+}
+
+TEST(PlanStatusTest, EveryPlannerOutcomeHasOneApiStatus) {
+  using planner::PlanStatus;
+  using Code = ApiStatus::Code;
+  const std::pair<PlanStatus, Code> expected[] = {
+      {PlanStatus::kOk, Code::kOk},
+      {PlanStatus::kNoPot, Code::kOk},
+      {PlanStatus::kBudgetSpent, Code::kOk},
+      {PlanStatus::kInvalidRequest, Code::kInvalidArgument},
+      {PlanStatus::kDeadline, Code::kDeadlineExceeded},
+      {PlanStatus::kCancelled, Code::kCancelled},
+  };
+  for (const auto& [status, code] : expected) {
+    planner::PlanAnswer a;
+    a.status = status;
+    a.reason = "why";
+    a.simulations = 12;
+    const ApiStatus st = StatusOf(a);
+    EXPECT_EQ(st.code, code) << planner::ToString(status);
+    if (code != Code::kOk) {
+      EXPECT_NE(st.message, "") << planner::ToString(status);
+    }
+  }
+}
+
+// The comment block nearest above `field`'s declaration in `proto` (skipping the
+// declarations of the fields it shares the block with).
+std::string CommentAbove(const std::string& proto, const std::string& field) {
+  std::istringstream in(proto);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  for (size_t i = 0; i < lines.size(); ++i) {
+    if (lines[i].find(" " + field + " = ") == std::string::npos) continue;
+    size_t j = i;
+    while (j > 0 && lines[j - 1].find("//") == std::string::npos) --j;
+    std::string block;
+    while (j > 0 && lines[j - 1].find("//") != std::string::npos) block = lines[--j] + "\n" + block;
+    return block;
+  }
+  return "";
+}
+
+std::string RangeText(double lo, double hi) {
+  char text[64];
+  std::snprintf(text, sizeof text, "[%.12g, %.12g]", lo, hi);
+  return text;
+}
+
+TEST(PlanProtoTest, CommentsQuoteThePlannersRanges) {
+  std::ifstream file(SNOOKER_PROTO_DIR "/snooker/v1/plan.proto");
+  ASSERT_TRUE(file) << SNOOKER_PROTO_DIR;
+  const std::string proto((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  namespace lim = planner::limits;
+  const double deg = 180 / physics::kPi;
+  const struct {
+    const char* field;
+    std::string range;
+  } quoted[] = {
+      {"min_speed", RangeText(lim::kMinSpeed.lo, lim::kMinSpeed.hi)},
+      {"max_speed", RangeText(lim::kMaxSpeed.lo, lim::kMaxSpeed.hi)},
+      {"max_topspin_fraction", RangeText(lim::kSpinFraction.lo, lim::kSpinFraction.hi)},
+      {"cue_clearance_m", RangeText(lim::kCueClearance.lo, lim::kCueClearance.hi)},
+      {"cue_radius_m", RangeText(lim::kCueRadius.lo, lim::kCueRadius.hi)},
+      {"heading_sigma_deg", RangeText(lim::kHeadingSigma.lo * deg, lim::kHeadingSigma.hi * deg)},
+      {"speed_sigma_fraction", RangeText(lim::kSpeedSigmaFraction.lo, lim::kSpeedSigmaFraction.hi)},
+      {"topspin_sigma", RangeText(lim::kSpinSigma.lo, lim::kSpinSigma.hi)},
+      {"position_sigma_mm", RangeText(lim::kPositionSigma.lo * 1e3, lim::kPositionSigma.hi * 1e3)},
+      {"ball_position_sigma_mm", RangeText(lim::kPositionSigma.lo * 1e3, lim::kPositionSigma.hi * 1e3)},
+      {"time_budget_ms", RangeText(limits::kPlanBudgetMs.lo, limits::kPlanBudgetMs.hi)},
+      {"max_shots", RangeText(static_cast<double>(lim::kMaxShots.lo), static_cast<double>(lim::kMaxShots.hi))},
+      {"max_simulations",
+       RangeText(static_cast<double>(lim::kMaxSimulations.lo), static_cast<double>(lim::kMaxSimulations.hi))},
+      {"monte_carlo_samples", RangeText(static_cast<double>(lim::kMonteCarloSamples.lo),
+                                        static_cast<double>(lim::kMonteCarloSamples.hi))},
+  };
+  for (const auto& q : quoted) {
+    const std::string comment = CommentAbove(proto, q.field);
+    ASSERT_NE(comment, "") << q.field;
+    EXPECT_NE(comment.find(q.range), std::string::npos) << q.field << " should quote " << q.range << ":\n" << comment;
+  }
 }
 
 }  // namespace

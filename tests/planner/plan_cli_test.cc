@@ -57,8 +57,8 @@ TEST(CliPlanTest, JsonHasExactlyTheContractedNames) {
   ASSERT_GT(shots.values_size(), 0);
   const Struct& s = shots.values(0).struct_value();
   EXPECT_EQ(Keys(s), (std::set<std::string>{"speed", "headingDeg", "topspin", "sidespin", "cutDeg",
-                                            "objectBall", "pocket", "potProbability", "positionValue",
-                                            "nextBall", "cueBallEnd", "events"}));
+                                            "objectBall", "pocket", "potProbability", "pocketProbability",
+                                            "positionValue", "nextBall", "cueBallEnd", "events"}));
   EXPECT_EQ(Keys(s.fields().at("cueBallEnd").struct_value()), (std::set<std::string>{"x", "y"}));
   EXPECT_EQ(s.fields().at("objectBall").string_value(), "red-1");
   EXPECT_EQ(s.fields().at("pocket").string_value(), "top-right");

@@ -235,9 +235,9 @@ const BadPlan kBadPlans[] = {
      [](v1::PlanRequest* r) {
        for (int i = 0; i < 16; ++i) AddBall(r, "r" + std::to_string(i), v1::RED, 0.2 + 0.08 * i, 1.0);
      },
-     "table.balls = 17 RED balls (at most 15)"},
+     "table.balls = 17 (reds: at most 15)"},
     {"TwoBlacks", [](v1::PlanRequest* r) { AddBall(r, "black-2", v1::BLACK, 0.3, 0.3); },
-     "table.balls = 2 BLACK balls (at most one of each colour)"},
+     "table.balls = 2 (black balls: at most one)"},
     {"BallOnNotOnTheTable", [](v1::PlanRequest* r) { r->set_ball_on(v1::BALL_ON_PINK); },
      "ball_on = BALL_ON_PINK (no such ball on the table)"},
     {"MinSpeedAboveMaxSpeed",
@@ -245,7 +245,7 @@ const BadPlan kBadPlans[] = {
        r->mutable_limits()->set_min_speed(3);
        r->mutable_limits()->set_max_speed(2);
      },
-     "limits.max_speed = 2 (must exceed limits.min_speed (3))"},
+     "limits.max_speed = 2 (must exceed limits.min_speed (3 m/s))"},
     {"NegativeNoise", [](v1::PlanRequest* r) { r->mutable_noise()->set_speed_sigma_fraction(-0.1); },
      "noise.speed_sigma_fraction = -0.1"},
     {"NanNoise", [](v1::PlanRequest* r) { r->mutable_noise()->set_heading_sigma_deg(NAN); },
@@ -264,6 +264,8 @@ const BadPlan kBadPlans[] = {
      },
      "beyond the vision tolerance of 1 mm"},
 };
+
+void PrintTo(const BadPlan& p, std::ostream* os) { *os << p.name; }
 
 class PlanBadInputTest : public PlanRpcTest, public testing::WithParamInterface<BadPlan> {};
 
