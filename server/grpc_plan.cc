@@ -8,6 +8,9 @@
 //  * the deadline: a plan stops a little before the call's deadline (kDeadlineShare
 //    of the time left, within [kMinMargin, kMaxMargin]) so that its best shots so
 //    far reach the client in time; with none it answers DEADLINE_EXCEEDED.
+// What the planner's outcome means for the call's status is plan_api.cc's StatusOf
+// alone; this file adds only what the transport owns: admission, a start after the
+// deadline, and gRPC's cancellation at the client's deadline.
 //
 // PlanStream's writes never block the planner: a progress message is serialised on
 // the planner's thread and handed to the reactor; while a write is in flight only
@@ -32,7 +35,6 @@ namespace snooker::server {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-using service_detail::ClientDeadlinePassed;
 using service_detail::Flatten;
 
 // The share of a plan's time (arrival to deadline) kept back for sending its answer.
@@ -49,16 +51,16 @@ Clock::time_point PlanStop(Clock::time_point arrival, Clock::time_point deadline
   return deadline - margin;
 }
 
-grpc::Status Serialize(const v1::PlanResponse& response, grpc::ByteBuffer* out) {
+ApiStatus Serialize(const v1::PlanResponse& response, grpc::ByteBuffer* out) {
   if (response.ByteSizeLong() > limits::kMaxResponseBytes) {
-    return {grpc::StatusCode::RESOURCE_EXHAUSTED,
+    return {ApiStatus::Code::kResourceExhausted,
             "the answer would be larger than " + std::to_string(limits::kMaxResponseBytes) +
                 " bytes; ask for fewer shots (max_shots)"};
   }
   bool own = false;
-  grpc::Status st = grpc::SerializationTraits<v1::PlanResponse>::Serialize(response, out, &own);
-  if (!st.ok()) return {grpc::StatusCode::INTERNAL, "cannot serialise the answer: " + st.error_message()};
-  return grpc::Status::OK;
+  const grpc::Status st = grpc::SerializationTraits<v1::PlanResponse>::Serialize(response, out, &own);
+  if (!st.ok()) return {ApiStatus::Code::kInternal, "cannot serialise the answer: " + st.error_message()};
+  return ApiStatus::Ok();
 }
 
 }  // namespace
@@ -107,11 +109,11 @@ class ShotPlannerService::PlanStreamReactor final : public grpc::ServerWriteReac
 
   // From the worker, once, as its last use of the reactor: the final answer (for an
   // OK status) and the status.
-  void Complete(const grpc::Status& status, std::optional<grpc::ByteBuffer> final_answer) {
+  void Complete(const ApiStatus& status, std::optional<grpc::ByteBuffer> final_answer) {
     const std::shared_ptr<State> state = state_;
     std::lock_guard<std::mutex> lock(state->mu);
     state->completed = true;
-    state->status = status;
+    state->status = ToGrpcStatus(status);
     if (state->pending) state->service->progress_dropped_.fetch_add(1);
     state->pending.reset();  // the final answer supersedes it
     if (status.ok() && !state->broken) state->final_answer = std::move(final_answer);
@@ -184,13 +186,13 @@ class ShotPlannerService::PlanStreamReactor final : public grpc::ServerWriteReac
 
 std::shared_ptr<ShotPlannerService::PlanCall> ShotPlannerService::AdmitPlan(
     const char* method, grpc::CallbackServerContext* context, const grpc::ByteBuffer* request,
-    grpc::Status* refusal) {
+    ApiStatus* refusal) {
   auto call = std::make_shared<PlanCall>();
   service_detail::Arrived(context, request, options_.max_call, call.get());
   call->method = method;
   if (plans_.fetch_add(1) >= options_.max_plans) {
     plans_.fetch_sub(1);
-    *refusal = {grpc::StatusCode::RESOURCE_EXHAUSTED,
+    *refusal = {ApiStatus::Code::kResourceExhausted,
                 "the server is planning " + std::to_string(options_.max_plans) +
                     " shots already (its --max-plans); try again later"};
     return nullptr;
@@ -198,52 +200,26 @@ std::shared_ptr<ShotPlannerService::PlanCall> ShotPlannerService::AdmitPlan(
   return call;
 }
 
-grpc::Status ShotPlannerService::RunPlan(PlanCall& call, v1::PlanResponse* response, Work* work,
-                                         const std::function<void(const v1::PlanResponse&)>& on_progress) {
-  const auto waited_ms =
-      std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - call.arrival).count();
-  const bool cancelled = call.cancel.load() || call.context->IsCancelled();
-  if (Clock::now() >= call.deadline || (cancelled && ClientDeadlinePassed(call.client_deadline))) {
-    return {grpc::StatusCode::DEADLINE_EXCEEDED,
-            "the call's deadline passed before the plan started (" + std::to_string(waited_ms) +
-                " ms waiting for a worker)"};
-  }
-  if (cancelled) {
-    return {grpc::StatusCode::CANCELLED, "the call was cancelled before the plan started (" +
-                                             std::to_string(waited_ms) + " ms waiting for a worker)"};
+ApiStatus ShotPlannerService::RunPlan(PlanCall& call, v1::PlanResponse* response, Work* work,
+                                      const std::function<void(const v1::PlanResponse&)>& on_progress) {
+  if (auto late = service_detail::RefuseLateStart(call, call.cancel.load() || call.context->IsCancelled(),
+                                                  "the plan")) {
+    return *late;
   }
   std::string bytes;
-  if (!Flatten(*call.request, &bytes)) {
-    return {grpc::StatusCode::INVALID_ARGUMENT, "cannot read the request's bytes"};
-  }
+  if (!Flatten(*call.request, &bytes)) return ApiStatus::Invalid("cannot read the request's bytes");
   v1::PlanRequest request;
-  if (ApiStatus st = ParseRequest(bytes, &request); !st.ok()) return ToGrpcStatus(st);
+  if (ApiStatus st = ParseRequest(bytes, &request); !st.ok()) return st;
   PlanControl control;
-  const Clock::time_point stop = PlanStop(call.arrival, call.deadline);
-  control.deadline = stop;
+  control.deadline = PlanStop(call.arrival, call.deadline);
   control.cancel = &call.cancel;
   control.on_progress = on_progress;
   control.vision_tolerance_mm = options_.vision_tolerance_mm;
   control.default_budget_ms = options_.default_plan_budget_ms;
   control.max_budget_ms = options_.max_plan_budget_ms;
-  const ApiStatus st = server::Plan(request, response, control);
-  if (!st.ok()) return ToGrpcStatus(st);
+  ApiStatus st = server::Plan(request, response, control);
   work->simulations = response->simulations();
-  if (call.cancel.load() || call.context->IsCancelled()) {
-    if (ClientDeadlinePassed(call.client_deadline)) {
-      return {grpc::StatusCode::DEADLINE_EXCEEDED,
-              "the client's deadline passed while planning (" +
-                  std::to_string(response->simulations()) + " simulations)"};
-    }
-    return {grpc::StatusCode::CANCELLED, "the call was cancelled while planning (" +
-                                             std::to_string(response->simulations()) + " simulations)"};
-  }
-  if (response->shots_size() == 0 && Clock::now() >= stop) {
-    return {grpc::StatusCode::DEADLINE_EXCEEDED,
-            "the call's deadline passed before any shot was verified (" +
-                std::to_string(response->simulations()) + " simulations, " + response->reason() + ")"};
-  }
-  return grpc::Status::OK;
+  return service_detail::DeadlineIfClientLate(std::move(st), call);
 }
 
 grpc::ServerUnaryReactor* ShotPlannerService::Plan(grpc::CallbackServerContext* context,
@@ -252,12 +228,12 @@ grpc::ServerUnaryReactor* ShotPlannerService::Plan(grpc::CallbackServerContext* 
   // On a gRPC thread: admit and queue the call, return at once (no exception may leave).
   received_.fetch_add(1);
   try {
-    grpc::Status refusal;
+    ApiStatus refusal;
     std::shared_ptr<PlanCall> call = AdmitPlan("Plan", context, request, &refusal);
     if (call == nullptr) {
       grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
       Record("Plan", context->peer(), Clock::now(), refusal, request->Length(), 0, {});
-      reactor->Finish(refusal);
+      reactor->Finish(ToGrpcStatus(refusal));
       return reactor;
     }
     auto* reactor = new PlanUnaryReactor(call);
@@ -265,9 +241,9 @@ grpc::ServerUnaryReactor* ShotPlannerService::Plan(grpc::CallbackServerContext* 
       running_.fetch_add(1);
       Work work;
       std::size_t response_bytes = 0;
-      const grpc::Status status = service_detail::Guarded([&] {
+      const ApiStatus status = service_detail::Guarded([&] {
         v1::PlanResponse answer;
-        grpc::Status st = RunPlan(*call, &answer, &work, nullptr);
+        ApiStatus st = RunPlan(*call, &answer, &work, nullptr);
         if (st.ok()) st = Serialize(answer, response);
         if (st.ok()) response_bytes = response->Length();
         return st;
@@ -275,21 +251,18 @@ grpc::ServerUnaryReactor* ShotPlannerService::Plan(grpc::CallbackServerContext* 
       running_.fetch_sub(1);
       plans_.fetch_sub(1);
       Record(call->method, call->peer, call->arrival, status, call->request_bytes, response_bytes, work);
-      reactor->Finish(status);  // the last use of the reactor and the buffers
+      reactor->Finish(ToGrpcStatus(status));  // the last use of the reactor and the buffers
     };
     if (!pool_.TrySubmit(job)) {
       plans_.fetch_sub(1);
-      const grpc::Status busy = Busy();
+      const ApiStatus busy = Busy();
       Record("Plan", call->peer, call->arrival, busy, call->request_bytes, 0, {});
-      reactor->Finish(busy);
+      reactor->Finish(ToGrpcStatus(busy));
     }
     return reactor;
   } catch (const std::exception& e) {  // std::bad_alloc above all
     grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
-    by_status_[grpc::StatusCode::RESOURCE_EXHAUSTED].fetch_add(1);
-    finished_.fetch_add(1);
-    reactor->Finish({grpc::StatusCode::RESOURCE_EXHAUSTED,
-                     std::string("the server cannot take the call: ") + e.what()});
+    Refuse(reactor, service_detail::CannotTake(e));
     return reactor;
   }
 }
@@ -297,12 +270,12 @@ grpc::ServerUnaryReactor* ShotPlannerService::Plan(grpc::CallbackServerContext* 
 grpc::ServerWriteReactor<grpc::ByteBuffer>* ShotPlannerService::PlanStream(
     grpc::CallbackServerContext* context, const grpc::ByteBuffer* request) {
   received_.fetch_add(1);
-  grpc::Status refusal;
+  ApiStatus refusal;
   std::shared_ptr<PlanCall> call;
   try {
     call = AdmitPlan("PlanStream", context, request, &refusal);
   } catch (const std::exception& e) {
-    refusal = {grpc::StatusCode::RESOURCE_EXHAUSTED, std::string("the server cannot take the call: ") + e.what()};
+    refusal = service_detail::CannotTake(e);
   }
   if (call == nullptr) {
     // A reactor that only finishes (it needs a PlanCall for its OnCancel).
@@ -318,9 +291,9 @@ grpc::ServerWriteReactor<grpc::ByteBuffer>* ShotPlannerService::PlanStream(
     Work work;
     std::optional<grpc::ByteBuffer> final_bytes;
     std::size_t response_bytes = 0;
-    const grpc::Status status = service_detail::Guarded([&] {
+    const ApiStatus status = service_detail::Guarded([&] {
       v1::PlanResponse answer;
-      grpc::Status st = RunPlan(*call, &answer, &work,
+      ApiStatus st = RunPlan(*call, &answer, &work,
                                 [reactor](const v1::PlanResponse& best) { reactor->Progress(best); });
       if (st.ok()) {
         final_bytes.emplace();
@@ -336,7 +309,7 @@ grpc::ServerWriteReactor<grpc::ByteBuffer>* ShotPlannerService::PlanStream(
   };
   if (!pool_.TrySubmit(job)) {
     plans_.fetch_sub(1);
-    const grpc::Status busy = Busy();
+    const ApiStatus busy = Busy();
     Record("PlanStream", call->peer, call->arrival, busy, call->request_bytes, 0, {});
     reactor->Complete(busy, std::nullopt);
   }

@@ -79,6 +79,33 @@ bool Flatten(const grpc::ByteBuffer& buffer, std::string* out) {
   return true;
 }
 
+ApiStatus CannotTake(const std::exception& e) {
+  return {ApiStatus::Code::kResourceExhausted, std::string("the server cannot take the call: ") + e.what()};
+}
+
+std::optional<ApiStatus> RefuseLateStart(const CallInfo& call, bool cancelled, const char* what) {
+  const auto waited_ms =
+      std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - call.arrival).count();
+  const std::string waited = " (" + std::to_string(waited_ms) + " ms waiting for a worker)";
+  if (Clock::now() >= call.deadline || (cancelled && ClientDeadlinePassed(call.client_deadline))) {
+    return ApiStatus{ApiStatus::Code::kDeadlineExceeded,
+                     std::string("the call's deadline passed before ") + what + " started" + waited};
+  }
+  if (cancelled) {
+    return ApiStatus{ApiStatus::Code::kCancelled,
+                     std::string("the call was cancelled before ") + what + " started" + waited};
+  }
+  return std::nullopt;
+}
+
+ApiStatus DeadlineIfClientLate(ApiStatus status, const CallInfo& call) {
+  if (status.code == ApiStatus::Code::kCancelled && ClientDeadlinePassed(call.client_deadline)) {
+    status.code = ApiStatus::Code::kDeadlineExceeded;
+    status.message = "the client's deadline passed: " + status.message;
+  }
+  return status;
+}
+
 void Arrived(grpc::CallbackServerContext* context, const grpc::ByteBuffer* request,
              std::chrono::milliseconds max_call, CallInfo* info) {
   info->context = context;
@@ -221,30 +248,18 @@ grpc::ServerUnaryReactor* ShotPlannerService::Accept(const Method& method,
       Finish(*call, Busy(), 0, {});
     }
   } catch (const std::exception& e) {  // std::bad_alloc above all
-    by_status_[grpc::StatusCode::RESOURCE_EXHAUSTED].fetch_add(1);
-    finished_.fetch_add(1);
-    reactor->Finish({grpc::StatusCode::RESOURCE_EXHAUSTED,
-                     std::string("the server cannot take the call: ") + e.what()});
+    Refuse(reactor, service_detail::CannotTake(e));
   }
   return reactor;
 }
 
 void ShotPlannerService::Run(const std::shared_ptr<Call>& call) {
   running_.fetch_add(1);
-  grpc::Status status;
+  ApiStatus status;
   std::size_t response_bytes = 0;
   Work work;
-  const auto waited_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
-                             Clock::now() - call->arrival).count();
-  const bool cancelled = call->context->IsCancelled();
-  if (Clock::now() >= call->deadline || (cancelled && ClientDeadlinePassed(call->client_deadline))) {
-    status = {grpc::StatusCode::DEADLINE_EXCEEDED,
-              "the call's deadline passed before it started (" + std::to_string(waited_ms) +
-                  " ms waiting for a worker)"};
-  } else if (cancelled) {
-    status = {grpc::StatusCode::CANCELLED,
-              "the call was cancelled before it started (" + std::to_string(waited_ms) +
-                  " ms waiting for a worker)"};
+  if (auto late = service_detail::RefuseLateStart(*call, call->context->IsCancelled(), "it")) {
+    status = std::move(*late);
   } else {
     CallLimits limits;
     limits.interrupt.deadline = call->deadline;
@@ -254,51 +269,54 @@ void ShotPlannerService::Run(const std::shared_ptr<Call>& call) {
     limits.default_plan_budget_ms = options_.default_plan_budget_ms;
     limits.max_plan_budget_ms = options_.max_plan_budget_ms;
     limits.service = &service_limits_;
-    status = service_detail::Guarded([&]() -> grpc::Status {
+    status = service_detail::Guarded([&]() -> ApiStatus {
       std::string bytes;
-      if (!Flatten(*call->request, &bytes)) {
-        return {grpc::StatusCode::INVALID_ARGUMENT, "cannot read the request's bytes"};
-      }
-      ApiStatus result = call->method->run(bytes, limits, call->response, &work);
-      if (result.code == ApiStatus::Code::kCancelled && ClientDeadlinePassed(call->client_deadline)) {
-        result.code = ApiStatus::Code::kDeadlineExceeded;
-        result.message = "the client's deadline passed: " + result.message;
-      }
-      const grpc::Status st = ToGrpcStatus(result);
-      if (st.ok()) response_bytes = call->response->Length();
-      return st;
+      if (!Flatten(*call->request, &bytes)) return ApiStatus::Invalid("cannot read the request's bytes");
+      ApiStatus result = service_detail::DeadlineIfClientLate(
+          call->method->run(bytes, limits, call->response, &work), *call);
+      if (result.ok()) response_bytes = call->response->Length();
+      return result;
     });
   }
   running_.fetch_sub(1);
   Finish(*call, status, response_bytes, work);
 }
 
-grpc::Status ShotPlannerService::Busy() const {
-  return {grpc::StatusCode::RESOURCE_EXHAUSTED,
+ApiStatus ShotPlannerService::Busy() const {
+  return {ApiStatus::Code::kResourceExhausted,
           "the server is busy: " + std::to_string(pool_.threads()) + " calls running and " +
               std::to_string(options_.max_queued) + " waiting; try again later"};
 }
 
-void ShotPlannerService::Finish(Call& call, const grpc::Status& status, std::size_t response_bytes,
+void ShotPlannerService::Finish(Call& call, const ApiStatus& status, std::size_t response_bytes,
                                 const Work& work) {
   // Counted and logged first: a client that has its answer sees it counted.
   Record(call.method->name, call.peer, call.arrival, status, call.request_bytes, response_bytes, work);
   // The context and buffers belong to gRPC once Finish is called: nothing of them
   // is touched after it.
-  call.reactor->Finish(status);
+  call.reactor->Finish(ToGrpcStatus(status));
+}
+
+void ShotPlannerService::Refuse(grpc::ServerUnaryReactor* reactor, const ApiStatus& status) {
+  Count(status);
+  reactor->Finish(ToGrpcStatus(status));
+}
+
+void ShotPlannerService::Count(const ApiStatus& status) {
+  by_status_[static_cast<std::size_t>(ToGrpcStatus(status).error_code()) % by_status_.size()].fetch_add(1);
+  finished_.fetch_add(1);
 }
 
 void ShotPlannerService::Record(const char* method, const std::string& peer, Clock::time_point arrival,
-                                const grpc::Status& status, std::size_t request_bytes,
+                                const ApiStatus& status, std::size_t request_bytes,
                                 std::size_t response_bytes, const Work& work, const std::string& extra) {
   const double latency_ms = std::chrono::duration<double, std::milli>(Clock::now() - arrival).count();
-  by_status_[static_cast<std::size_t>(status.error_code()) % by_status_.size()].fetch_add(1);
-  finished_.fetch_add(1);
+  Count(status);
   if (options_.log != nullptr) {
     std::ostringstream line;
     line.precision(3);
     line << std::fixed << "snooker: call method=" << method << " peer=" << peer
-         << " status=" << StatusCodeName(status.error_code()) << " latency_ms=" << latency_ms
+         << " status=" << ToString(status.code) << " latency_ms=" << latency_ms
          << " simulations=" << work.simulations << " request_bytes=" << request_bytes
          << " response_bytes=" << response_bytes << extra << "\n";
     std::lock_guard<std::mutex> lock(log_mu_);

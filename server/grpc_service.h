@@ -136,20 +136,24 @@ class ShotPlannerService final : public ShotPlannerRawService {
   grpc::ServerUnaryReactor* Accept(const Method& method, grpc::CallbackServerContext* context,
                                    const grpc::ByteBuffer* request, grpc::ByteBuffer* response);
   void Run(const std::shared_ptr<Call>& call);
-  void Finish(Call& call, const grpc::Status& status, std::size_t response_bytes,
-              const Work& work);
+  void Finish(Call& call, const ApiStatus& status, std::size_t response_bytes, const Work& work);
+  /// Answers a call that could not be taken at all (counted, not logged: the log
+  /// line may be what memory cannot afford).
+  void Refuse(grpc::ServerUnaryReactor* reactor, const ApiStatus& status);
   /// The answer to a call that finds every worker busy and the queue full.
-  grpc::Status Busy() const;
+  ApiStatus Busy() const;
+  /// Counts a finished call by its status.
+  void Count(const ApiStatus& status);
   /// Counts a finished call and writes its log line.
   void Record(const char* method, const std::string& peer, std::chrono::steady_clock::time_point arrival,
-              const grpc::Status& status, std::size_t request_bytes, std::size_t response_bytes,
+              const ApiStatus& status, std::size_t request_bytes, std::size_t response_bytes,
               const Work& work, const std::string& extra = "");
   /// Plans: a new PlanCall for a call that arrived (nullptr with `refusal` set when
   /// max_plans are in the server), the plan itself on a worker, and its status.
   std::shared_ptr<PlanCall> AdmitPlan(const char* method, grpc::CallbackServerContext* context,
-                                      const grpc::ByteBuffer* request, grpc::Status* refusal);
-  grpc::Status RunPlan(PlanCall& call, v1::PlanResponse* response, Work* work,
-                       const std::function<void(const v1::PlanResponse&)>& on_progress);
+                                      const grpc::ByteBuffer* request, ApiStatus* refusal);
+  ApiStatus RunPlan(PlanCall& call, v1::PlanResponse* response, Work* work,
+                    const std::function<void(const v1::PlanResponse&)>& on_progress);
 
   ServiceOptions options_;
   v1::ServiceLimits service_limits_;  // what GetModel reports

@@ -7,8 +7,11 @@
 #include <chrono>
 #include <cstddef>
 #include <new>
+#include <optional>
 #include <stdexcept>
 #include <string>
+
+#include "server/api_status.h"
 
 namespace snooker::server::service_detail {
 
@@ -40,20 +43,32 @@ struct CallInfo {
 void Arrived(grpc::CallbackServerContext* context, const grpc::ByteBuffer* request,
              std::chrono::milliseconds max_call, CallInfo* info);
 
-/// Runs `body` (returning a grpc::Status) and maps what it throws: out of memory to
+/// Runs `body` (returning an ApiStatus) and maps what it throws: out of memory to
 /// RESOURCE_EXHAUSTED, anything else to INTERNAL. No exception leaves.
 template <typename Body>
-grpc::Status Guarded(Body&& body) noexcept {
+ApiStatus Guarded(Body&& body) noexcept {
   try {
     return body();
   } catch (const std::bad_alloc&) {
-    return {grpc::StatusCode::RESOURCE_EXHAUSTED, "out of memory"};
+    return {ApiStatus::Code::kResourceExhausted, "out of memory"};
   } catch (const std::exception& e) {
-    return {grpc::StatusCode::INTERNAL, std::string("internal error: ") + e.what()};
+    return {ApiStatus::Code::kInternal, std::string("internal error: ") + e.what()};
   } catch (...) {
-    return {grpc::StatusCode::INTERNAL, "internal error"};
+    return {ApiStatus::Code::kInternal, "internal error"};
   }
 }
+
+/// The answer to a call the server cannot even take (out of memory on arrival).
+ApiStatus CannotTake(const std::exception& e);
+
+/// A call about to start on a worker after waiting for one: DEADLINE_EXCEEDED when
+/// its deadline passed meanwhile, CANCELLED when the client cancelled it; nullopt
+/// when it may start. `what` names the work ("the call", "the plan").
+std::optional<ApiStatus> RefuseLateStart(const CallInfo& call, bool cancelled, const char* what);
+
+/// gRPC cancels a call when the client's deadline passes: a CANCELLED status then
+/// is the deadline's, and says so.
+ApiStatus DeadlineIfClientLate(ApiStatus status, const CallInfo& call);
 
 /// One call's bytes as one contiguous string.
 bool Flatten(const grpc::ByteBuffer& buffer, std::string* out);
