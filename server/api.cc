@@ -284,78 +284,8 @@ v1::ServiceLimits DefaultServiceLimits(const CallLimits& limits) {
 ApiStatus GetModel(const v1::GetModelRequest& /*request*/, v1::GetModelResponse* response,
                    const CallLimits& limits) {
   const physics::TableModel& table = physics::DefaultTable();
-  const physics::SimParams sim;  // what Simulate uses for unset options
-  v1::TableGeometry* g = response->mutable_table();
-  g->set_width_m(table.spec().width);
-  g->set_length_m(table.spec().length);
-  g->set_baulk_line_m(table.spec().baulk_line);
-  g->set_d_radius_m(table.spec().d_radius);
-  g->set_cushion_height_m(table.spec().cushion_height);
-  g->set_cushion_contact_distance_m(table.cushion_contact_distance());
-  for (const physics::CushionSegment& seg : table.segments()) {
-    v1::CushionSegment* out = g->add_segments();
-    out->set_name(seg.name);
-    out->set_kind(seg.kind == physics::SegmentKind::kCushion ? "cushion" : "jaw wall");
-    ToProto(seg.p0, out->mutable_p0());
-    ToProto(seg.p1, out->mutable_p1());
-    ToProto(seg.normal, out->mutable_normal());
-    out->set_pocket(physics::ToString(seg.pocket));
-  }
-  for (const physics::JawCircle& jaw : table.jaws()) {
-    v1::Knuckle* out = g->add_knuckles();
-    ToProto(jaw.centre, out->mutable_centre());
-    out->set_radius_m(jaw.radius);
-    out->set_pocket(physics::ToString(jaw.pocket));
-  }
-  for (const physics::Pocket& pocket : table.pockets()) {
-    v1::Pocket* out = g->add_pockets();
-    out->set_name(physics::ToString(pocket.id));
-    ToProto(pocket.mouth_centre, out->mutable_mouth_centre());
-    ToProto(pocket.axis, out->mutable_axis());
-    ToProto(pocket.capture_centre, out->mutable_capture_centre());
-    out->set_capture_radius_m(pocket.capture_radius);
-  }
-  const std::pair<physics::Colour, v1::BallKind> colours[] = {
-      {physics::Colour::kYellow, v1::YELLOW}, {physics::Colour::kGreen, v1::GREEN},
-      {physics::Colour::kBrown, v1::BROWN},   {physics::Colour::kBlue, v1::BLUE},
-      {physics::Colour::kPink, v1::PINK},     {physics::Colour::kBlack, v1::BLACK}};
-  for (const auto& [colour, kind] : colours) {
-    v1::Spot* out = g->add_spots();
-    out->set_kind(kind);
-    ToProto(table.spot(colour), out->mutable_position());
-  }
-  for (const physics::Vec2& red : table.reds()) ToProto(red, g->add_red_triangle());
-
-  v1::BallModel* ball = response->mutable_ball();
-  ball->set_mass_kg(sim.ball.mass);
-  ball->set_radius_m(sim.ball.radius);
-  ball->set_inertia_kg_m2(sim.ball.Inertia());
-  v1::ClothModel* cloth = response->mutable_cloth();
-  cloth->set_mu_s(sim.cloth.mu_s);
-  cloth->set_mu_r(sim.cloth.mu_r);
-  cloth->set_spin_decel(sim.cloth.spin_decel);
-  cloth->set_gravity(sim.cloth.g);
-  v1::BallBallModel* bb = response->mutable_ball_ball();
-  bb->set_mu_bb(sim.ball_ball.mu_bb);
-  bb->set_restitution(sim.ball_ball.e);
-  bb->set_friction_law(sim.ball_ball.friction_law == physics::BallBallFrictionLaw::kMarlow ? "marlow"
-                                                                                           : "constant");
-  v1::CushionModel* cushion = response->mutable_cushion();
-  cushion->set_mu_w(sim.cushion.mu_w);
-  cushion->set_mu_s(sim.cushion.mu_s);
-  cushion->set_contact_height_m(table.spec().cushion_height);  // the simulator uses the table's
-  for (int i = 0; i < sim.cushion.restitution_curve.points; ++i) {
-    cushion->add_restitution_speed(sim.cushion.restitution_curve.speed[static_cast<std::size_t>(i)]);
-    cushion->add_restitution(sim.cushion.restitution_curve.e[static_cast<std::size_t>(i)]);
-  }
-  cushion->set_constant_restitution(sim.cushion.e_e);
-  v1::SimulationDefaults* d = response->mutable_simulation();
-  d->set_max_events(sim.max_events);
-  d->set_max_time_s(sim.max_time);
-  d->set_tolerance(sim.ball_ball_solver.tolerance);
-  d->set_path_sample_s(kDefaultPathSampleS);
-  d->set_rest_speed(sim.rest_speed);
-  d->set_impact_tables(sim.impact_tables);
+  ToProto(table, response->mutable_table());
+  ModelToProto(physics::SimParams{}, table, kDefaultPathSampleS, response);  // what Simulate uses for unset options
   *response->mutable_service() =
       limits.service != nullptr ? *limits.service : DefaultServiceLimits(limits);
   return ApiStatus::Ok();

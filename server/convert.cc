@@ -203,6 +203,30 @@ std::string WhyMoved(const std::vector<physics::BallPlacement>& before, std::siz
   return out;
 }
 
+// A ball's position: both coordinates given (a missing one would read as 0), finite,
+// and on the table (the centre within the cushion noses' rectangle: a ball beyond
+// it is not on the table at all, whatever the vision repair could do).
+std::optional<FieldError> CheckPosition(const v1::Ball& b, const std::string& where,
+                                        const physics::TableModel& table) {
+  const std::string ball = "(ball " + QuoteId(b.id()) + ")";
+  if (!b.has_position()) return FieldError{where + ".position", "missing " + ball, "must give x and y, in metres"};
+  const v1::Vec2& p = b.position();
+  for (const auto& [has, axis] : {std::pair{p.has_x(), "x"}, std::pair{p.has_y(), "y"}}) {
+    if (!has) return FieldError{where + ".position." + axis, "missing " + ball, "must be given, in metres"};
+  }
+  const std::string at = "(" + Num(p.x()) + ", " + Num(p.y()) + ") " + ball;
+  if (!(std::isfinite(p.x()) && std::isfinite(p.y()))) {
+    return FieldError{where + ".position", at, "must be finite, in metres"};
+  }
+  const double w = table.spec().width, l = table.spec().length;
+  if (p.x() < 0 || p.x() > w || p.y() < 0 || p.y() > l) {
+    return FieldError{where + ".position", at,
+                      "is off the table: the centre must lie on the bed, x in [0, " + Num(w) + "] m and y in [0, " +
+                          Num(l) + "] m"};
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 TableCheck CheckTable(const v1::TableState& t, const physics::TableModel& table,
@@ -219,7 +243,7 @@ TableCheck CheckTable(const v1::TableState& t, const physics::TableModel& table,
     return check;
   }
   std::set<std::string_view> ids;
-  int cues = 0;
+  std::vector<std::string> cue_ids;
   bool placeable = n > 0;
   for (int i = 0; i < n; ++i) {
     const v1::Ball& b = t.balls(i);
@@ -236,17 +260,17 @@ TableCheck CheckTable(const v1::TableState& t, const physics::TableModel& table,
       errors.push_back({where + ".kind", std::to_string(b.kind()) + " (ball " + QuoteId(b.id()) + ")",
                         "must be one of CUE, RED, YELLOW, GREEN, BROWN, BLUE, PINK, BLACK"});
     }
-    if (b.kind() == v1::CUE) ++cues;
-    if (!(std::isfinite(b.position().x()) && std::isfinite(b.position().y()))) {
-      errors.push_back({where + ".position",
-                        "(" + Num(b.position().x()) + ", " + Num(b.position().y()) + ") (ball " +
-                            QuoteId(b.id()) + ")",
-                        "must be finite, in metres"});
+    if (b.kind() == v1::CUE) cue_ids.push_back(QuoteId(b.id()));
+    if (std::optional<FieldError> e = CheckPosition(b, where, table)) {
+      errors.push_back(std::move(*e));
       placeable = false;
     }
   }
-  if (n > 0 && cues != 1) {
-    errors.push_back({"table.balls", std::to_string(cues) + " CUE balls", "must have exactly one"});
+  if (n > 0 && cue_ids.size() != 1) {
+    std::string value = std::to_string(cue_ids.size()) + " CUE balls";
+    for (std::size_t i = 0; i < cue_ids.size(); ++i) value += (i == 0 ? " (" : ", ") + cue_ids[i];
+    if (!cue_ids.empty()) value += ")";
+    errors.push_back({"table.balls", value, "must have exactly one"});
   }
   if (!placeable) return check;
   std::vector<physics::BallPlacement> placed;
@@ -301,14 +325,6 @@ std::optional<double> VisionTolerance(std::optional<double> requested_mm, double
     return std::nullopt;
   }
   return *requested_mm * 1e-3;
-}
-
-std::vector<FieldError> ValidateSimulateRequest(const v1::SimulateRequest& r,
-                                                const physics::TableModel& table) {
-  std::vector<FieldError> errors = CheckTable(r.table(), table, 0).errors;
-  std::vector<FieldError> more = ValidateShotAndOptions(r);
-  errors.insert(errors.end(), more.begin(), more.end());
-  return errors;
 }
 
 std::vector<FieldError> ValidateShotAndOptions(const v1::SimulateRequest& r) {
@@ -460,6 +476,82 @@ void ToProto(const physics::Vec3& v, v1::Vec3* out) {
   out->set_x(v.x());
   out->set_y(v.y());
   out->set_z(v.z());
+}
+
+void ToProto(const physics::TableModel& table, v1::TableGeometry* g) {
+  g->set_width_m(table.spec().width);
+  g->set_length_m(table.spec().length);
+  g->set_baulk_line_m(table.spec().baulk_line);
+  g->set_d_radius_m(table.spec().d_radius);
+  g->set_cushion_height_m(table.spec().cushion_height);
+  g->set_cushion_contact_distance_m(table.cushion_contact_distance());
+  for (const physics::CushionSegment& seg : table.segments()) {
+    v1::CushionSegment* out = g->add_segments();
+    out->set_name(seg.name);
+    out->set_kind(seg.kind == physics::SegmentKind::kCushion ? "cushion" : "jaw wall");
+    ToProto(seg.p0, out->mutable_p0());
+    ToProto(seg.p1, out->mutable_p1());
+    ToProto(seg.normal, out->mutable_normal());
+    out->set_pocket(physics::ToString(seg.pocket));
+  }
+  for (const physics::JawCircle& jaw : table.jaws()) {
+    v1::Knuckle* out = g->add_knuckles();
+    ToProto(jaw.centre, out->mutable_centre());
+    out->set_radius_m(jaw.radius);
+    out->set_pocket(physics::ToString(jaw.pocket));
+  }
+  for (const physics::Pocket& pocket : table.pockets()) {
+    v1::Pocket* out = g->add_pockets();
+    out->set_name(physics::ToString(pocket.id));
+    ToProto(pocket.mouth_centre, out->mutable_mouth_centre());
+    ToProto(pocket.axis, out->mutable_axis());
+    ToProto(pocket.capture_centre, out->mutable_capture_centre());
+    out->set_capture_radius_m(pocket.capture_radius);
+  }
+  const std::pair<physics::Colour, v1::BallKind> colours[] = {
+      {physics::Colour::kYellow, v1::YELLOW}, {physics::Colour::kGreen, v1::GREEN},
+      {physics::Colour::kBrown, v1::BROWN},   {physics::Colour::kBlue, v1::BLUE},
+      {physics::Colour::kPink, v1::PINK},     {physics::Colour::kBlack, v1::BLACK}};
+  for (const auto& [colour, kind] : colours) {
+    v1::Spot* out = g->add_spots();
+    out->set_kind(kind);
+    ToProto(table.spot(colour), out->mutable_position());
+  }
+  for (const physics::Vec2& red : table.reds()) ToProto(red, g->add_red_triangle());
+}
+
+void ModelToProto(const physics::SimParams& sim, const physics::TableModel& table, double path_sample_s,
+                  v1::GetModelResponse* response) {
+  v1::BallModel* ball = response->mutable_ball();
+  ball->set_mass_kg(sim.ball.mass);
+  ball->set_radius_m(sim.ball.radius);
+  ball->set_inertia_kg_m2(sim.ball.Inertia());
+  v1::ClothModel* cloth = response->mutable_cloth();
+  cloth->set_mu_s(sim.cloth.mu_s);
+  cloth->set_mu_r(sim.cloth.mu_r);
+  cloth->set_spin_decel(sim.cloth.spin_decel);
+  cloth->set_gravity(sim.cloth.g);
+  v1::BallBallModel* bb = response->mutable_ball_ball();
+  bb->set_mu_bb(sim.ball_ball.mu_bb);
+  bb->set_restitution(sim.ball_ball.e);
+  bb->set_friction_law(sim.ball_ball.friction_law == physics::BallBallFrictionLaw::kMarlow ? "marlow"
+                                                                                           : "constant");
+  v1::CushionModel* cushion = response->mutable_cushion();
+  cushion->set_mu_w(sim.cushion.mu_w);
+  cushion->set_mu_s(sim.cushion.mu_s);
+  cushion->set_contact_height_m(table.spec().cushion_height);  // the simulator uses the table's
+  for (int i = 0; i < sim.cushion.restitution_curve.points; ++i) {
+    cushion->add_restitution_speed(sim.cushion.restitution_curve.speed[static_cast<std::size_t>(i)]);
+    cushion->add_restitution(sim.cushion.restitution_curve.e[static_cast<std::size_t>(i)]);
+  }
+  cushion->set_constant_restitution(sim.cushion.e_e);
+  v1::SimulationDefaults* d = response->mutable_simulation();
+  d->set_max_events(sim.max_events);
+  d->set_max_time_s(sim.max_time);
+  d->set_tolerance(sim.ball_ball_solver.tolerance);
+  d->set_path_sample_s(path_sample_s);
+  d->set_rest_speed(sim.rest_speed);
+  d->set_impact_tables(sim.impact_tables);
 }
 
 }  // namespace snooker::server

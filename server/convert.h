@@ -15,6 +15,7 @@
 #include "physics/sim/simulate.h"
 #include "physics/table/table.h"
 #include "snooker/v1/collide.pb.h"
+#include "snooker/v1/model.pb.h"
 #include "snooker/v1/simulate.pb.h"
 #include "snooker/v1/table.pb.h"
 
@@ -78,13 +79,8 @@ TableCheck CheckTable(const v1::TableState& state, const physics::TableModel& ta
 std::optional<double> VisionTolerance(std::optional<double> requested_mm, double server_mm,
                                       const char* field, std::vector<FieldError>* errors);
 
-/// Checks the table (CheckTable without repair), the shot and the options; each
-/// error names the ball id or field and its value.
-std::vector<FieldError> ValidateSimulateRequest(const v1::SimulateRequest& request,
-                                                const physics::TableModel& table);
-
-/// The shot and the options of a Simulate request (ValidateSimulateRequest's checks
-/// besides the table).
+/// The shot and the options of a Simulate request (its table is CheckTable's); each
+/// error names the field and its value.
 std::vector<FieldError> ValidateShotAndOptions(const v1::SimulateRequest& request);
 
 /// The balls of a (validated) table state, in its order, all at rest; the cue ball
@@ -114,5 +110,15 @@ void ToProto(const physics::SimEvent& event, const v1::TableState& table,
 
 void ToProto(const physics::Vec2& v, v1::Vec2* out);
 void ToProto(const physics::Vec3& v, v1::Vec3* out);
+
+/// The table's geometry in API form (GetModel): cushion segments, knuckles, pockets,
+/// spots and the red triangle.
+void ToProto(const physics::TableModel& table, v1::TableGeometry* out);
+
+/// The physics model in API form (GetModel): ball, cloth, ball-ball, cushion (its
+/// contact height the table's) and the simulation defaults, with `path_sample_s`
+/// the paths' default sampling interval, s.
+void ModelToProto(const physics::SimParams& sim, const physics::TableModel& table, double path_sample_s,
+                  v1::GetModelResponse* out);
 
 }  // namespace snooker::server

@@ -178,7 +178,7 @@ TEST(SimulateApiTest, BadTablesAreRejectedNamingTheBall) {
       {[](v1::SimulateRequest* r) { r->mutable_table()->mutable_balls(1)->set_id("cue"); },
        "table.balls[1].id = \"cue\""},
       {[](v1::SimulateRequest* r) { r->mutable_table()->mutable_balls(1)->set_kind(v1::CUE); },
-       "2 CUE balls"},
+       "table.balls = 2 CUE balls (\"cue\", \"black\") (must have exactly one)"},
       {[](v1::SimulateRequest* r) { r->mutable_table()->mutable_balls(0)->set_kind(v1::RED); },
        "0 CUE balls"},
       {[](v1::SimulateRequest* r) {
@@ -194,7 +194,14 @@ TEST(SimulateApiTest, BadTablesAreRejectedNamingTheBall) {
       {[](v1::SimulateRequest* r) {
          r->mutable_table()->mutable_balls(1)->mutable_position()->set_x(-0.5);
        },
-       "black"},
+       "(ball \"black\") (is off the table: the centre must lie on the bed, x in [0, 1.778] m"},
+      {[](v1::SimulateRequest* r) { r->mutable_table()->mutable_balls(1)->mutable_position()->clear_y(); },
+       "table.balls[1].position.y = missing (ball \"black\") (must be given"},
+      {[](v1::SimulateRequest* r) { r->mutable_table()->mutable_balls(1)->clear_position(); },
+       "table.balls[1].position = missing (ball \"black\")"},
+      {[](v1::SimulateRequest* r) { r->mutable_table()->mutable_balls(1)->set_kind(static_cast<v1::BallKind>(42)); },
+       "table.balls[1].kind = 42 (ball \"black\") (must be one of CUE, RED, YELLOW, GREEN, BROWN, BLUE, PINK, "
+       "BLACK)"},
       {[](v1::SimulateRequest* r) {
          r->mutable_table()->mutable_balls(1)->mutable_position()->set_y(NAN);
        },
