@@ -15,7 +15,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 TARGET = 1e-6  # m/s: the equal-error point at which the two ball-ball schemes are compared
-BUDGET_ERR = 1e-5  # m/s, issue 9: one collision in at most 2 us at this error
+BUDGET_ERR = 1e-5  # m/s: the ball-ball budget, one collision in at most 2 us at this error
 BUDGET_US = 2.0
 SEARCH_TOL = 6  # ImpulseFidelity::kSearch = tolerance 1e-6 (physics/impact/impulse_solver.h)
 
@@ -107,7 +107,7 @@ def main():
       % bb.get("reference_spread", math.nan))
     w("")
     if budget and search_bb:
-        w("**Ball-ball budget (issue 9: at most %.0f us at <= %.0e m/s): %.2f us per "
+        w("**Ball-ball budget (at most %.0f us at <= %.0e m/s): %.2f us per "
           "collision at %.1e m/s error at tolerance 1e-5, %.2f us at %.1e m/s at the search "
           "tier (1e-6).** At equal error %g m/s the adaptive integrator is %.0fx faster "
           "than the paper's fixed-step scheme (log-log interpolation along both curves, "
