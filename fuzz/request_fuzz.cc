@@ -260,7 +260,7 @@ std::string Id(FuzzedDataProvider& in, int i) {
 // A coordinate on or near the table, sometimes anything.
 double Coordinate(FuzzedDataProvider& in, double length) { return Value(in, -0.1, length + 0.1); }
 
-// A ball's position: anywhere near the table, or in a resting contact (issue 7): its
+// A ball's position: anywhere near the table, or in a resting contact: its
 // centre exactly the cushion contact distance from a cushion, or exactly 2R from the
 // previous ball (touching it), which the engine must handle as ordinary states; or,
 // as vision reports them, a little past a cushion or into the previous ball (up to

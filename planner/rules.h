@@ -1,5 +1,5 @@
-// Snooker's rules as the planner needs them (WPBSA rules, section 3; shared
-// planning-notes section 1): ball values, the ball on, legal first contacts and
+// Snooker's rules as the planner needs them (WPBSA rules, section 3;
+// docs/planning-notes.md §1): ball values, the ball on, legal first contacts and
 // pots, fouls, the score of a shot, and re-spotting the colours.
 //
 // The table state here is what vision reports: each ball's kind and centre, all at

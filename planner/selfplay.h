@@ -1,4 +1,4 @@
-// Self-play: the planner plays breaks alone, as issue 8 asks, to measure it.
+// Self-play: the planner plays breaks alone, to measure it.
 //
 // Each frame starts from a seeded random mid-frame table: 6 to 10 reds scattered
 // where they touch nothing (no ball, no spot), the colours on their spots, the cue

@@ -1,5 +1,5 @@
 // `snooker plan` and `snooker selfplay` as a user (or a tool outside the project)
-// runs them: the JSON field names of issue 8 are a contract, a planned shot can be
+// runs them: the JSON field names are a contract, a planned shot can be
 // fed straight back to `snooker simulate`, and bad input names the value.
 #include <google/protobuf/struct.pb.h>
 #include <google/protobuf/util/json_util.h>

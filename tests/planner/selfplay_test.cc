@@ -1,4 +1,4 @@
-// Tests of self-play (planner/selfplay.h): the random frames are what issue 8
+// Tests of self-play (planner/selfplay.h): the random frames are what the header
 // describes, and a short run's statistics are consistent with its frames.
 #include "planner/selfplay.h"
 

@@ -1,5 +1,5 @@
 // Every request's work, output and error message is bounded, and each bad value is
-// INVALID_ARGUMENT naming it (issue 7, findings 3 and 5), through the library API
+// INVALID_ARGUMENT naming it, through the library API
 // (server/api.h, server/convert.h, server/decode.h).
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The command line as a client of a real server (issue 10, items 5 and 6):
+// The command line as a client of a real server:
 // `snooker simulate --server` prints what the local command prints, and `snooker
 // loadtest` sends bounded load to a loopback server only, checks every answer and
 // reports errors by status code. The server runs in this process; the `snooker`

@@ -1,4 +1,4 @@
-// The gRPC service's bounds on calls (issue 7, findings 3 and 5): bytes that do not
+// The gRPC service's bounds on calls: bytes that do not
 // parse, wall time from the client's deadline and the server's maximum, cancellation,
 // a full queue, shutdown, and the per-call log, through an in-process server and
 // real stubs.

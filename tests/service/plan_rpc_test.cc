@@ -1,4 +1,4 @@
-// Plan and PlanStream through an in-process server and real stubs (issue 10): the
+// Plan and PlanStream through an in-process server and real stubs: the
 // answer within the request's limits and deterministic for a seed, the stream's
 // progress and final message, each bad input with its status and message, the
 // vision repair's warning, a deadline shorter than the budget, a cancelled call, a

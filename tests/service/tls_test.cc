@@ -1,4 +1,4 @@
-// Security of `snooker serve` (issue 10, item 3): plaintext only on loopback unless
+// Security of `snooker serve`: plaintext only on loopback unless
 // asked for explicitly; TLS, and mutual TLS with a client CA; a plaintext client, a
 // client that does not trust the server and a client without the right certificate
 // are refused. The certificates are made per test process by scripts/dev-certs

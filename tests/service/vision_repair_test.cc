@@ -1,4 +1,4 @@
-// The vision repair (issue 10, item 4): balls that overlap, or a centre a hair past a
+// The vision repair: balls that overlap, or a centre a hair past a
 // cushion, by at most the vision tolerance are moved apart or back by the least
 // distance, with a warning naming each ball and how far it moved; beyond the
 // tolerance the request is INVALID_ARGUMENT naming the balls. Through the library
