@@ -23,8 +23,9 @@ using test::Adaptive;
 using test::FixedStep;
 using test::kRoundingRel;
 
-// The notes read the rebound of a rolling 1 m/s square-on ball off the paper's plots
-// as "about 0.91 m/s"; a plot read to its grid is good to about 0.01 m/s.
+// The rebound of a rolling 1 m/s square-on ball read off the paper's plots is "about
+// 0.91 m/s" (docs/physics-notes.md section 8); a plot read to its grid is good to
+// about 0.01 m/s.
 constexpr double kPlotReadingTol = 0.01;  // m/s
 // The brief's bar for the default tolerance against a very tight run. m/s (spins
 // compared as R w).
@@ -85,7 +86,8 @@ struct RandomShots {
 // ---------------------------------------------------------------------------
 // Layer 1: published figures.
 
-// The notes' check. The model gives 0.9107 m/s (v = (0, -0.91066) m/s, wx = -8.96 rad/s).
+// The check of docs/physics-notes.md section 8. The model gives 0.9107 m/s
+// (v = (0, -0.91066) m/s, wx = -8.96 rad/s).
 TEST(CushionPaperCheck, RollingBallAtOneMetrePerSecondReboundsAtAbout091) {
   const CushionParams p;
   const CushionImpactResult a = ResolveCushionImpact(RollingSquareOn(1.0), kBall, p, Adaptive());
