@@ -1,6 +1,7 @@
-// Study for a cheap fidelity tier (issue 9 item 4): a precomputed table of the
-// ball-ball impact map against the exact solver. Not a library feature; it measures
-// whether one would pay (docs/impact-speed.md records the choice).
+// Study for a cheap fidelity tier: a precomputed table of the whole ball-ball impact
+// map (cut, topspin and sidespin) against the exact solver. It measures whether such
+// a table would pay (docs/impact-speed.md records the choice); the library's tables
+// (physics/impact/impact_table.h) cover only rolling arrivals.
 //
 // With constant ball-ball friction every force in the impulse equations is
 // proportional to the normal impulse, so the outcome of a cue ball C hitting a

@@ -1,4 +1,4 @@
-// Runs one simulation scenario (bench/simulate_scenarios.h) a fixed number of times,
+// Runs one simulation scenario (tests/support/scenarios.h) a fixed number of times,
 // for instruction counting under valgrind --tool=callgrind: a repeatable cost on a
 // noisy machine. Usage: simulate_count SCENARIO RUNS
 #include <cstdio>

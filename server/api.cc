@@ -10,6 +10,7 @@
 
 #include "physics/impact/ball_ball.h"
 #include "physics/motion/slip_phase.h"
+#include "physics/sim/paths.h"
 #include "server/convert.h"
 
 namespace snooker::server {
@@ -215,35 +216,28 @@ ApiStatus Simulate(const v1::SimulateRequest& request, v1::SimulateResponse* res
     budget.Add(out->ByteSizeLong());
   }
   if (paths) {
-    // Samples every dt between the knots (each knot is a point too); dt grows so that
-    // the samples of all balls stay within limits::kMaxPathPoints.
+    // Every path sampled at the asked interval, grown so that the samples of all balls
+    // stay within limits::kMaxPathPoints, knots apart (physics/sim/paths.h).
     const double asked =
         request.options().has_path_sample_s() ? request.options().path_sample_s() : kDefaultPathSampleS;
-    const double n = static_cast<double>(state.balls_size());
-    const double dt =
-        std::max(asked, sim.end_time() * n / static_cast<double>(limits::kMaxPathPoints));
+    const double dt = physics::PathSampleInterval(asked, sim.end_time(), state.balls_size(),
+                                                  limits::kMaxPathPoints);
     constexpr std::size_t kPointBytes = 2 * 9 + 2 + 8;  // x, y with tags and length; t
     std::int64_t points = 0;
+    std::vector<physics::PathSample> samples;
     for (int i = 0; i < state.balls_size(); ++i) {
       v1::BallPath* path = response->add_paths();
       path->set_id(id(i));
       bool fits = budget.Add(path->ByteSizeLong());
-      auto add = [&](double t) {
-        path->add_t(t);
-        ToProto(sim.PositionAt(i, t), path->add_points());
+      auto add = [&](const physics::PathSample& p) {
+        path->add_t(p.t);
+        ToProto(p.r, path->add_points());
         ++points;
         fits = fits && budget.Add(kPointBytes);
       };
-      const auto knots = sim.path(i);
-      const double end = sim.pocket_of(i) >= 0 ? knots.back().t : sim.end_time();
-      for (size_t k = 0; k < knots.size() && fits; ++k) {  // every knot, samples in between
-        const double t0 = knots[k].t;
-        const double t1 = k + 1 < knots.size() ? knots[k + 1].t : end;
-        // Counted in integers: t += dt could stall once dt is below t's last place.
-        const auto m = t1 > t0 ? static_cast<std::int64_t>(std::ceil((t1 - t0) / dt)) : 0;
-        for (std::int64_t j = 0; j < m && fits; ++j) add(t0 + static_cast<double>(j) * dt);
-      }
-      add(end);
+      physics::SamplePath(sim, i, dt, &samples);
+      for (std::size_t k = 0; k + 1 < samples.size() && fits; ++k) add(samples[k]);
+      add(samples.back());  // the final point
       if (!fits) {
         return TooLarge(budget.limit(),
                         std::to_string(sim.events().size()) + " events and more than " +

@@ -21,7 +21,7 @@ int main() {
       "the paper defines them: speeds (predicted - measured) "
       "/ predicted, angles (predicted - measured) / measured, in percent. Table 1 row "
       "4's predicted cue v_S is printed 0.128 (read 1.28) and Table 2 row 3's cue "
-      "error -0.90 %% (its own columns give -1.93 %%): physics-notes section 2 and "
+      "error -0.90 %% (its own columns give -1.93 %%): docs/physics-notes.md section 3 and "
       "tests/physics/impact/paper_shots.h.\n\n");
   std::printf(
       "| V0 (m/s) | cut (deg) | ball | measured v_S | paper v_S | our v_S | paper error "

@@ -1,6 +1,6 @@
 // Physical parameters, kept apart from state (MuJoCo's mjModel/mjData split).
 // Defaults are the snooker values of Mathavan, Jackson & Parkin (2014) and the
-// sources listed in shared physics-notes sections 6 and 9.
+// sources listed in docs/physics-notes.md sections 7 and 9.
 #pragma once
 
 #include <cmath>

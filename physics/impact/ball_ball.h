@@ -4,8 +4,9 @@
 // The model: two identical balls on the cloth, point contacts at A (ball-ball), D
 // (C-cloth) and B (O-cloth); Coulomb friction at every contact; the normal impulse
 // P_I at A is the independent variable; the impact ends by Stronge's energetic
-// restitution (eqs. 10, 15). Frame, signs and misprints: shared physics-notes.md and
-// physics/core/types.h. Summary of the frame: line of centres +Y, C at -Y, O at +Y, Z up.
+// restitution (eqs. 10, 15). Frame, signs and misprints: docs/physics-notes.md
+// sections 1-3 and physics/core/types.h. Summary of the frame: line of centres +Y, C
+// at -Y, O at +Y, Z up.
 //
 // Two integrators solve the same impulse ODE, the generic ones of physics/ode/ shared
 // with the cushion model (the model itself: ball_ball_hybrid.cc):
@@ -17,8 +18,8 @@
 //    the dense output (slip reaching zero at A, D or B; the vertical slip at A
 //    changing sign; an airborne ball landing; a stuck contact leaving its friction
 //    cone; the end of compression; the end of restitution) and the stick law applied
-//    when a slip reaches zero and the friction cone can hold it (physics-notes
-//    section 3).
+//    when a slip reaches zero and the friction cone can hold it (docs/physics-notes.md
+//    section 4).
 //
 // Two extensions of the paper's wording, both needed for a well-posed model and
 // documented here (they change nothing in the paper's five shots):

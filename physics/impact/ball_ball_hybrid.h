@@ -10,7 +10,7 @@
 //  * the reset at each (which ball the cloth holds, a landing's vertical velocity) and
 //    the stick law at zero slip: stick while the friction that holds the slip at zero
 //    lies inside the friction cone, otherwise slide on in the direction the dynamics
-//    drive it (physics-notes section 3).
+//    drive it (docs/physics-notes.md section 4).
 // A cloth slip leaving zero is slaved to its drive (Law::kSlideSlaved, ball_ball_impulse.h):
 // its direction relaxes at a rate ~ 1/|u|, which would make the problem stiff; the
 // slaved law follows the quasi-steady direction with its first-order lag until free

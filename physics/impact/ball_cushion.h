@@ -1,6 +1,6 @@
 // Ball-cushion impact of Mathavan, Jackson & Parkin (2010), "A theoretical analysis
 // of billiard ball dynamics under cushion impacts", Proc. IMechE C 224(9), as
-// restated in shared physics-notes.md section 8.
+// restated in docs/physics-notes.md section 8.
 //
 // The cushion frame: X along the cushion, Y horizontal towards (into) the cushion,
 // Z up; the ball's centre G is R above the cloth. Contacts:
@@ -92,7 +92,7 @@ CushionParams MathavanCushionParams(const BallParams& ball);
 /// horizontal, towards the cushion): the curve if it has points, else e_e.
 double CushionRestitution(const CushionParams& cushion, double approach_speed);
 
-/// The notes' incident state (physics-notes section 8), in the cushion frame: the
+/// The incident state of docs/physics-notes.md section 8, in the cushion frame: the
 /// ball arrives at `speed` (m/s) at angle `alpha` (rad) to the cushion line
 /// (pi/2: square on) with topspin `topspin` (rad/s; rolling: speed / R) and
 /// sidespin `sidespin` (rad/s, the Z component of the spin):

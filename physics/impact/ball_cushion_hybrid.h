@@ -12,8 +12,8 @@
 //    otherwise slide away from zero along the stable ray u = r d with d x du/dP_I = 0
 //    and d . du/dP_I >= 0, found by a scan over the circle and a root finder (at I,
 //    and at C while I sticks, that is not simply opposite the stick friction); when
-//    both leave zero, a scan over C's ray with I's solved inside (physics-notes
-//    section 3). Both stuck at once is excluded by the parameters;
+//    both leave zero, a scan over C's ray with I's solved inside (docs/physics-notes.md
+//    section 4). Both stuck at once is excluded by the parameters;
 //  * for stiff stretches (a slip leaving zero grows from nothing - from zero rate at a
 //    cone exit - and its direction relaxes at ~ 1/|u|), the relaxation rate and a
 //    Jacobian built from the friction directions (the forces depend on the state only

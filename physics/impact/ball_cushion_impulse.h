@@ -6,7 +6,7 @@
 // the integrator may step in another clock); zdot_G = 0 throughout. Derivatives are
 // per unit P_I.
 //
-// Forces on the ball per unit dP_I (physics-notes section 8; s = sin th, c = cos th):
+// Forces on the ball per unit dP_I (docs/physics-notes.md section 8; s = sin th, c = cos th):
 //   normal at I:    -(0, c, s)
 //   friction at I:  fx X + fy Y' = (fx, -s fy, c fy), (fx, fy) in the tangent plane
 //   cloth at C:     (gx, gy, n_c), n_c = s - c fy from zdot_G = 0 (their eq. 8 with
@@ -177,7 +177,7 @@ inline Forces ComputeForces(const State& x, const Mode& m, const Model& p) {
   return F;
 }
 
-/// d(state)/dP_I (their eqs. 3-4 restated in physics-notes section 8).
+/// d(state)/dP_I (their eqs. 3-4 restated in docs/physics-notes.md section 8).
 inline void Derivative(const State& x, const Mode& m, const Model& p, State* dx,
                        Forces* forces_out = nullptr) {
   const Forces F = ComputeForces(x, m, p);

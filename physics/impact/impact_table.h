@@ -1,4 +1,5 @@
-// Precomputed maps of the commonest impacts of a shot (issue 9, items 2 and 4).
+// Precomputed maps of the commonest impacts of a shot: a cheaper answer than the
+// solver for the impacts that dominate a shot, at the solver's own accuracy.
 //
 // In both impact models every force is proportional to the normal impulse, so with
 // constant friction and restitution an impact's outcome scales with the incident

@@ -13,7 +13,8 @@ enum class ImpulseIntegrator : std::uint8_t {
   kAdaptive,   ///< Dormand-Prince 5(4), step control, located events, stick law.
 };
 
-/// How much precision an impact is solved to (issue 9: fidelity is a parameter).
+/// How much precision an impact is solved to: fidelity is a parameter, chosen by
+/// the caller for the work it can afford.
 enum class ImpulseFidelity : std::uint8_t {
   /// The integrator exactly as configured (`integrator`, `tolerance`, `steps`).
   kExact,

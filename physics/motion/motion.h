@@ -1,5 +1,5 @@
 // Closed-form motion of one ball on the cloth between events (table frame: X across,
-// Y along, Z up; the centre is R above the cloth). Shared physics-notes sections 5
+// Y along, Z up; the centre is R above the cloth). docs/physics-notes.md sections 6
 // and 9; Mathavan, Jackson & Parkin (2014) section 2.5.
 //
 // Each MotionState has a closed form with constant acceleration of the centre, so

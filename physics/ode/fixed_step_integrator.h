@@ -8,7 +8,7 @@
 // is y0 + y1 t and the work of the normal force (eq. 12, exact for it) is
 // w0 + y0 t + y1 t^2 / 2: the end of compression (eq. 10d: normal speed 0) and the end
 // of restitution (eqs. 10c, 15: W = (1 - e^2) W_c) are located in the step exactly
-// instead of overshooting it (physics-notes section 4).
+// instead of overshooting it (docs/physics-notes.md section 5).
 #pragma once
 
 #include <algorithm>

@@ -176,7 +176,11 @@ class HybridIntegrator {
     event_resolution_ = std::max(4 * kEps, 1e-3 * s_.tolerance);
   }
 
-  /// Integrates from *x until the impact ends or the step cap is reached.
+  /// Integrates from *x until the impact ends or the step cap is reached: each pass
+  /// plans a step (PlanStep), takes it (TakeStep), discards it if it cannot be used
+  /// (Discarded), rejects it if it errs too much or reverses a slip (Rejected),
+  /// otherwise accepts it (Accept, which locates and applies the witnesses) and
+  /// settles the slips it brought to zero (SettleSlipsAtZero).
   HybridStatus Run(State* x);
   const HybridWork& work() const { return work_; }
 
@@ -240,6 +244,48 @@ class HybridIntegrator {
     std::array<double, kContacts> min_dot;   // min over stages of u . (start direction)
     std::array<double, kContacts> max_perp;  // max over stages of |d x u|, frozen slips
   };
+
+  // The plan of one step (PlanStep).
+  struct StepPlan {
+    double h = 0;              // length, in P_I or (log_clock) in tau = -ln|u|
+    bool log_clock = false;    // taken in tau (clock_ != kNoContact when planned)
+    int landing = kNoContact;  // the turning slip whose predicted zero limits h
+    std::array<bool, kContacts> freeze{};  // slips whose direction is held over the step
+    bool frozen = false;                   // any of them
+  };
+
+  // ---- the phases of Run ----
+  // Each is called from one place in Run and inlined there (always_inline): the code
+  // of one function, as fast as the loop written out, with a name per phase. Left to
+  // the compiler none is inlined, and a cushion impact takes 2.6 % more instructions.
+  // Starts from *x: the model's start, the derivative there, the first step.
+  [[gnu::always_inline]] inline void Begin(State* x);
+  // Plans the next step: its clock and length, the slips held along their rays, the
+  // stiff or explicit method. False when it switched to the tau clock instead (no
+  // step to take: plan again).
+  [[gnu::always_inline]] inline bool PlanStep(StepPlan* plan);
+  // Limits plan->h to the predicted zero of a slip that turns as it shrinks and marks
+  // the slips that head for zero along a ray (to be frozen). Returns the slip to
+  // follow in tau, or kNoContact.
+  [[gnu::always_inline]] inline int AimAtSlipZeros(StepPlan* plan) const;
+  // True when step s cannot be used: a frozen slip left its ray, or a stage met an
+  // undefined derivative (then the tau clock is left or the step shortened).
+  [[gnu::always_inline]] inline bool Discarded(const StepPlan& plan, const StepOut& s);
+  // True when step s, of weighted error err, is rejected (error above 1, or a slip
+  // reversed within it); sets the next attempt's step or clock.
+  [[gnu::always_inline]] inline bool Rejected(const StepPlan& plan, const StepOut& s,
+                                              double err);
+  // Accepts step s: locates the first witness on its dense output, advances to it or
+  // to the step's end, sizes the next step and applies the event. True when the
+  // impact is over.
+  [[gnu::always_inline]] inline bool Accept(const StepPlan& plan, StepOut& s, double err);
+  // Settles the sliding slips (other than the one followed in tau) that are at zero.
+  [[gnu::always_inline]] inline void SettleSlipsAtZero();
+  void Unfreeze(const StepPlan& plan) {  // after a frozen step: the free directions back
+    if (!plan.frozen) return;
+    m_.Unfreeze();
+    Refresh();
+  }
 
   // ---- right-hand side in the current clock ----
   bool F(const State& y, State* dy, Aux* aux) {
@@ -346,6 +392,8 @@ class HybridIntegrator {
   int no_freeze_ = kNoContact;  // a contact that just left its ray in a frozen step
   // A step that heads for a slip's predicted zero ends at this fraction of the way.
   double land_ratio_ = kLandRatio;
+  double h_impulse_ = 0;  // next step in P_I
+  double h_log_ = 1.0;    // next step in tau
 };
 
 // ---------------------------------------------------------------------------
@@ -515,179 +563,201 @@ bool HybridIntegrator<Model, kMethod>::ApplyEvent(int w) {
 
 template <HybridImpulseModel Model, RkMethod kMethod>
 HybridStatus HybridIntegrator<Model, kMethod>::Run(State* x) {
-  y_ = *x;
-  m_.Start(&y_);
-  Refresh();
-  double h_impulse = FirstStep();  // step in P_I
-  double h_log = 1.0;              // step in tau
+  Begin(x);
   StepOut s;
   bool finished = false;
   const std::int64_t max_passes = kPassesPerStep * static_cast<std::int64_t>(s_.max_steps) + 16;
   for (std::int64_t pass = 0; pass < max_passes && attempts_ < s_.max_steps; ++pass) {
-    const bool log_clock = clock_ != kNoContact;
-    double h = log_clock ? std::min(h_log, kMaxLogStep)
-                         : std::min(h_impulse, kMaxStep * s_.impulse_scale);
-    if (!log_clock && m_.BeforeStep(y_, k1_, a1_, h)) Refresh();
-    // Plan the step in P_I: hold the direction of a slip heading for zero along a ray,
-    // limit the step to the predicted zero of one that turns, follow it in tau when
-    // that zero is near.
-    int landing = kNoContact;
-    std::array<bool, kContacts> freeze{};
-    if (!log_clock) {
-      double reach = kLogClockReach * h;
-      int follow = kNoContact;
-      for (int c = 0; c < kContacts; ++c) {
-        if (!m_.SlidingActive(c, a1_) || m_.Leaving(c, y_)) continue;
-        const Vec2 u = m_.Slip(c, y_);
-        const double size = u.norm();
-        if (size <= s_.slip_zero) continue;  // at zero already: settled, not landing
-        const Vec2 ud = m_.SlideDirection(c, y_, a1_);
-        const Vec2 du = m_.Slip(c, k1_);
-        const double rate = ud.dot(du);
-        if (!(rate < 0)) continue;
-        const double to_zero = size / -rate;
-        const double turn = std::abs(ud.x() * du.y() - ud.y() * du.x()) / du.norm();
-        if (turn <= kRayTurn && c != no_freeze_) {
-          freeze[c] = to_zero < h;  // along a ray: hold the direction, locate the zero
-          continue;
-        }
-        if (land_ratio_ * to_zero < h) h = land_ratio_ * to_zero, landing = c;
-        // A turning slip is followed in tau if it surely reaches zero (the cone can
-        // hold it there); otherwise it passes by zero.
-        if (to_zero < reach && size < s_.log_clock_slip && c != no_follow_ &&
-            m_.CanFollow(c, y_, a1_)) {
-          reach = to_zero, follow = c;
-        }
-      }
-      // Not while another slip is stiff: the tau clock has no stiff integrator.
-      if (follow != kNoContact && !Stiff(h, kStiffEnter, follow)) {
-        h_impulse = h;
-        h_log = FirstLogStep();
-        SetClock(follow);
-        continue;
-      }
-    }
-    for (int c = 0; c < kContacts; ++c) {
-      if (freeze[c]) m_.Freeze(c, m_.SlideDirection(c, y_, a1_));  // k1_ unchanged
-    }
-    const bool frozen = std::any_of(freeze.begin(), freeze.end(), [](bool f) { return f; });
-    auto unfreeze = [&] {
-      if (!frozen) return;
-      m_.Unfreeze();
-      Refresh();
-    };
-    stiff_ = Stiff(h, stiff_ ? kStiffLeave : kStiffEnter, kNoContact);
-
-    TakeStep(h, &s);
-    bool left_ray = false;
-    for (int c = 0; c < kContacts; ++c) {
-      if (freeze[c] && !(s.max_perp[c] <= ray_tol_)) left_ray = true, no_freeze_ = c;
-    }
-    if (left_ray) {  // the held direction was wrong: plan again without it
-      unfreeze();
-      continue;
-    }
-    if (!s.valid()) {
-      unfreeze();
-      if (log_clock) {  // the followed slip stopped shrinking: back to P_I
-        no_follow_ = clock_;
-        SetClock(kNoContact);
-      } else {
-        h_impulse = 0.2 * h;
-      }
-      continue;
-    }
+    StepPlan plan;
+    if (!PlanStep(&plan)) continue;  // the clock changed: plan again
+    TakeStep(plan.h, &s);
+    if (Discarded(plan, s)) continue;
     const double err = std::max(StepError(s), 1e-10);
-    double shrink = err > 1 ? (stiff_ ? Ros23StepFactor(err) : control_.Rejected(err)) : 1.0;
-    bool reversed = false;
-    for (int c = 0; c < kContacts; ++c) {
-      // A reversal beyond the noise level of a slip (half the zero threshold).
-      if (freeze[c] || !m_.SlidingActive(c, a1_) || c == clock_ || m_.Leaving(c, y_) ||
-          s.min_dot[c] > -0.5 * s_.slip_zero) {
-        continue;
-      }
-      reversed = true;  // secant guess of where the slip along its start direction hits 0
-      const double sp = m_.Slip(c, y_).norm();
-      const double guess = 0.99 * sp / (sp - s.min_dot[c]);
-      shrink = std::min(shrink, std::isfinite(guess) ? std::clamp(guess, 0.1, 0.9) : 0.5);
+    if (Rejected(plan, s, err)) continue;
+    if (Accept(plan, s, err)) {
+      finished = true;
+      break;
     }
-    if (!(err <= 1) || reversed) {
-      unfreeze();
-      if (landing != kNoContact && !Stiff(h, kStiffEnter, landing) &&
-          m_.Slip(landing, y_).norm() < s_.log_clock_slip) {
-        // The landing on a zero failed: follow that slip in tau = -ln|u| instead.
-        h_impulse = h;
-        h_log = FirstLogStep();
-        SetClock(landing);
-      } else if (log_clock) {
-        h_log = h * shrink;
-      } else if (landing != kNoContact) {
-        // A failed landing far from zero: the step is held to a fraction of the
-        // distance to the predicted zero, which shrinks with it (near a turning zero
-        // the error depends on that ratio, not on the step's length).
-        land_ratio_ *= std::min(shrink, 0.5);
-      } else {
-        h_impulse = h * shrink;
-      }
-      continue;
-    }
-
-    // Accepted. Witnesses on the dense output; the step ends on the first that fires.
-    const Vec2 u_start = log_clock ? m_.Slip(clock_, y_) : Vec2::Zero();
-    double t_event = 2;
-    int event = LocateEvent(s, h, &t_event);
-    ++work_.steps;
-    if (!log_clock) no_follow_ = kNoContact;
-    no_freeze_ = kNoContact;
-    if (event >= 0) {
-      y_ = Dense(s, h, t_event);  // ApplyEvent refreshes k1_ and a1_
-    } else {
-      y_ = s.y1();
-      k1_ = s.k_end();
-      a1_ = s.aux1;
-      jac_ok_ = false;
-    }
-    // Rosenbrock steps have their own control; in tau the error follows the slip, not
-    // a trend the predictive factor could extrapolate.
-    if (stiff_ || log_clock) control_.Reset();
-    const double grow = stiff_ ? Ros23StepFactor(err) : control_.Accepted(err, h);
-    (log_clock ? h_log : h_impulse) = h * grow;
-    land_ratio_ = landing != kNoContact ? std::min(land_ratio_ * grow, kLandRatio) : kLandRatio;
-
-    if (event < 0 && log_clock) {
-      const double before = u_start.norm();
-      const double after = m_.Slip(clock_, y_).norm();
-      if (after >= before && after < kSlipNoiseFloor * s_.slip_zero) {
-        // In tau the slip shrinks like exp(-tau); one that does not is at the noise of
-        // the integration: it has reached zero.
-        event = kSlipZero;
-      }
-    }
-    if (event >= 0) {
-      if (ApplyEvent(event)) {
-        finished = true;
-        break;
-      }
-    } else if (frozen) {
-      unfreeze();
-    }
-    // A sliding slip (other than the one followed in tau) that has reached zero.
-    std::array<bool, kContacts> at_zero{};
-    bool any = false;
-    for (int c = 0; c < kContacts; ++c) {
-      if (!m_.SlidingActive(c, a1_) || c == clock_ || m_.Leaving(c, y_)) continue;
-      if (m_.Slip(c, y_).norm() <= s_.slip_zero) at_zero[c] = any = true, ++work_.events;
-    }
-    if (any) {
-      clock_ = kNoContact;
-      m_.Unfreeze();
-      m_.Settle(&y_, at_zero);
-      Refresh();
-    }
+    SettleSlipsAtZero();
   }
   work_.rejected_steps = attempts_ - work_.steps;
   *x = y_;
   return finished ? HybridStatus::kFinished : HybridStatus::kStepLimit;
+}
+
+template <HybridImpulseModel Model, RkMethod kMethod>
+void HybridIntegrator<Model, kMethod>::Begin(State* x) {
+  y_ = *x;
+  m_.Start(&y_);
+  Refresh();
+  h_impulse_ = FirstStep();
+  h_log_ = 1.0;
+}
+
+template <HybridImpulseModel Model, RkMethod kMethod>
+bool HybridIntegrator<Model, kMethod>::PlanStep(StepPlan* plan) {
+  plan->log_clock = clock_ != kNoContact;
+  plan->h = plan->log_clock ? std::min(h_log_, kMaxLogStep)
+                            : std::min(h_impulse_, kMaxStep * s_.impulse_scale);
+  if (!plan->log_clock && m_.BeforeStep(y_, k1_, a1_, plan->h)) Refresh();
+  if (!plan->log_clock) {
+    const int follow = AimAtSlipZeros(plan);
+    // Not while another slip is stiff: the tau clock has no stiff integrator.
+    if (follow != kNoContact && !Stiff(plan->h, kStiffEnter, follow)) {
+      h_impulse_ = plan->h;
+      h_log_ = FirstLogStep();
+      SetClock(follow);
+      return false;
+    }
+  }
+  for (int c = 0; c < kContacts; ++c) {
+    if (plan->freeze[c]) m_.Freeze(c, m_.SlideDirection(c, y_, a1_));  // k1_ unchanged
+  }
+  plan->frozen = std::any_of(plan->freeze.begin(), plan->freeze.end(), [](bool f) { return f; });
+  stiff_ = Stiff(plan->h, stiff_ ? kStiffLeave : kStiffEnter, kNoContact);
+  return true;
+}
+
+template <HybridImpulseModel Model, RkMethod kMethod>
+int HybridIntegrator<Model, kMethod>::AimAtSlipZeros(StepPlan* plan) const {
+  double reach = kLogClockReach * plan->h;
+  int follow = kNoContact;
+  for (int c = 0; c < kContacts; ++c) {
+    if (!m_.SlidingActive(c, a1_) || m_.Leaving(c, y_)) continue;
+    const Vec2 u = m_.Slip(c, y_);
+    const double size = u.norm();
+    if (size <= s_.slip_zero) continue;  // at zero already: settled, not landing
+    const Vec2 ud = m_.SlideDirection(c, y_, a1_);
+    const Vec2 du = m_.Slip(c, k1_);
+    const double rate = ud.dot(du);
+    if (!(rate < 0)) continue;
+    const double to_zero = size / -rate;
+    const double turn = std::abs(ud.x() * du.y() - ud.y() * du.x()) / du.norm();
+    if (turn <= kRayTurn && c != no_freeze_) {
+      plan->freeze[c] = to_zero < plan->h;  // along a ray: hold the direction, locate the zero
+      continue;
+    }
+    if (land_ratio_ * to_zero < plan->h) plan->h = land_ratio_ * to_zero, plan->landing = c;
+    // A turning slip is followed in tau if it surely reaches zero (the cone can hold
+    // it there); otherwise it passes by zero.
+    if (to_zero < reach && size < s_.log_clock_slip && c != no_follow_ &&
+        m_.CanFollow(c, y_, a1_)) {
+      reach = to_zero, follow = c;
+    }
+  }
+  return follow;
+}
+
+template <HybridImpulseModel Model, RkMethod kMethod>
+bool HybridIntegrator<Model, kMethod>::Discarded(const StepPlan& plan, const StepOut& s) {
+  bool left_ray = false;
+  for (int c = 0; c < kContacts; ++c) {
+    if (plan.freeze[c] && !(s.max_perp[c] <= ray_tol_)) left_ray = true, no_freeze_ = c;
+  }
+  if (left_ray) {  // the held direction was wrong: plan again without it
+    Unfreeze(plan);
+    return true;
+  }
+  if (s.valid()) return false;
+  Unfreeze(plan);
+  if (plan.log_clock) {  // the followed slip stopped shrinking: back to P_I
+    no_follow_ = clock_;
+    SetClock(kNoContact);
+  } else {
+    h_impulse_ = 0.2 * plan.h;
+  }
+  return true;
+}
+
+template <HybridImpulseModel Model, RkMethod kMethod>
+bool HybridIntegrator<Model, kMethod>::Rejected(const StepPlan& plan, const StepOut& s,
+                                                double err) {
+  double shrink = err > 1 ? (stiff_ ? Ros23StepFactor(err) : control_.Rejected(err)) : 1.0;
+  bool reversed = false;
+  for (int c = 0; c < kContacts; ++c) {
+    // A reversal beyond the noise level of a slip (half the zero threshold).
+    if (plan.freeze[c] || !m_.SlidingActive(c, a1_) || c == clock_ || m_.Leaving(c, y_) ||
+        s.min_dot[c] > -0.5 * s_.slip_zero) {
+      continue;
+    }
+    reversed = true;  // secant guess of where the slip along its start direction hits 0
+    const double sp = m_.Slip(c, y_).norm();
+    const double guess = 0.99 * sp / (sp - s.min_dot[c]);
+    shrink = std::min(shrink, std::isfinite(guess) ? std::clamp(guess, 0.1, 0.9) : 0.5);
+  }
+  if (err <= 1 && !reversed) return false;
+  Unfreeze(plan);
+  if (plan.landing != kNoContact && !Stiff(plan.h, kStiffEnter, plan.landing) &&
+      m_.Slip(plan.landing, y_).norm() < s_.log_clock_slip) {
+    // The landing on a zero failed: follow that slip in tau = -ln|u| instead.
+    h_impulse_ = plan.h;
+    h_log_ = FirstLogStep();
+    SetClock(plan.landing);
+  } else if (plan.log_clock) {
+    h_log_ = plan.h * shrink;
+  } else if (plan.landing != kNoContact) {
+    // A failed landing far from zero: the step is held to a fraction of the distance
+    // to the predicted zero, which shrinks with it (near a turning zero the error
+    // depends on that ratio, not on the step's length).
+    land_ratio_ *= std::min(shrink, 0.5);
+  } else {
+    h_impulse_ = plan.h * shrink;
+  }
+  return true;
+}
+
+template <HybridImpulseModel Model, RkMethod kMethod>
+bool HybridIntegrator<Model, kMethod>::Accept(const StepPlan& plan, StepOut& s, double err) {
+  // Witnesses on the dense output; the step ends on the first that fires.
+  const Vec2 u_start = plan.log_clock ? m_.Slip(clock_, y_) : Vec2::Zero();
+  double t_event = 2;
+  int event = LocateEvent(s, plan.h, &t_event);
+  ++work_.steps;
+  if (!plan.log_clock) no_follow_ = kNoContact;
+  no_freeze_ = kNoContact;
+  if (event >= 0) {
+    y_ = Dense(s, plan.h, t_event);  // ApplyEvent refreshes k1_ and a1_
+  } else {
+    y_ = s.y1();
+    k1_ = s.k_end();
+    a1_ = s.aux1;
+    jac_ok_ = false;
+  }
+  // Rosenbrock steps have their own control; in tau the error follows the slip, not a
+  // trend the predictive factor could extrapolate.
+  if (stiff_ || plan.log_clock) control_.Reset();
+  const double grow = stiff_ ? Ros23StepFactor(err) : control_.Accepted(err, plan.h);
+  (plan.log_clock ? h_log_ : h_impulse_) = plan.h * grow;
+  land_ratio_ =
+      plan.landing != kNoContact ? std::min(land_ratio_ * grow, kLandRatio) : kLandRatio;
+  if (event < 0 && plan.log_clock) {
+    const double before = u_start.norm();
+    const double after = m_.Slip(clock_, y_).norm();
+    if (after >= before && after < kSlipNoiseFloor * s_.slip_zero) {
+      // In tau the slip shrinks like exp(-tau); one that does not is at the noise of
+      // the integration: it has reached zero.
+      event = kSlipZero;
+    }
+  }
+  if (event >= 0) return ApplyEvent(event);
+  Unfreeze(plan);
+  return false;
+}
+
+template <HybridImpulseModel Model, RkMethod kMethod>
+void HybridIntegrator<Model, kMethod>::SettleSlipsAtZero() {
+  // A sliding slip (other than the one followed in tau) that has reached zero.
+  std::array<bool, kContacts> at_zero{};
+  bool any = false;
+  for (int c = 0; c < kContacts; ++c) {
+    if (!m_.SlidingActive(c, a1_) || c == clock_ || m_.Leaving(c, y_)) continue;
+    if (m_.Slip(c, y_).norm() <= s_.slip_zero) at_zero[c] = any = true, ++work_.events;
+  }
+  if (!any) return;
+  clock_ = kNoContact;
+  m_.Unfreeze();
+  m_.Settle(&y_, at_zero);
+  Refresh();
 }
 
 }  // namespace snooker::physics::ode

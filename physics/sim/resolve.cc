@@ -1,7 +1,7 @@
 #include "physics/sim/resolve.h"
 
-
 #include "physics/motion/motion.h"
+#include "physics/sim/contacts.h"
 
 namespace snooker::physics {
 
@@ -93,6 +93,74 @@ CushionResolution ResolveBallCushionOnTable(const BallState& s, const Vec2& norm
   out.ball.v = q.transpose() * after.v;
   out.ball.w = q.transpose() * after.w;
   out.ball = Settle(out.ball, ball);
+  return out;
+}
+
+PairContactResolution ResolveBallBallContact(const BallState& a, const BallState& b,
+                                             ContactStart contact, int level_a, int level_b,
+                                             const SimParams& p, const BallBallTable* table) {
+  PairContactResolution out;
+  out.contact = contact;
+  out.a = a;
+  out.b = b;
+  const Vec2 n = (b.r - a.r).normalized();  // from a to b
+  switch (contact) {
+    case ContactStart::kApproaching: {
+      const BallBallResolution r =
+          ResolveBallBallOnTable(a, b, p.ball, p.ball_ball, p.cloth, p.ball_ball_solver, table);
+      out.work = r.work;
+      if (r.status == ImpactStatus::kOk) {
+        out.a = AfterImpact(r.a, p);
+        out.b = AfterImpact(r.b, p);
+        HoldIfReturning(&out.a, &out.b, n, 0, 0, p);
+        out.impact = true;
+      } else if (r.status == ImpactStatus::kNotApproaching) {
+        // The model sees no approach where the detector saw one (rounding at its
+        // threshold): take the residue out so the contact is not found again.
+        RemoveApproach(&out.a, &out.b, n, p);
+        out.contact = ContactStart::kTouching;
+      } else {
+        out.status = r.status;
+      }
+      break;
+    }
+    case ContactStart::kPressing:
+      HoldTogether(&out.a, &out.b, n, level_a, level_b, p);
+      break;
+    case ContactStart::kTouching:
+    case ContactStart::kApart: break;  // nothing to resolve
+  }
+  return out;
+}
+
+BoundaryContactResolution ResolveBoundaryContact(const BallState& s, const Vec2& normal,
+                                                 ContactStart contact, int level,
+                                                 const SimParams& p, const CushionTable* table) {
+  BoundaryContactResolution out;
+  out.contact = contact;
+  out.ball = s;
+  switch (contact) {
+    case ContactStart::kApproaching: {
+      const CushionResolution r =
+          ResolveBallCushionOnTable(s, normal, p.ball, p.cushion, p.cushion_solver, table);
+      out.work = r.work;
+      if (r.status == ImpactStatus::kOk) {
+        out.ball = HoldIfReturning(AfterImpact(r.ball, p), normal, p);
+      } else if (r.status == ImpactStatus::kNotApproaching) {
+        out.ball = Settle(WithoutNormalVelocity(s, normal), p.ball);
+        out.contact = ContactStart::kTouching;
+      } else {
+        out.status = r.status;
+      }
+      break;
+    }
+    case ContactStart::kPressing:
+      // Pressed a second time at one instant: wedged between contacts; it stops.
+      out.ball = level == 0 ? HoldAgainst(s, normal, p) : Stopped(s, p);
+      break;
+    case ContactStart::kTouching:
+    case ContactStart::kApart: break;  // nothing to resolve
+  }
   return out;
 }
 

@@ -5,15 +5,14 @@
 #include <limits>
 
 #include "physics/events/detect.h"
+#include "physics/sim/cluster.h"
+#include "physics/sim/contacts.h"
 #include "physics/sim/resolve.h"
 
 namespace snooker::physics {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-// Cluster resolution: caps and the velocity to which its contacts are solved.
-constexpr int kMaxClusterSweeps = 200;
-constexpr double kClusterSpeedTolerance = 1e-12;  // m/s, below the detector's 1e-9
 // Balls given closer than 2R by more than this are rejected as overlapping. m.
 constexpr double kOverlapTolerance = 1e-9;
 
@@ -44,19 +43,6 @@ void AddImpactWork(const ImpulseWork& w, ImpulseWork* total) {
   total->rhs_evals += w.rhs_evals;
   total->table_lookups += w.table_lookups;
 }
-
-// The state with the normal velocity component (along the unit horizontal n) removed.
-BallState WithoutNormalVelocity(const BallState& s, const Vec2& n) {
-  BallState out = s;
-  const double vn = s.v.x() * n.x() + s.v.y() * n.y();
-  out.v.x() -= vn * n.x();
-  out.v.y() -= vn * n.y();
-  return out;
-}
-
-// Spin about the horizontal axis t = z x n, whose component w_t makes the cloth slip
-// along n: u . n = v . n - R w_t.
-Vec3 TangentAxis(const Vec2& n) { return {-n.y(), n.x(), 0.0}; }
 
 }  // namespace
 
@@ -122,49 +108,6 @@ Simulator::Simulator(const TableModel& table, const SimParams& params)
   }
 }
 
-BallState Simulator::AfterImpact(const BallState& s) const {
-  const double v = Vec2(s.v.x(), s.v.y()).norm();
-  if (v >= params_.rest_speed || ClothSlip(s, params_.ball).norm() >= params_.rest_speed) return s;
-  BallState rest = s;
-  rest.v.setZero();
-  rest.w.x() = rest.w.y() = 0;
-  return Settle(rest, params_.ball);
-}
-
-BallState Simulator::HoldAgainst(const BallState& s, const Vec2& n) const {
-  // A resting contact with a fixed boundary: no normal velocity, and the spin that
-  // drives the cloth slip into the boundary removed, so the slip (and the friction
-  // acceleration) has no normal component left. The boundary's reaction would do
-  // the same to the slip over |u_n| / (5/2 mu_s g); doing it at once changes the
-  // path by less than the cloth friction over that time. Energy only falls.
-  BallState out = WithoutNormalVelocity(s, n);
-  const Vec3 t = TangentAxis(n);
-  out.w -= out.w.dot(t) * t;
-  return Settle(out, params_.ball);
-}
-
-BallState Simulator::HoldIfReturning(const BallState& s, const Vec2& n) const {
-  // After an impact, a sliding ball that leaves the boundary slowly while its
-  // friction drives it back would bounce again and again in ever shorter flights
-  // (a Zeno sequence). Once a flight would rise less than resting_contact_excursion
-  // off the boundary, the ball is held against it instead (a resting contact).
-  if (s.s != MotionState::kSliding) return s;
-  const PositionPoly p = PositionPolynomial(s, params_.ball, params_.cloth);
-  const double an = 2.0 * p.a.dot(n), vn = p.b.dot(n);
-  if (!(an < 0.0) || vn * vn > 2.0 * -an * params_.resting_contact_excursion) return s;
-  return HoldAgainst(s, n);
-}
-
-void Simulator::RemoveApproach(BallState* a, BallState* b, const Vec2& n) const {
-  // Splits a rounding-level normal approach (n from a to b) evenly between the two.
-  const double approach = (a->v.head<2>() - b->v.head<2>()).dot(n);
-  if (!(approach > 0.0)) return;
-  a->v.head<2>() -= 0.5 * approach * n;
-  b->v.head<2>() += 0.5 * approach * n;
-  *a = Settle(*a, params_.ball);
-  *b = Settle(*b, params_.ball);
-}
-
 int Simulator::PressLevel(int i, double t) {
   if (press_time_[i] != t) {
     press_time_[i] = t;
@@ -173,236 +116,23 @@ int Simulator::PressLevel(int i, double t) {
   return press_count_[i]++;
 }
 
-BallState Simulator::Stopped(const BallState& s) const {
-  BallState out = s;
-  out.v.setZero();
-  out.w.x() = out.w.y() = 0.0;
-  return Settle(out, params_.ball);
-}
-
-void Simulator::HoldTogether(BallState* a, BallState* b, const Vec2& n, int level_a,
-                             int level_b) const {
-  // Two touching balls that the cloth presses together (n from a to b, normal
-  // relative velocity within the detector's tolerance). A pressed pair would move
-  // as one body, which the closed-form motions cannot express. Each step below only
-  // takes energy out, and they stop at the first that leaves the pair not pressing:
-  //  1. A sliding ball whose friction drives it into the other loses the spin that
-  //     does (its slip along n goes to zero, its spin towards zero, never past it).
-  //  2. If both are slower than resting_pair_speed, both stop: they would have
-  //     rolled on together at most v^2 / (2 mu_r g) (0.1 mm at 5 mm/s).
-  //  3. A ball pressed for the second time at the same instant is wedged between
-  //     several contacts (the alternating steps 1 for each would never end): it
-  //     stops. Otherwise both lose their velocity and slip along n: the pair stops
-  //     along the line of centres and keeps its motion across it.
-  RemoveApproach(a, b, n);
-  const double radius = params_.ball.radius;
-  auto unslip = [&](BallState* s, const Vec2& into) {
-    if (s->s != MotionState::kSliding || !(ClothSlip(*s, params_.ball).dot(into) < 0.0)) return;
-    const Vec3 axis = TangentAxis(into);
-    const double wt = s->w.dot(axis);
-    const double target = s->v.head<2>().dot(into) / radius;  // slip along `into` = 0
-    const double kept = std::clamp(target, std::min(0.0, wt), std::max(0.0, wt));
-    s->w += (kept - wt) * axis;
-    *s = Settle(*s, params_.ball);
-  };
-  auto pressing = [&] {
-    const PositionPoly pa = PositionPolynomial(*a, params_.ball, params_.cloth);
-    const PositionPoly pb = PositionPolynomial(*b, params_.ball, params_.cloth);
-    return 2.0 * (pb.a - pa.a).dot(n) < -kContactAccelTolerance;
-  };
-  unslip(a, n);
-  unslip(b, -n);
-  if (!pressing()) return;
-  const double slow = params_.resting_pair_speed;
-  if (a->v.head<2>().norm() < slow && b->v.head<2>().norm() < slow) {
-    *a = Stopped(*a);
-    *b = Stopped(*b);
-    return;
-  }
-  if (level_a > 0 || level_b > 0) {
-    if (level_a > 0) *a = Stopped(*a);
-    if (level_b > 0) *b = Stopped(*b);
-    return;
-  }
-  const Vec3 t = TangentAxis(n);
-  for (BallState* s : {a, b}) {
-    *s = WithoutNormalVelocity(*s, n);
-    s->w -= s->w.dot(t) * t;
-    *s = Settle(*s, params_.ball);
-  }
-}
-
-void Simulator::HoldIfReturning(BallState* a, BallState* b, const Vec2& n, int level_a,
-                                int level_b) const {
-  // The ball-ball twin of HoldIfReturning for a boundary: two balls that part
-  // slowly while their decelerations bring them back together would meet again
-  // and again in ever shorter flights. Once a flight would open a gap smaller than
-  // resting_contact_excursion, they share their normal velocity (a plastic
-  // impact) and are held together instead.
-  const PositionPoly pa = PositionPolynomial(*a, params_.ball, params_.cloth);
-  const PositionPoly pb = PositionPolynomial(*b, params_.ball, params_.cloth);
-  const double an = 2.0 * (pb.a - pa.a).dot(n), vn = (pb.b - pa.b).dot(n);
-  if (!(an < 0.0) || vn * vn > 2.0 * -an * params_.resting_contact_excursion) return;
-  const double mean = 0.5 * (a->v.head<2>() + b->v.head<2>()).dot(n);
-  a->v.head<2>() += (mean - a->v.head<2>().dot(n)) * n;
-  b->v.head<2>() += (mean - b->v.head<2>().dot(n)) * n;
-  *a = Settle(*a, params_.ball);
-  *b = Settle(*b, params_.ball);
-  HoldTogether(a, b, n, level_a, level_b);
-}
-
 int Simulator::ResolveCluster(int bi, int bj, double te) {
-  // The balls touching bi or bj, and those touching them, and so on: the cluster
-  // whose contacts are resolved together. Its ball-ball and ball-boundary contacts
-  // (touching within kContactTolerance) become one frictionless impulse problem on
-  // the centre velocities: impulses lambda_k >= 0 along each contact normal such
-  // that afterwards no contact approaches, and one that approached before separates
-  // at cluster_restitution times its approach speed (Newton). Projected
-  // Gauss-Seidel solves it; each sweep brings every contact to its target given the
-  // others, which converges for this positive definite problem.
-  const double r2 = 2.0 * params_.ball.radius;
-  int members[kMaxBalls];
-  bool in[kMaxBalls] = {};
-  BallState st[kMaxBalls];
-  int count = 0;
-  auto add = [&](int i) {
-    if (in[i]) return;
-    in[i] = true;
-    members[count++] = i;
-    st[i] = StateAt(i, te);
-  };
-  add(bi);
-  add(bj);
-  for (int k = 0; k < count; ++k) {  // breadth first; at most n_ members
-    const int i = members[k];
-    for (int j = 0; j < n_; ++j) {
-      if (in[j] || slots_[j].s.s == MotionState::kPocketed) continue;
-      if ((StateAt(j, te).r - st[i].r).norm() <= r2 + kContactTolerance) add(j);
-    }
-  }
-  struct Contact {
-    int a, b;   // b < 0: a boundary
-    Vec2 n;     // from a to b, or from the boundary to a
-    double target = 0, lambda = 0;
-  };
-  Contact contacts[kMaxClusterContacts];
-  int nc = 0;
-  auto separation = [&](const Contact& c) {
-    const Vec2 va = st[c.a].v.head<2>();
-    return c.b >= 0 ? (st[c.b].v.head<2>() - va).dot(c.n) : va.dot(c.n);
-  };
-  for (int k = 0; k < count && nc < kMaxClusterContacts; ++k) {
-    const int i = members[k];
-    for (int m = k + 1; m < count && nc < kMaxClusterContacts; ++m) {
-      const int j = members[m];
-      const Vec2 d = st[j].r - st[i].r;
-      if (d.norm() <= r2 + kContactTolerance) contacts[nc++] = {i, j, d.normalized()};
-    }
-    const PositionPoly p = PositionPolynomial(st[i], params_.ball, params_.cloth);
-    const auto segments = table_.segments();
-    for (size_t g = 0; g < segments.size() && nc < kMaxClusterContacts; ++g) {
-      const Gap gap = CushionGap(p, segments[g], contact_distance_);
-      const Vec2 along = segments[g].p1 - segments[g].p0;
-      const double u = (st[i].r - segments[g].p0).dot(along);
-      if (gap.g[0] <= kContactTolerance && u >= 0 && u <= along.squaredNorm()) {
-        contacts[nc++] = {i, -1, segments[g].normal};
-      }
-    }
-    for (const JawCircle& jaw : table_.jaws()) {
-      if (nc >= kMaxClusterContacts) break;
-      const Vec2 d = st[i].r - jaw.centre;
-      if (d.norm() <= jaw.radius + contact_distance_ + kContactTolerance) {
-        contacts[nc++] = {i, -1, d.normalized()};
-      }
-    }
-  }
-  // A ball that the solution leaves slower than rest_speed is set at rest
-  // (AfterImpact) and then holds still like a wall: the problem is solved again
-  // with it fixed, until no further ball comes to rest (at most `count` rounds).
-  const double e = params_.cluster_restitution;
-  BallState initial[kMaxBalls];
-  double inv_mass[kMaxBalls];
-  double before = 0;
-  for (int k = 0; k < count; ++k) {
-    const int i = members[k];
-    initial[i] = st[i];
-    inv_mass[i] = 1.0 / params_.ball.mass;
-    before += KineticEnergy(st[i], params_.ball);
-  }
-  double restitution = e;
-  // Rounds: one with restitution, one plastic, then at most one per ball held still.
-  for (int round = 0; round <= count + 2; ++round) {
-    for (int k = 0; k < count; ++k) st[members[k]] = initial[members[k]];
-    for (int c = 0; c < nc; ++c) {
-      const double s0 = separation(contacts[c]);
-      contacts[c].target = s0 < 0 ? -restitution * s0 : 0.0;
-      contacts[c].lambda = 0;
-    }
-    bool converged = false;
-    for (int sweep = 0; sweep < kMaxClusterSweeps && !converged; ++sweep) {
-      double worst = 0;
-      for (int c = 0; c < nc; ++c) {
-        Contact& k = contacts[c];
-        const double wa = inv_mass[k.a], wb = k.b >= 0 ? inv_mass[k.b] : 0.0;
-        if (wa + wb == 0.0) continue;  // both held still
-        const double next = std::max(0.0, k.lambda + (k.target - separation(k)) / (wa + wb));
-        const double dl = next - k.lambda;
-        k.lambda = next;
-        st[k.a].v.head<2>() -= (k.b >= 0 ? dl : -dl) * wa * k.n;
-        if (k.b >= 0) st[k.b].v.head<2>() += dl * wb * k.n;
-        worst = std::max(worst, std::abs(dl) * (wa + wb));
-      }
-      converged = worst <= kClusterSpeedTolerance;
-    }
-    double after = 0;
-    for (int k = 0; k < count; ++k) after += KineticEnergy(st[members[k]], params_.ball);
-    if ((after > before || !converged) && restitution > 0) {
-      // Newton restitution at several contacts at once can add energy in rare
-      // arrangements, and has no solution for a ball jammed between two still
-      // ones (it cannot leave both faster than it came); the plastic solution,
-      // the projection onto the velocities that approach no contact, always
-      // exists (all still is one) and never adds energy.
-      restitution = 0;
-      continue;
-    }
-    if (!converged) {
-      // Projected Gauss-Seidel crawls where contacts are nearly parallel (a ball
-      // jammed in a straight line of still balls). A movable ball left approaching
-      // a contact is stopped and held still, and the cluster solved again.
-      bool stopped = false;
-      for (int c = 0; c < nc; ++c) {
-        if (!(separation(contacts[c]) < -kClusterSpeedTolerance)) continue;
-        for (int i : {contacts[c].a, contacts[c].b}) {
-          if (i < 0 || inv_mass[i] == 0) continue;
-          inv_mass[i] = 0;
-          initial[i].v.setZero();
-          stopped = true;
-        }
-      }
-      if (stopped) continue;
-    }
-    bool rested = false;
-    for (int k = 0; k < count; ++k) {
-      const int i = members[k];
-      const bool moved = st[i].v.head<2>().squaredNorm() > 0.0;
-      st[i] = AfterImpact(Settle(st[i], params_.ball));
-      if (inv_mass[i] > 0 && moved && st[i].v.head<2>().squaredNorm() == 0.0) {
-        inv_mass[i] = 0;  // brought to rest: held still in the next round
-        initial[i].v.setZero();
-        rested = true;
-      }
-    }
-    if (!rested) break;
-  }
+  Cluster cluster;
+  cluster.balls = n_;
+  for (int i = 0; i < n_; ++i) cluster.state[i] = StateAt(i, te);
+  GatherCluster(bi, bj, params_.ball.radius, &cluster);
+  FindClusterContacts(table_, contact_distance_, params_, &cluster);
+  SolveCluster(params_, &cluster);
+  BallState* st = cluster.state;
   HoldIfReturning(&st[bi], &st[bj], (st[bj].r - st[bi].r).normalized(), PressLevel(bi, te),
-                  PressLevel(bj, te));
-  for (int k = 0; k < count; ++k) {
-    const int i = members[k];
+                  PressLevel(bj, te), params_);
+  for (int k = 0; k < cluster.count; ++k) {
+    const int i = cluster.members[k];
     SetState(i, st[i], te);
     last_impact_[i] = te;
   }
-  for (int k = 0; k < count; ++k) Changed(members[k]);
-  return count;
+  for (int k = 0; k < cluster.count; ++k) Changed(cluster.members[k]);
+  return cluster.count;
 }
 
 BallState Simulator::StateAt(int i, double t) const {
@@ -657,38 +387,17 @@ SimStatus Simulator::ResolvePair(int bi, int bj, double te) {
     Record(ev);
     return SimStatus::kRunning;
   }
-  BallState a = sa, b = sb;
-  const Vec2 n = (sb.r - sa.r).normalized();  // from a to b
-  switch (ev.contact) {
-    case ContactStart::kApproaching: {
-      const BallBallResolution r = ResolveBallBallOnTable(sa, sb, params_.ball, params_.ball_ball,
-                                                          params_.cloth, params_.ball_ball_solver,
-                                                          ball_ball_table_);
-      AddImpactWork(r.work, &impact_work_);
-      if (r.status == ImpactStatus::kOk) {
-        a = AfterImpact(r.a);
-        b = AfterImpact(r.b);
-        HoldIfReturning(&a, &b, n, 0, 0);
-        last_impact_[bi] = last_impact_[bj] = te;
-      } else if (r.status == ImpactStatus::kNotApproaching) {
-        // The model sees no approach where the detector saw one (rounding at its
-        // threshold): take the residue out so the contact is not found again.
-        RemoveApproach(&a, &b, n);
-        ev.contact = ContactStart::kTouching;
-      } else {
-        return SimStatus::kSolverFailure;
-      }
-      break;
-    }
-    case ContactStart::kPressing:
-      HoldTogether(&a, &b, n, PressLevel(bi, te), PressLevel(bj, te));
-      break;
-    case ContactStart::kTouching:
-    case ContactStart::kApart: break;  // nothing to resolve: re-anchored below
-  }
+  const bool pressing = ev.contact == ContactStart::kPressing;
+  const PairContactResolution r =
+      ResolveBallBallContact(sa, sb, ev.contact, pressing ? PressLevel(bi, te) : 0,
+                             pressing ? PressLevel(bj, te) : 0, params_, ball_ball_table_);
+  AddImpactWork(r.work, &impact_work_);
+  if (r.status != ImpactStatus::kOk) return SimStatus::kSolverFailure;
+  if (r.impact) last_impact_[bi] = last_impact_[bj] = te;
+  ev.contact = r.contact;
   // Both balls restart at te, so no search can go back before the current time.
-  SetState(bi, a, te);
-  SetState(bj, b, te);
+  SetState(bi, r.a, te);
+  SetState(bj, r.b, te);
   Changed(bi);
   Changed(bj);
   ev.state_after = slots_[bi].s.s;
@@ -741,30 +450,14 @@ SimStatus Simulator::ResolveOwn(int bi, double te) {
         gap = CushionGap(poly, seg, contact_distance_);
       }
       ev.contact = ClassifyContact(gap.g, gap.per_metre);
-      BallState after = s;
-      switch (ev.contact) {
-        case ContactStart::kApproaching: {
-          const CushionResolution r = ResolveBallCushionOnTable(
-              s, normal, params_.ball, params_.cushion, params_.cushion_solver, cushion_table_);
-          AddImpactWork(r.work, &impact_work_);
-          if (r.status == ImpactStatus::kOk) {
-            after = HoldIfReturning(AfterImpact(r.ball), normal);
-          } else if (r.status == ImpactStatus::kNotApproaching) {
-            after = Settle(WithoutNormalVelocity(s, normal), params_.ball);
-            ev.contact = ContactStart::kTouching;
-          } else {
-            return SimStatus::kSolverFailure;
-          }
-          break;
-        }
-        case ContactStart::kPressing:
-          // Pressed a second time at one instant: wedged between contacts; it stops.
-          after = PressLevel(bi, te) == 0 ? HoldAgainst(s, normal) : Stopped(s);
-          break;
-        case ContactStart::kTouching:
-        case ContactStart::kApart: break;  // nothing to resolve: re-anchored below
-      }
-      SetState(bi, after, te);
+      const BoundaryContactResolution r = ResolveBoundaryContact(
+          s, normal, ev.contact, ev.contact == ContactStart::kPressing ? PressLevel(bi, te) : 0,
+          params_, cushion_table_);
+      AddImpactWork(r.work, &impact_work_);
+      if (r.status != ImpactStatus::kOk) return SimStatus::kSolverFailure;
+      ev.contact = r.contact;
+      // Restarts at te even when nothing was resolved: no search goes back in time.
+      SetState(bi, r.ball, te);
       Changed(bi);
       break;
     }

@@ -1,5 +1,6 @@
-// Event-driven simulation of a whole snooker table (detect -> evolve -> resolve ->
-// record, as pooltool's event-based simulate). Table frame: X across, Y along, Z up.
+// Event-driven simulation of a whole snooker table (next event -> evolve -> resolve
+// -> record, as pooltool's event-based simulate). Table frame: X across, Y along, Z
+// up (docs/physics-notes.md section 1).
 //
 // Why it looks like this:
 //  * Between events every ball moves in closed form (physics/motion/motion.h), so the
@@ -19,26 +20,26 @@
 //    event's time (even when nothing is resolved), so every search starts at the
 //    current time; Step checks it and ends with kEventOrder (a bug) otherwise.
 //
-// Contacts by design (issue 7). A ball frozen to a cushion, a knuckle, a jaw wall or
-// another ball is an ordinary state. The detectors (physics/events/detect.h) say
-// how each contact stands, and the resolver acts on that, not on luck:
+// Contacts by design. A ball frozen to a cushion, a knuckle, a jaw wall or another
+// ball is an ordinary state. The detectors (physics/events/detect.h) say how each
+// contact stands, and the resolvers (physics/sim/resolve.h) act on that, not on luck:
 //  * approaching: an impact, with the paper's model (ball-ball, Mathavan 2014) or
 //    the cushion model (Mathavan 2010);
 //  * pressing (no normal speed, the cloth driving the two together): a resting
-//    contact. Against a boundary the ball loses its normal velocity and the spin
-//    that drives its slip into the boundary (HoldAgainst); two balls lose the spin
-//    that drives them together, and if rolling still presses them, stop together
-//    when slow (resting_pair_speed) or lose their motion along the line of centres
-//    (HoldTogether). A ball pressed twice at one instant is wedged and stops. Each
-//    step only takes energy out.
+//    contact (physics/sim/contacts.h). Against a boundary the ball loses its normal
+//    velocity and the spin that drives its slip into the boundary (HoldAgainst); two
+//    balls lose the spin that drives them together, and if rolling still presses
+//    them, stop together when slow (resting_pair_speed) or lose their motion along
+//    the line of centres (HoldTogether). A ball pressed twice at one instant is
+//    wedged and stops. Each step only takes energy out.
 //  * an impact after which the cloth would bring the two back within a flight of
 //    resting_contact_excursion is turned into a resting contact (no Zeno bounces);
 //  * a ball-ball impact within cluster_time of an earlier one of either ball is
-//    resolved with every ball touching them as one impulse problem (ResolveCluster:
-//    McNamara and Young's criterion against inelastic collapse; projected
-//    Gauss-Seidel on the contact normals, Newton restitution, plastic where that has
-//    no solution, balls brought to rest held still). docs/resting-contacts.md
-//    measures the choice on break-offs.
+//    resolved with every ball touching them as one impulse problem
+//    (physics/sim/cluster.h: McNamara and Young's criterion against inelastic
+//    collapse; projected Gauss-Seidel on the contact normals, Newton restitution,
+//    plastic where that has no solution, balls brought to rest held still).
+//    docs/resting-contacts.md measures the choice on break-offs.
 // Deterministic: ties are broken by a fixed order (time, then kind, then indices).
 // Run() allocates only while its buffers grow; reuse a Simulator for many runs.
 #pragma once
@@ -58,85 +59,10 @@
 #include "physics/motion/motion.h"
 #include "physics/core/params.h"
 #include "physics/events/detect.h"
+#include "physics/sim/sim_params.h"
 #include "physics/table/table.h"
 
 namespace snooker::physics {
-
-struct SimParams {
-  static ImpulseSolverOptions ShotImpactOptions() {
-    ImpulseSolverOptions o;
-    o.tolerance = kShotTolerance;
-    return o;
-  }
-
-  BallParams ball;
-  ClothParams cloth;
-  BallBallParams ball_ball;
-  /// Cushion model (Mathavan et al. 2010) with the restitution curve fitted to the
-  /// measured rebounds of Mathavan et al. (2009) (MeasuredReboundCurve): the paper's
-  /// constant e_e = 0.98 rebounds up to 0.4 m/s too fast at 3.5 m/s. Its
-  /// contact_height is replaced by the table's cushion_height (TableSpec), the one
-  /// source of the nose geometry.
-  CushionParams cushion = [] {
-    CushionParams c;
-    c.restitution_curve = MeasuredReboundCurve();
-    return c;
-  }();
-  /// The impact integrators within a whole shot. Their tolerance is set from the
-  /// final positions it gives, not by habit: the largest tolerance at which every ball
-  /// of the planner's workload, of several-cushion shots and of break-offs ends within
-  /// a tenth of the 1 mm the issue allows of a converged run (measured: 0.07 mm) on
-  /// every well-conditioned shot - one that a change of 1e-9 in the cue ball's speed
-  /// (relative) or direction (rad) does not move by more than 1 um
-  /// (docs/shot-speed-vs-error.md, scripts/shot-speed-error).
-  static constexpr double kShotTolerance = 1e-7;
-  /// Both with ImpulseSolverOptions' own Runge-Kutta pair, Dormand-Prince 5(4): the
-  /// cheaper at kShotTolerance (docs/impact-methods.md, scripts/impact-methods; 8(5,3)
-  /// pays at tighter ones).
-  ImpulseSolverOptions ball_ball_solver = ShotImpactOptions();
-  ImpulseSolverOptions cushion_solver = ShotImpactOptions();
-  /// Answer the impacts of a rolling ball on a cushion or on a ball at rest from the
-  /// precomputed tables (DefaultCushionTable, DefaultBallBallTable; physics/impact/
-  /// impact_table.h) where they cover them and were built for these parameters; every
-  /// other impact goes to its solver. The tables' errors are within those of the
-  /// solvers at kShotTolerance (docs/impact-tables.md), so a table is used only while
-  /// its solver is the adaptive one at a tolerance of at least kShotTolerance
-  /// (TablesCarry): asking a solver for more precision, or for the paper's fixed-step
-  /// scheme, solves every impact of its kind. The reference fidelity tier turns them
-  /// off.
-  bool impact_tables = true;
-  /// After an impact, a ball whose centre and contact point both move slower than
-  /// this is set at rest (its Z spin kept). m/s. Without it a slow ball pushing a
-  /// resting one makes an endless cascade of ever smaller collisions (inelastic
-  /// collapse). A rolling ball at 1e-4 m/s would travel v^2 / (2 mu_r g) ~ 4e-8 m
-  /// more: far below anything measurable. 0 disables it.
-  double rest_speed = 1e-4;
-  /// A ball that leaves a cushion (or knuckle, or jaw wall, or another ball) after
-  /// an impact while the cloth drives it back, and would rise less than this off it
-  /// before it returns, is held against it instead: a resting contact. m. Without
-  /// it such a ball bounces in ever shorter flights without end (a Zeno sequence);
-  /// 1e-6 m is far below anything measurable.
-  double resting_contact_excursion = 1e-6;
-  /// Two touching balls pressed together by their rolling decelerations, both
-  /// slower than this, are set at rest together (a resting contact). m/s. They
-  /// would have rolled on together at most v^2 / (2 mu_r g): 0.1 mm at 5 mm/s.
-  double resting_pair_speed = 5e-3;
-  /// A ball-ball contact that comes within this time of an earlier impact of
-  /// either ball is resolved with the whole cluster of balls touching them, as one
-  /// impulse problem (McNamara and Young's "TC" criterion, with a simultaneous
-  /// resolution instead of their elastic one). s. Without it three touching balls
-  /// can exchange ever smaller impacts ever faster (inelastic collapse).
-  /// docs/resting-contacts.md shows the measurements behind the default. Negative:
-  /// never (every contact resolved pairwise with the impact model).
-  double cluster_time = 1e-6;
-  /// Newton restitution of the cluster resolution (frictionless, centre velocities
-  /// only). Dimensionless, in [0, 1].
-  double cluster_restitution = 0.89;
-  /// Cap on resolved events in one run.
-  std::int32_t max_events = 5000;
-  /// Cap on simulated time, s.
-  double max_time = 600.0;
-};
 
 /// True when an impact table may stand in for a solver run with these options: the
 /// adaptive integrator (after the options' fidelity) at a tolerance no tighter than
@@ -289,20 +215,11 @@ class Simulator {
   };
 
   BallState StateAt(int i, double t) const;
-  BallState AfterImpact(const BallState& s) const;  // applies rest_speed
-  // Resting contacts (see SimParams::resting_contact_excursion); n is the contact
-  // normal, horizontal, from the boundary to the ball / from a to b.
-  BallState HoldAgainst(const BallState& s, const Vec2& n) const;
-  BallState HoldIfReturning(const BallState& s, const Vec2& n) const;
-  void HoldIfReturning(BallState* a, BallState* b, const Vec2& n, int level_a, int level_b) const;
-  void RemoveApproach(BallState* a, BallState* b, const Vec2& n) const;
-  void HoldTogether(BallState* a, BallState* b, const Vec2& n, int level_a, int level_b) const;
-  BallState Stopped(const BallState& s) const;  // v = 0, horizontal spin 0
   // How many pressing contacts ball i has had resolved at time t before this one.
   int PressLevel(int i, double t);
-  // Resolves the touching cluster around the pair at time t; returns its size.
+  // Resolves the touching cluster around the pair at time t (physics/sim/cluster.h);
+  // returns its size.
   int ResolveCluster(int i, int j, double t);
-  static constexpr int kMaxClusterContacts = 4 * kMaxBalls;
   void SetState(int i, const BallState& s, double t);  // and mark for recompute
   void RecomputeOwn(int i);
   void RecomputePair(int i, int j);

@@ -128,7 +128,7 @@ std::vector<BallState> MidFrameTable(int reds, Rng& rng, const TableModel& table
   return out;
 }
 
-/// The planner workload (issue 9): MidFrameTable with 8 reds and a shot of 0.5-4
+/// The planner workload: MidFrameTable with 8 reds and a shot of 0.5-4
 /// m/s aimed at a random object ball's centre (or up to one ball radius either side
 /// of it) with top and side spin up to a rolling ball's either way.
 template <typename Rng>

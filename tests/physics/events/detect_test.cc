@@ -306,7 +306,7 @@ TEST(ContactTest, RollingAlongACushionIsNoEvent) {
 }
 
 // A pair that parts slowly and is brought back by its decelerations makes contact
-// again (it used to be missed, and the two overlapped).
+// again (a search that missed it would let the two overlap).
 TEST(ContactTest, SlowPartingThatTurnsRoundIsFound) {
   const PositionPoly still = Path({0, 2 * kR});
   const CushionSegment seg{{0, -1}, {0, 1}, {1, 0}, SegmentKind::kCushion, PocketId::kBaulkLeft, "left"};

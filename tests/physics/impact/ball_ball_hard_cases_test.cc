@@ -1,4 +1,4 @@
-// Hard cases for the ball-ball solver (issue: numerical stability). Every case goes
+// Hard cases for the ball-ball solver: its numerical stability. Every case goes
 // through the same checks: the adaptive integrator terminates within a step cap
 // with status ok, every output is finite, kinetic energy does not rise, a 1e-9
 // change of any input moves the output by no more than kContinuityBound, and the
@@ -19,7 +19,7 @@ namespace {
 constexpr double kR = 0.02625;  // m, the paper's ball radius
 // Step cap for the hard cases: a thousand times the typical 5-30 steps.
 constexpr int kStepCap = 20000;
-// Input perturbation for the continuity check (m/s or rad/s), as the issue asks.
+// Input perturbation for the continuity check (m/s or rad/s): a rounding-sized nudge.
 constexpr double kPerturbation = 1e-9;
 // Output change allowed for that perturbation: the map is Lipschitz with constant
 // of order 1-13 (measured: output changes 1e-9 to 1.3e-8 over these cases), plus

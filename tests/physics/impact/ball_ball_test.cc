@@ -24,8 +24,8 @@ using test::FixedStep;
 using test::kRoundingRel;
 using test::MaxDifference;
 
-// The paper prints speeds to 3 decimals and angles to 2: the tolerances of the
-// issue, 0.005 m/s and 0.05 deg, allow for that rounding.
+// The paper prints speeds to 3 decimals and angles to 2: the required tolerances,
+// 0.005 m/s and 0.05 deg (docs/physics-notes.md section 11), allow for that rounding.
 constexpr double kPaperSpeedTol = 0.005;  // m/s
 constexpr double kPaperAngleTolDeg = 0.05;
 // Fixed-step N for the paper's tables: the scheme's error is about 2e-3 m/s * 1000/N
@@ -113,8 +113,9 @@ struct IntegratorCase {
 // gtest and ctest show the case by its name.
 void PrintTo(const IntegratorCase& c, std::ostream* os) { *os << c.name; }
 
-// A random incident state (the issue's shots): V0 in 0.05-8 m/s, cut 0-max_cut_deg,
-// top- and sidespin within +-2.5 V0/R; four draws of `rng`, in that order.
+// A random incident state (the shots of the accuracy tests): V0 in 0.05-8 m/s, cut
+// 0-max_cut_deg, top- and sidespin within +-2.5 V0/R; four draws of `rng`, in that
+// order.
 struct RandomIncident {
   ImpactState in;
   double v0 = 0;  // m/s
@@ -329,8 +330,8 @@ TEST(AdaptiveTest, AgreesWithFixedStepSchemeRunFine) {
 // tolerance 1e-14 (agreement within 1e-9 m/s, far below what is asserted).
 TEST(AdaptiveTest, DefaultToleranceIsAccurateOnRandomShots) {
   constexpr int kShots = 1000;
-  constexpr double kVelocityTol = 1e-5;    // m/s, the issue's bound
-  constexpr double kSpinTol = 1e-3;        // rad/s, the issue's bound
+  constexpr double kVelocityTol = 1e-5;    // m/s, the required accuracy
+  constexpr double kSpinTol = 1e-3;        // rad/s, the required accuracy
   constexpr double kReferenceTol = 1e-13;  // relative local error of the reference
   constexpr double kConvergedTol = 1e-9;   // m/s between the two references
   const BallParams ball;

@@ -23,15 +23,16 @@ using test::Adaptive;
 using test::FixedStep;
 using test::kRoundingRel;
 
-// The notes read the rebound of a rolling 1 m/s square-on ball off the paper's plots
-// as "about 0.91 m/s"; a plot read to its grid is good to about 0.01 m/s.
+// The rebound of a rolling 1 m/s square-on ball read off the paper's plots is "about
+// 0.91 m/s" (docs/physics-notes.md section 8); a plot read to its grid is good to
+// about 0.01 m/s.
 constexpr double kPlotReadingTol = 0.01;  // m/s
-// The brief's bar for the default tolerance against a very tight run. m/s (spins
+// The required agreement of the default tolerance with a very tight run. m/s (spins
 // compared as R w).
 constexpr double kDefaultVsTightTol = 1e-6;
 // A "very tight" adaptive run: 1e-14 of the speed scale per step.
 constexpr double kTightTolerance = 1e-14;
-// The measured fit's acceptance band asked for by the issue. m/s.
+// The acceptance band around the measured fit. m/s.
 constexpr double kFitBand = 0.05;
 // The deviations from the measured fit reported in docs/cushion-model.md are quoted
 // to 3 decimals; this pins them to that. m/s.
@@ -56,8 +57,8 @@ BallMotion RollingSquareOn(double speed) {
   return CushionIncidentState(speed, kPi / 2, speed / kBall.radius, 0.0);
 }
 
-// The issue's random inputs: V 0.05-5 m/s, angle 1-90 deg, topspin and sidespin
-// within +-2.5 V/R.
+// The random inputs of the accuracy tests: V 0.05-5 m/s, angle 1-90 deg, topspin
+// and sidespin within +-2.5 V/R.
 struct RandomShots {
   std::mt19937_64 rng;
   explicit RandomShots(std::uint64_t seed) : rng(seed) {}
@@ -85,7 +86,8 @@ struct RandomShots {
 // ---------------------------------------------------------------------------
 // Layer 1: published figures.
 
-// The notes' check. The model gives 0.9107 m/s (v = (0, -0.91066) m/s, wx = -8.96 rad/s).
+// The check of docs/physics-notes.md section 8. The model gives 0.9107 m/s
+// (v = (0, -0.91066) m/s, wx = -8.96 rad/s).
 TEST(CushionPaperCheck, RollingBallAtOneMetrePerSecondReboundsAtAbout091) {
   const CushionParams p;
   const CushionImpactResult a = ResolveCushionImpact(RollingSquareOn(1.0), kBall, p, Adaptive());
@@ -307,7 +309,7 @@ TEST(CushionConvergence, FixedStepErrorIsFirstOrderThroughStickAndReversal) {
   }
 }
 
-// The default tolerance against a very tight run, for the issue's random inputs.
+// The default tolerance against a very tight run, for the random inputs.
 TEST(CushionAdaptive, DefaultToleranceIsWithinOneMicrometrePerSecondOfTightRun) {
   RandomShots shots(15);
   double worst = 0;
@@ -584,7 +586,7 @@ TEST(CushionContract, Deterministic) {
 // the model match their regression within 0.05 m/s over 0.3-3.5 m/s (rolling ball,
 // square on), where the paper's constant e_e = 0.98 is up to 0.4 m/s off.
 TEST(CushionRestitutionCurve, ReproducesTheMeasuredReboundFit) {
-  constexpr double kTol = 0.05;  // m/s, the bound of the table-simulation issue
+  constexpr double kTol = 0.05;  // m/s, the bound the table simulation needs
   const BallParams ball;
   CushionParams curve = MathavanCushionParams(ball);
   curve.restitution_curve = MeasuredReboundCurve();
@@ -629,7 +631,7 @@ TEST(CushionRestitutionCurve, BadKnotIsNamed) {
 // ---------------------------------------------------------------------------
 // The search fidelity tier (ImpulseFidelity::kSearch).
 
-// The documented accuracy of the tier, on the issue's random inputs with spins up to
+// The documented accuracy of the tier, on the random inputs with spins up to
 // 2.5 V/R: within 5e-5 of the speed scale of a converged answer (measured: 1.7e-5),
 // for less than half the work of the default tolerance (measured: 65 against 196
 // right-hand sides an impact).
@@ -654,7 +656,7 @@ TEST(CushionSearchFidelity, MeetsItsDocumentedAccuracyForLessWork) {
   EXPECT_LT(2 * search_work, default_work);
 }
 
-// Both Runge-Kutta pairs converge to the same cushion impact: on the issue's random
+// Both Runge-Kutta pairs converge to the same cushion impact: on the random
 // inputs each at tolerance 1e-9 lies within 1e-7 of the speed scale of the other's
 // answer at 1e-13.
 TEST(CushionMethod, BothPairsConvergeToTheSameAnswer) {

@@ -1,7 +1,7 @@
 // The five shots of Mathavan, Jackson & Parkin (2014), Tables 1 and 2: a rolling
 // cue ball (topspin = V0 / R, no sidespin) at speed V0 and cut angle theta. Values as
 // printed, with two misprints corrected:
-//  * Table 1 row 4: predicted cue v_S 1.28, not 0.128 (physics-notes section 2);
+//  * Table 1 row 4: predicted cue v_S 1.28, not 0.128 (docs/physics-notes.md section 3);
 //  * Table 2 row 3: the cue-ball exit-angle error is -1.93 %, not -0.90 %: the paper's
 //    own columns give (29.91 - 30.50) / 30.50 = -1.93 % (every other error in Table 2
 //    is (predicted - measured) / measured; -0.90 is the speed error of the same row).

@@ -63,7 +63,7 @@ TEST_F(MotionTest, RollingBallStopsAfterVSquaredOverTwoMuRG) {
   ASSERT_EQ(s.s, MotionState::kRolling);
   const double t_r = TransitionTime(s, ball_, cloth_);
   EXPECT_NEAR(t_r, v0 / mu_g, kClosedFormTol);
-  EXPECT_NEAR(mu_g, 0.1256, 1e-4);  // about 0.125 m/s^2 measured (notes section 9)
+  EXPECT_NEAR(mu_g, 0.1256, 1e-4);  // about 0.125 m/s^2 measured (docs/physics-notes.md section 9)
   const BallState e = Evolve(s, t_r, ball_, cloth_);
   EXPECT_EQ(e.s, MotionState::kStationary);
   EXPECT_EQ(e.v, Vec3::Zero());

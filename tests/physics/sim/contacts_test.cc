@@ -1,7 +1,8 @@
-// Resting contacts and clusters (physics/sim/simulate.h, physics/events/detect.h):
-// balls frozen to a cushion, a knuckle, a jaw wall or another ball are ordinary
-// states; touching packs and jammed clusters come to rest well under the event cap.
-// Each case reported broken is here, then seeded sweeps over many such states.
+// Resting contacts (physics/sim/contacts.h) and clusters, on their own and through
+// the simulator (physics/sim/simulate.h, physics/events/detect.h): balls frozen to a
+// cushion, a knuckle, a jaw wall or another ball are ordinary states; touching packs
+// and jammed clusters come to rest well under the event cap. Each case reported
+// broken is here, then seeded sweeps over many such states.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "physics/motion/motion.h"
+#include "physics/sim/contacts.h"
 #include "physics/sim/simulate.h"
 #include "tests/support/invariants.h"
 #include "tests/support/scenarios.h"
@@ -265,6 +268,67 @@ INSTANTIATE_TEST_SUITE_P(Gaps, BreakOffSweepTest,
                          testing::Values(BreakOffSweep{0, "Touching"}, BreakOffSweep{1e-6, "Gap1um"},
                                          BreakOffSweep{1e-4, "Gap100um"}, BreakOffSweep{1e-3, "Gap1mm"}),
                          [](const testing::TestParamInfo<BreakOffSweep>& p) { return std::string(p.param.name); });
+
+// ---- The rules on their own (physics/sim/contacts.h) ----
+
+// Rounding of a few operations on speeds of order 1 m/s. m/s.
+constexpr double kRuleTol = 1e-12;
+
+TEST_F(ContactsTest, AfterImpactRestsOnlyBallsSlowerThanRestSpeed) {
+  BallState slow = Settle(scenarios::Rolling(Vec2(1, 1), Vec2(0, 1), 0.5 * params_.rest_speed),
+                          params_.ball);
+  slow.w.z() = 3.0;  // Z spin is kept
+  const BallState rested = AfterImpact(slow, params_);
+  EXPECT_EQ(rested.v.head<2>().norm(), 0.0);
+  EXPECT_EQ(rested.w.z(), 3.0);
+  EXPECT_EQ(rested.s, MotionState::kSpinning);
+  const BallState fast = Settle(
+      scenarios::Rolling(Vec2(1, 1), Vec2(0, 1), 2 * params_.rest_speed), params_.ball);
+  EXPECT_EQ(AfterImpact(fast, params_).v, fast.v);
+}
+
+// A sliding ball driven into a cushion (normal +x, from the cushion to the ball):
+// held against it, it has no normal velocity and no normal cloth slip left, keeps
+// its motion along the cushion and loses energy.
+TEST_F(ContactsTest, HoldAgainstLeavesNoNormalVelocityOrSlip) {
+  const Vec2 n(1, 0);
+  BallState s = AtRest(Vec2(table_.cushion_contact_distance(), 1.0));
+  s.v = Vec3(-0.2, 0.7, 0.0);
+  s.w = Vec3(4.0, 9.0, 2.0);
+  s = Settle(s, params_.ball);
+  ASSERT_EQ(s.s, MotionState::kSliding);
+  const BallState held = HoldAgainst(s, n, params_);
+  EXPECT_NEAR(held.v.head<2>().dot(n), 0.0, kRuleTol);
+  EXPECT_NEAR(ClothSlip(held, params_.ball).dot(n), 0.0, kRuleTol);
+  EXPECT_NEAR(held.v.y(), 0.7, kRuleTol);
+  EXPECT_EQ(held.w.z(), 2.0);
+  EXPECT_LT(KineticEnergy(held, params_.ball), KineticEnergy(s, params_.ball));
+}
+
+// b rolls away from a along the line of centres n; its deceleration presses the
+// two together. Slow, both stop; faster, b loses its motion along n and keeps the
+// rest; pressed a second time at the same instant (level 1), b stops.
+TEST_F(ContactsTest, HoldTogetherStopsSlowPairsAndTheMotionAlongTheLine) {
+  const Vec2 n(0, 1);
+  const BallState a = AtRest(Vec2(0.889, 1.0));
+  auto rolling_b = [&](const Vec2& dir, double speed) {
+    return Settle(scenarios::Rolling(a.r + 2 * kR * n, dir, speed), params_.ball);
+  };
+  BallState a1 = a, b1 = rolling_b(n, 0.5 * params_.resting_pair_speed);
+  HoldTogether(&a1, &b1, n, 0, 0, params_);
+  EXPECT_EQ(b1.v.head<2>().norm(), 0.0);
+  EXPECT_EQ(a1.v.head<2>().norm(), 0.0);
+
+  const Vec2 diagonal = Vec2(1, 1).normalized();
+  BallState a2 = a, b2 = rolling_b(diagonal, 0.2);
+  HoldTogether(&a2, &b2, n, 0, 0, params_);
+  EXPECT_NEAR(b2.v.head<2>().dot(n), 0.0, kRuleTol);
+  EXPECT_NEAR(b2.v.x(), 0.2 * diagonal.x(), kRuleTol);
+
+  BallState a3 = a, b3 = rolling_b(diagonal, 0.2);
+  HoldTogether(&a3, &b3, n, 0, 1, params_);
+  EXPECT_EQ(b3.v.head<2>().norm(), 0.0);
+}
 
 }  // namespace
 }  // namespace snooker::physics

@@ -111,7 +111,7 @@ TEST_F(SimulateTest, BallHittingAJawPointBlankStaysOut) {
 // measured: v_out = -0.0877 v^2 + 1.131 v - 0.0953 (m/s, 0.3-3.5 m/s), within
 // 0.05 m/s (measured worst 0.022 m/s with the table's restitution curve).
 TEST_F(SimulateTest, SquareCushionReboundMatchesTheMeasuredFit) {
-  constexpr double kTol = 0.05;  // m/s, the issue's bound
+  constexpr double kTol = 0.05;  // m/s, the acceptance band around the fit
   for (double v = 0.3; v <= 3.5001; v += 0.1) {
     // Rolling square into the top cushion from 2 cm away.
     const double y = table_.spec().length - table_.cushion_contact_distance() - 0.02;
@@ -291,35 +291,22 @@ TEST_F(SimulateTest, RandomShotsKeepTheInvariants) {
   EXPECT_GT(potted, 0);  // the pockets work at all
 }
 
-// Hash of the break-off's final state (see BreakOffIsDeterministic), and why it is
-// what it is:
-//  * The reds of the opening triangle touch, so the apex red's impacts on its
-//    neighbours come at the instant it is hit: since issue 7 the cluster rule
-//    (SimParams::cluster_time) resolves them as one impulse problem. With the rule
-//    off (kPairwiseBreakOffHash) the resting-contact changes of issue 7 left the
-//    run exactly as before (0x51d93b1f1e66e6eb) until the next change.
-//  * Issue 9: quadratic gaps (cushion noses, jaw walls) are solved in closed form
-//    instead of by the general root finder; event times differ by rounding, which
-//    the break-off's many impacts amplify into a new final state.
-//  * Issue 9: the hybrid impulse integrator (same model and tolerance, a different
-//    step sequence; alone it moved every final position by less than 1e-8 m).
-//  * Issue 9: the simulation's impact tolerance, set from measured final positions
-//    (SimParams::kShotTolerance, 1e-10 -> 1e-9): on the break-offs of
-//    docs/shot-speed-vs-error.md that moves well-conditioned balls by at most 6 um.
-//  * Issue 9: a different step sequence in the impact integrators (same model and
-//    tolerance): a predictive step-size controller, and ball-ball impacts with the
-//    Dormand-Prince 8(5,3) pair (docs/impact-methods.md), each impact within the
-//    tolerance of the converged answer. This break-off is not well conditioned -
-//    rounding-level changes in early impacts move balls of it by up to 2 m (no
-//    pocket changed) - so its hash changes with any step sequence; the accuracy of
-//    the default on break-offs is measured in docs/shot-speed-vs-error.md.
-//  * Issue 9: the shot tolerance 1e-9 -> 1e-7, once shots knife-edged in the cue
-//    ball's direction were recognised as ill conditioned (docs/shot-speed-vs-error.md:
-//    well-conditioned break-off balls within 0.007 mm of a converged run at 1e-7).
-//  * Issue 9: the impacts of rolling balls on cushions and on balls at rest answered
-//    from the impact tables (docs/impact-tables.md), each within 3e-6 of the speed of
-//    the converged answer, about the solver's own error at the shot tolerance (well-
-//    conditioned break-off balls within 0.009 mm of a converged run).
+// Hashes of the break-off's final state (BreakOffIsDeterministic): every ball's final
+// position, bit for bit, and the pocket it fell into, with the default parameters
+// (kBreakOffHash) and with the cluster rule off, every contact resolved pairwise by
+// the impact model (kPairwiseBreakOffHash). The reds of the opening triangle touch,
+// so the apex red's impacts on its neighbours come at the instant it is hit: the
+// first hash pins the cluster resolution (physics/sim/cluster.h), the second the
+// pairwise one.
+//
+// A break-off is not well conditioned: rounding-level changes in early impacts move
+// its balls by up to 2 m, so almost any change to the physics, to its numerics or to
+// the order of its floating-point operations changes these hashes, and a refactor
+// must leave them as they are. When the simulation is meant to
+// change, check that the change is the intended one (its accuracy on break-offs is
+// measured in docs/shot-speed-vs-error.md), print the new values (the failure
+// message shows them in hex) and replace the constants in the same commit; its
+// message says why the simulation changed.
 constexpr std::uint64_t kBreakOffHash = 0x674b1cbc0f25d775ULL;
 constexpr std::uint64_t kPairwiseBreakOffHash = 0x04fa0a4cadf0ba3bULL;
 
