@@ -231,33 +231,33 @@ bool SetBallOn(Args& args, v1::PlanRequest* req, std::ostream& err) {
 }
 
 // The request's fields from the flags given. Each option sets its API field only
-// when given: unset fields keep the planner's defaults; the API validates the values
-// and names the field. A value that does not parse is an error in `args`.
+// when given: unset fields keep the planner's defaults. A flag's value must parse as
+// the field's type (a finite number; a whole number that fits the field): anything
+// else is an error in `args`; the API validates the value's range and names the
+// field (max_shots, monte_carlo_samples, ...).
 void SetRequestFields(Args& args, v1::PlanRequest* req) {
   auto number = [&](const char* flag, auto set) {
     if (args.Has(flag)) {
       if (const auto x = args.Number(flag, std::nullopt)) set(*x);
     }
   };
+  auto int32 = [&](const char* flag, auto set) {
+    using Limits = std::numeric_limits<std::int32_t>;
+    if (args.Has(flag)) {
+      if (const auto n = args.Integer(flag, std::nullopt, Limits::min(), Limits::max())) {
+        set(static_cast<std::int32_t>(*n));
+      }
+    }
+  };
   number("budget-ms", [&](double x) { req->set_time_budget_ms(x); });
-  if (args.Has("shots")) {
-    if (const auto n = args.Integer("shots", std::nullopt, 1, 20)) req->set_max_shots(static_cast<int>(*n));
-  }
+  int32("shots", [&](std::int32_t n) { req->set_max_shots(n); });
   if (args.Has("seed")) {
     if (const auto n = args.Integer("seed", std::nullopt, 0, std::numeric_limits<long>::max())) {
       req->set_seed(static_cast<std::uint64_t>(*n));
     }
   }
-  if (args.Has("max-simulations")) {
-    if (const auto n = args.Integer("max-simulations", std::nullopt, 0, 100'000'000)) {
-      req->set_max_simulations(static_cast<int>(*n));
-    }
-  }
-  if (args.Has("samples")) {
-    if (const auto n = args.Integer("samples", std::nullopt, 0, 100'000)) {
-      req->set_monte_carlo_samples(static_cast<int>(*n));
-    }
-  }
+  int32("max-simulations", [&](std::int32_t n) { req->set_max_simulations(n); });
+  int32("samples", [&](std::int32_t n) { req->set_monte_carlo_samples(n); });
   v1::NoiseModel* noise = req->mutable_noise();
   number("noise-heading-deg", [&](double x) { noise->set_heading_sigma_deg(x); });
   number("noise-speed", [&](double x) { noise->set_speed_sigma_fraction(x); });
@@ -295,9 +295,14 @@ std::optional<int> ParsePlanFlags(const std::vector<std::string>& argv, std::ost
   SetRequestFields(args, &s->request);
   const auto vision = args.Number("vision-tolerance-mm", server::limits::kDefaultVisionToleranceMm);
   if (!ClientOptionsFrom(args, "snooker plan", "server", 60'000, &s->client, err)) return kExitUsage;
-  if (args.error().empty() && !server::limits::kVisionToleranceMm.Contains(*vision)) {
-    err << "snooker plan: --vision-tolerance-mm " << server::FormatNumber(*vision) << " is outside [0, "
-        << server::FormatNumber(server::limits::kVisionToleranceMm.hi) << "]\n";
+  // Here, the flag is the tolerance of the local "server" (PlanControl), which the
+  // API takes as given: checked against what `snooker serve --vision-tolerance-mm`
+  // accepts. With --server it is the request's vision_tolerance_mm, which the server
+  // checks.
+  const physics::Range& tolerances = server::limits::kVisionToleranceMm;
+  if (args.error().empty() && s->client.target.empty() && !tolerances.Contains(*vision)) {
+    err << "snooker plan: --vision-tolerance-mm " << server::FormatNumber(*vision) << " is outside ["
+        << server::FormatNumber(tolerances.lo) << ", " << server::FormatNumber(tolerances.hi) << "]\n";
     return kExitUsage;
   }
   if (!args.error().empty()) {
