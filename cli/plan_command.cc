@@ -3,7 +3,6 @@
 // built-in table, builds the PlanRequest the service takes and calls the same
 // operation (server/plan_api.h), here or on a server (--server: Plan, or PlanStream
 // with --stream), and prints the same answer either way.
-#include <google/protobuf/util/json_util.h>
 
 #include <cstdint>
 #include <fstream>
@@ -19,6 +18,7 @@
 #include "cli/client.h"
 #include "cli/commands.h"
 #include "cli/json.h"
+#include "cli/json_input.h"
 #include "cli/load_tables.h"
 #include "cli/read_file.h"
 #include "cli/svg.h"
@@ -105,9 +105,9 @@ bool ReadTable(const std::string& path, v1::TableState* table, std::ostream& err
     err << "snooker plan: cannot read '" << path << "': " << why << "\n";
     return false;
   }
-  const auto st = google::protobuf::util::JsonStringToMessage(text, table);
-  if (!st.ok()) {
-    err << "snooker plan: '" << path << "' is not a valid TableState JSON: " << st.message() << "\n";
+  if (!ReadJsonMessage(text, table, &why)) {
+    err << "snooker plan: '" << path << "' is not a valid TableState JSON: " << server::BoundMessage(why)
+        << "\n";
     return false;
   }
   return true;
