@@ -1,5 +1,6 @@
 #include "cli/client.h"
 
+#include <absl/base/internal/sysinfo.h>
 #include <grpcpp/generic/generic_stub.h>
 #include <grpcpp/security/credentials.h>
 
@@ -39,6 +40,33 @@ bool ReadPem(const std::string& command, const std::string& flag, const std::str
   return true;
 }
 
+// Runs, before this process opens its first connection, the one-time set-up in
+// Abseil that can leave a stale errno behind in the middle of gRPC's connect.
+//
+// gRPC 1.51's TCP client (Debian 12's) calls connect() on a non-blocking socket and
+// reads errno to tell "in progress" (EINPROGRESS, the usual answer) from a failure
+// only after registering the socket with its poller (grpc_fd_create), which locks
+// Abseil mutexes. The first time any absl::Mutex in a process is contended, Abseil
+// measures the CPU's nominal frequency once (absl::base_internal::
+// NominalCPUFrequency), first trying to read /sys/devices/system/cpu/cpu0/tsc_freq_khz,
+// a file only some patched kernels provide; where it is missing (stock Linux
+// kernels, the development machine's among them) the attempt leaves errno = ENOENT.
+// When that first contention falls between connect() and the errno check, which
+// happens when several threads connect at once (the load test's clients, each with
+// a connection of its own), gRPC takes the connection for failed ("No such file or
+// directory"), the channel stays in TRANSIENT_FAILURE for its reconnect backoff (a
+// second or more), and every call made meanwhile fails at once with
+//   UNAVAILABLE: failed to connect to all addresses; last error: UNKNOWN:
+//   ipv4:127.0.0.1:PORT: No such file or directory
+// (later gRPC releases save connect()'s errno at once). Done here, before any
+// channel connects, the measurement cannot happen inside a connect. It costs a few
+// milliseconds once (Abseil times short sleeps when the file is missing), which the
+// first contended mutex would otherwise pay.
+void SetUpBeforeTheFirstConnection() {
+  static const double nominal_hz = absl::base_internal::NominalCPUFrequency();
+  (void)nominal_hz;
+}
+
 }  // namespace
 
 bool ClientOptionsFrom(Args& args, const std::string& command, const std::string& target_flag,
@@ -68,6 +96,7 @@ bool ClientOptionsFrom(Args& args, const std::string& command, const std::string
 }
 
 std::shared_ptr<grpc::Channel> MakeChannel(const ClientOptions& options, bool own_connection) {
+  SetUpBeforeTheFirstConnection();
   grpc::ChannelArguments arguments;
   // The server's answers are at most kMaxResponseBytes (plus its backstop's slack).
   arguments.SetMaxReceiveMessageSize(static_cast<int>(server::limits::kMaxResponseBytes + 4096));

@@ -10,6 +10,7 @@
 #include <iomanip>
 
 #include "cli/args.h"
+#include "cli/client.h"
 #include "cli/commands.h"
 #include "cli/svg.h"
 #include "server/api.h"
@@ -73,9 +74,9 @@ int RunDemo(const std::vector<std::string>& argv, std::ostream& out, std::ostrea
     return kExitFailure;
   }
   out << "Service snooker.v1.ShotPlanner started on 127.0.0.1:" << server->port() << "\n\n";
-  auto channel = grpc::CreateChannel("127.0.0.1:" + std::to_string(server->port()),
-                                     grpc::InsecureChannelCredentials());
-  auto stub = v1::ShotPlanner::NewStub(channel);
+  ClientOptions client;  // plaintext to loopback; MakeChannel's set-up before connecting
+  client.target = "127.0.0.1:" + std::to_string(server->port());
+  auto stub = v1::ShotPlanner::NewStub(MakeChannel(client));
 
   // (1) The paper's first shot.
   v1::CollideRequest collide;

@@ -1,11 +1,10 @@
 #include "cli/load_tables.h"
 
-#include <google/protobuf/util/json_util.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 
+#include "cli/json_input.h"
 #include "cli/read_file.h"
 #include "physics/core/params.h"
 #include "physics/core/types.h"
@@ -185,10 +184,8 @@ bool ReadTables(const std::string& dir, std::vector<v1::TableState>* tables, std
       return false;
     }
     v1::TableState t;
-    const auto st = google::protobuf::util::JsonStringToMessage(text, &t);
-    if (!st.ok()) {
-      *error = "'" + f.string() + "' is not a valid TableState JSON: " +
-               server::BoundMessage(std::string(st.message()));
+    if (!ReadJsonMessage(text, &t, &why)) {
+      *error = "'" + f.string() + "' is not a valid TableState JSON: " + server::BoundMessage(why);
       return false;
     }
     if (server::CueIndex(t) < 0 || t.balls_size() < 2) {

@@ -12,7 +12,10 @@
 #include <cmath>
 #include <iomanip>
 #include <map>
+#include <limits>
+#include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -222,10 +225,26 @@ double Percentile(const std::vector<double>& sorted, double p) {
   return sorted[std::clamp<std::size_t>(rank, 1, sorted.size()) - 1];
 }
 
-}  // namespace
+constexpr const char* kCommand = "snooker loadtest";
 
-int RunLoadTest(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
-  const std::string command = "snooker loadtest";
+// The flags, checked.
+struct Settings {
+  ClientOptions client;
+  std::string method;
+  bool plan = false;  // --method plan
+  long concurrency = 0;
+  std::size_t requests = 0;
+  std::string tables_dir;  // empty: the built-in tables
+  long seed = 1;
+  long max_seconds = 600;
+  double budget_ms = kDefaultPlanBudgetMs;
+  bool json = false;
+};
+
+// Reads and checks the flags into `s`. An exit code when the command ends here (after
+// --help, or a usage error said on `err`); nothing when the load test goes ahead.
+std::optional<int> ParseSettings(const std::vector<std::string>& argv, std::ostream& out,
+                                 std::ostream& err, Settings* s) {
   std::set<std::string> valued = {"concurrency", "requests", "method", "tables", "seed", "max-seconds",
                                   "budget-ms"};
   for (const std::string& flag : ClientFlags("target")) valued.insert(flag);
@@ -241,209 +260,283 @@ int RunLoadTest(const std::vector<std::string>& argv, std::ostream& out, std::os
   const auto seed = args.Integer("seed", 1, 0, std::numeric_limits<long>::max());
   const auto max_seconds = args.Integer("max-seconds", 600, 1, 3600);
   const auto budget_ms = args.Number("budget-ms", kDefaultPlanBudgetMs);
-  ClientOptions client;
-  if (!ClientOptionsFrom(args, command, "target", 10'000, &client, err)) return kExitUsage;
-  if (args.error().empty() && client.target.empty()) {
-    err << command << ": --target is required\n";
+  if (!ClientOptionsFrom(args, kCommand, "target", 10'000, &s->client, err)) return kExitUsage;
+  if (args.error().empty() && s->client.target.empty()) {
+    err << kCommand << ": --target is required\n";
     return kExitUsage;
   }
   if (!args.error().empty()) {
-    err << command << ": " << args.error() << "\n(see snooker loadtest --help)\n";
+    err << kCommand << ": " << args.error() << "\n(see snooker loadtest --help)\n";
     return kExitUsage;
   }
-  if (!server::IsLoopbackAddress(client.target)) {
-    err << command << ": refusing --target " << client.target
+  if (!server::IsLoopbackAddress(s->client.target)) {
+    err << kCommand << ": refusing --target " << s->client.target
         << ": load goes only to this machine (127.0.0.0/8, ::1, localhost)\n";
     return kExitUsage;
   }
   if (*method != "simulate" && *method != "plan") {
-    err << command << ": --method '" << *method << "': simulate or plan\n";
+    err << kCommand << ": --method '" << *method << "': simulate or plan\n";
     return kExitUsage;
   }
   if (!(*budget_ms >= 1 && *budget_ms <= 60'000)) {
-    err << command << ": --budget-ms " << Num(*budget_ms) << " is outside [1, 60000]\n";
+    err << kCommand << ": --budget-ms " << Num(*budget_ms) << " is outside [1, 60000]\n";
     return kExitUsage;
   }
-  const bool plan = *method == "plan";
+  s->method = *method;
+  s->plan = *method == "plan";
+  s->concurrency = *concurrency;
+  s->requests = static_cast<std::size_t>(*requests);
+  s->tables_dir = *tables_dir;
+  s->seed = *seed;
+  s->max_seconds = *max_seconds;
+  s->budget_ms = *budget_ms;
+  s->json = args.Switch("json");
+  return std::nullopt;
+}
 
-  // The server's model first: what its answers are checked against. Its health too.
-  auto channel = MakeChannel(client);
-  std::string health_before = "unreachable", health_after = "unreachable";
-  if (const grpc::Status st = CheckHealth(channel, "snooker.v1.ShotPlanner", client.deadline, &health_before);
+// The server's health (SERVING required) and its model, what the answers are checked
+// against: kExitOk, or the exit code after saying why on `err`.
+int ReadServer(const std::shared_ptr<grpc::Channel>& channel, const ClientOptions& client,
+               std::string* health, Expectations* expect, std::ostream& err) {
+  if (const grpc::Status st = CheckHealth(channel, "snooker.v1.ShotPlanner", client.deadline, health);
       !st.ok()) {
-    err << command << ": health check of " << client.target << " failed: "
+    err << kCommand << ": health check of " << client.target << " failed: "
         << StatusCodeName(st.error_code()) << ": " << st.error_message() << "\n";
     return kExitFailure;
   }
-  if (health_before != "SERVING") {
-    err << command << ": " << client.target << " reports " << health_before
+  if (*health != "SERVING") {
+    err << kCommand << ": " << client.target << " reports " << *health
         << " for snooker.v1.ShotPlanner: no load sent\n";
     return kExitFailure;
   }
   v1::GetModelResponse model;
-  {
-    grpc::ClientContext context;
-    context.set_deadline(std::chrono::system_clock::now() + client.deadline);
-    const grpc::Status st = v1::ShotPlanner::NewStub(channel)->GetModel(&context, {}, &model);
-    if (!st.ok()) return ReportCallError(command, client.target, st, err);
-  }
-  Expectations expect;
-  expect.width = model.table().width_m();
-  expect.length = model.table().length_m();
-  expect.vision_tolerance_mm = model.service().vision_tolerance_mm();
-  expect.ball_radius = model.ball().radius_m();
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + client.deadline);
+  const grpc::Status st = v1::ShotPlanner::NewStub(channel)->GetModel(&context, {}, &model);
+  if (!st.ok()) return ReportCallError(kCommand, client.target, st, err);
+  expect->width = model.table().width_m();
+  expect->length = model.table().length_m();
+  expect->vision_tolerance_mm = model.service().vision_tolerance_mm();
+  expect->ball_radius = model.ball().radius_m();
+  return kExitOk;
+}
 
-  std::vector<v1::TableState> tables;
-  if (!tables_dir->empty()) {
+// The tables of the calls: the files of --tables, or the built-in ones. False with
+// the reason on `err`.
+bool ChooseTables(const Settings& s, const Expectations& expect, std::vector<v1::TableState>* tables,
+                  std::ostream& err) {
+  if (!s.tables_dir.empty()) {
     std::string why;
-    if (!ReadTables(*tables_dir, &tables, &why)) {
-      err << command << ": --tables: " << why << "\n";
-      return kExitUsage;
+    if (!ReadTables(s.tables_dir, tables, &why)) {
+      err << kCommand << ": --tables: " << why << "\n";
+      return false;
+    }
+    return true;
+  }
+  // Overlaps of 0.3 mm only for a server that repairs them.
+  constexpr double kOverlapMm = 0.3;
+  *tables = VariedTables(static_cast<std::uint64_t>(s.seed), 64,
+                         expect.vision_tolerance_mm >= kOverlapMm ? kOverlapMm : 0);
+  return true;
+}
+
+// Call number `i`: its request (from its table and a generator seeded by the seed and
+// `i`), sent, timed and its answer checked.
+Outcome CallOnce(v1::ShotPlanner::Stub& stub, const Settings& s, const v1::TableState& table,
+                 std::size_t i, const Expectations& expect) {
+  LoadRandom random(static_cast<std::uint64_t>(s.seed) * 0x9E3779B97F4A7C15ull + i);
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + s.client.deadline);
+  Outcome o;
+  grpc::Status st;
+  const auto start = Clock::now();
+  if (s.plan) {
+    const v1::PlanRequest request = PlanFor(table, s.budget_ms, random);
+    v1::PlanResponse response;
+    st = stub.Plan(&context, request, &response);
+    o.latency_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    if (st.ok()) {
+      o.problem = CheckPlan(request, response, expect);
+      o.balls_moved = response.warnings_size();
+      o.shots = response.shots_size();
     }
   } else {
-    // Overlaps of 0.3 mm only for a server that repairs them.
-    constexpr double kOverlapMm = 0.3;
-    tables = VariedTables(static_cast<std::uint64_t>(*seed), 64,
-                          expect.vision_tolerance_mm >= kOverlapMm ? kOverlapMm : 0);
+    v1::SimulateRequest request;
+    *request.mutable_table() = table;
+    *request.mutable_shot() = ShotAtABall(request.table(), random);
+    v1::SimulateResponse response;
+    st = stub.Simulate(&context, request, &response);
+    o.latency_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    if (st.ok()) {
+      o.problem = CheckSimulate(request, response, expect);
+      o.balls_moved = response.warnings_size();
+    }
   }
+  o.done = true;
+  o.code = st.error_code();
+  if (!st.ok()) o.problem = std::string(StatusCodeName(st.error_code())) + ": " + st.error_message();
+  return o;
+}
 
-  const auto n = static_cast<std::size_t>(*requests);
-  std::vector<Outcome> outcomes(n);
+// The calls sent: their outcomes, in call order, and how long the sending took.
+struct Load {
+  std::vector<Outcome> outcomes;  // not done: not sent (the time bound came first)
+  double elapsed_s = 0;
+  bool time_bound_hit = false;
+};
+
+// Sends the calls from --concurrency threads, each with a connection of its own, until
+// all are sent or --max-seconds have passed.
+Load SendLoad(const Settings& s, const std::vector<v1::TableState>& tables, const Expectations& expect) {
+  Load load;
+  load.outcomes.resize(s.requests);
   std::atomic<std::size_t> next{0};
   std::atomic<bool> time_bound_hit{false};
   const auto t0 = Clock::now();
-  const auto stop_sending = t0 + std::chrono::seconds(*max_seconds);
+  const auto stop_sending = t0 + std::chrono::seconds(s.max_seconds);
   auto worker = [&] {
-    auto stub = v1::ShotPlanner::NewStub(MakeChannel(client, /*own_connection=*/true));
-    for (;;) {
+    auto stub = v1::ShotPlanner::NewStub(MakeChannel(s.client, /*own_connection=*/true));
+    for (;;) {  // at most s.requests turns among all workers: `next` only grows
       const std::size_t i = next.fetch_add(1);
-      if (i >= n) return;
+      if (i >= s.requests) return;
       if (Clock::now() >= stop_sending) {
         time_bound_hit = true;
         return;
       }
-      LoadRandom random(static_cast<std::uint64_t>(*seed) * 0x9E3779B97F4A7C15ull + i);
-      grpc::ClientContext context;
-      context.set_deadline(std::chrono::system_clock::now() + client.deadline);
-      Outcome& o = outcomes[i];
-      grpc::Status st;
-      const auto start = Clock::now();
-      if (plan) {
-        const v1::PlanRequest request = PlanFor(tables[i % tables.size()], *budget_ms, random);
-        v1::PlanResponse response;
-        st = stub->Plan(&context, request, &response);
-        o.latency_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-        if (st.ok()) {
-          o.problem = CheckPlan(request, response, expect);
-          o.balls_moved = response.warnings_size();
-          o.shots = response.shots_size();
-        }
-      } else {
-        v1::SimulateRequest request;
-        *request.mutable_table() = tables[i % tables.size()];
-        *request.mutable_shot() = ShotAtABall(request.table(), random);
-        v1::SimulateResponse response;
-        st = stub->Simulate(&context, request, &response);
-        o.latency_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-        if (st.ok()) {
-          o.problem = CheckSimulate(request, response, expect);
-          o.balls_moved = response.warnings_size();
-        }
-      }
-      o.done = true;
-      o.code = st.error_code();
-      if (!st.ok()) {
-        o.problem = std::string(StatusCodeName(st.error_code())) + ": " + st.error_message();
-      }
+      load.outcomes[i] = CallOnce(*stub, s, tables[i % tables.size()], i, expect);
     }
   };
   std::vector<std::thread> threads;
-  for (long c = 0; c < *concurrency; ++c) threads.emplace_back(worker);
+  for (long c = 0; c < s.concurrency; ++c) threads.emplace_back(worker);
   for (std::thread& t : threads) t.join();
-  const double elapsed = std::chrono::duration<double>(Clock::now() - t0).count();
-  CheckHealth(channel, "snooker.v1.ShotPlanner", client.deadline, &health_after);
+  load.elapsed_s = std::chrono::duration<double>(Clock::now() - t0).count();
+  load.time_bound_hit = time_bound_hit.load();
+  return load;
+}
 
+// The outcomes summed up for the report.
+struct Summary {
   std::size_t completed = 0, errors = 0, bad = 0, moved = 0, with_shots = 0;
-  std::map<std::string, std::size_t> statuses;
-  std::vector<double> latencies;
-  std::vector<std::string> problems;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Outcome& o = outcomes[i];
-    if (!o.done) continue;  // not sent: the time bound came first
-    ++completed;
-    latencies.push_back(o.latency_ms);
-    ++statuses[StatusCodeName(o.code)];
-    moved += static_cast<std::size_t>(o.balls_moved);
-    if (o.code == grpc::StatusCode::OK && o.shots > 0) ++with_shots;
-    if (o.code != grpc::StatusCode::OK) ++errors;
-    else if (!o.problem.empty()) ++bad;
-    if (!o.problem.empty() && problems.size() < 5) {
-      problems.push_back("call " + std::to_string(i) + ": " + server::BoundMessage(o.problem).substr(0, 300));
-    }
-  }
-  std::sort(latencies.begin(), latencies.end());
-  double mean = 0;
-  for (double l : latencies) mean += l;
-  mean = latencies.empty() ? 0 : mean / static_cast<double>(latencies.size());
-  const double throughput = elapsed > 0 ? static_cast<double>(completed) / elapsed : 0;
-  const bool clean = completed == n && errors == 0 && bad == 0 && health_after == "SERVING";
+  std::map<std::string, std::size_t> statuses;  // by status code name
+  std::vector<double> latencies;                // ms, sorted
+  std::vector<std::string> problems;            // the first five
+  double mean = 0;                              // ms
+  double throughput = 0;                        // calls/s
+};
 
-  if (args.Switch("json")) {
-    google::protobuf::Struct j;
-    auto& f = *j.mutable_fields();
-    f["target"].set_string_value(client.target);
-    f["method"].set_string_value(*method);
-    f["concurrency"].set_number_value(static_cast<double>(*concurrency));
-    f["requests"].set_number_value(static_cast<double>(n));
-    f["completed"].set_number_value(static_cast<double>(completed));
-    f["tables"].set_number_value(static_cast<double>(tables.size()));
-    f["elapsedS"].set_number_value(elapsed);
-    f["throughputPerS"].set_number_value(throughput);
-    auto& lat = *f["latencyMs"].mutable_struct_value()->mutable_fields();
-    lat["p50"].set_number_value(Percentile(latencies, 0.50));
-    lat["p90"].set_number_value(Percentile(latencies, 0.90));
-    lat["p99"].set_number_value(Percentile(latencies, 0.99));
-    lat["max"].set_number_value(latencies.empty() ? 0 : latencies.back());
-    lat["mean"].set_number_value(mean);
-    auto& st = *f["statuses"].mutable_struct_value()->mutable_fields();
-    for (const auto& [name, count] : statuses) st[name].set_number_value(static_cast<double>(count));
-    f["errors"].set_number_value(static_cast<double>(errors));
-    f["badAnswers"].set_number_value(static_cast<double>(bad));
-    auto* list = f["problems"].mutable_list_value();
-    for (const std::string& p : problems) list->add_values()->set_string_value(p);
-    f["ballsMoved"].set_number_value(static_cast<double>(moved));
-    if (plan) {
-      f["budgetMs"].set_number_value(*budget_ms);
-      f["plansWithShots"].set_number_value(static_cast<double>(with_shots));
+Summary Summarize(const Load& load) {
+  Summary sum;
+  for (std::size_t i = 0; i < load.outcomes.size(); ++i) {
+    const Outcome& o = load.outcomes[i];
+    if (!o.done) continue;  // not sent: the time bound came first
+    ++sum.completed;
+    sum.latencies.push_back(o.latency_ms);
+    ++sum.statuses[StatusCodeName(o.code)];
+    sum.moved += static_cast<std::size_t>(o.balls_moved);
+    if (o.code == grpc::StatusCode::OK && o.shots > 0) ++sum.with_shots;
+    if (o.code != grpc::StatusCode::OK) ++sum.errors;
+    else if (!o.problem.empty()) ++sum.bad;
+    if (!o.problem.empty() && sum.problems.size() < 5) {
+      sum.problems.push_back("call " + std::to_string(i) + ": " +
+                             server::BoundMessage(o.problem).substr(0, 300));
     }
-    f["healthBefore"].set_string_value(health_before);
-    f["healthAfter"].set_string_value(health_after);
-    f["timeBoundHit"].set_bool_value(time_bound_hit.load());
-    std::string text;
-    google::protobuf::util::JsonPrintOptions o;
-    (void)google::protobuf::util::MessageToJsonString(j, &text, o);
-    out << text << "\n";
-  } else {
-    out << std::fixed << std::setprecision(1) << command << ": " << n << " " << *method
-        << " calls to " << client.target << ", concurrency " << *concurrency << ", "
-        << tables.size() << (tables_dir->empty() ? " built-in tables (seed " + std::to_string(*seed) + ")"
-                                                 : " tables from " + *tables_dir)
-        << "\n  health: " << health_before << " before, " << health_after << " after\n"
-        << "  completed " << completed << " of " << n << " in " << std::setprecision(2) << elapsed
-        << " s: " << std::setprecision(1) << throughput << " calls/s"
-        << (time_bound_hit ? " (stopped at --max-seconds)" : "") << "\n"
-        << "  latency ms: p50 " << std::setprecision(2) << Percentile(latencies, 0.5) << ", p90 "
-        << Percentile(latencies, 0.9) << ", p99 " << Percentile(latencies, 0.99) << ", max "
-        << (latencies.empty() ? 0.0 : latencies.back()) << " (mean " << mean << ")\n  statuses:";
-    for (const auto& [name, count] : statuses) out << " " << name << " " << count;
-    out << "\n  answers with problems: " << bad << "; balls moved by the vision repair: " << moved
-        << "\n";
-    if (plan) {
-      out << "  plans: budget " << Num(*budget_ms) << " ms each; " << with_shots
-          << " answers with at least one shot\n";
-    }
-    for (const std::string& p : problems) out << "  problem: " << p << "\n";
   }
+  std::sort(sum.latencies.begin(), sum.latencies.end());
+  for (double l : sum.latencies) sum.mean += l;
+  sum.mean = sum.latencies.empty() ? 0 : sum.mean / static_cast<double>(sum.latencies.size());
+  sum.throughput = load.elapsed_s > 0 ? static_cast<double>(sum.completed) / load.elapsed_s : 0;
+  return sum;
+}
+
+// The server's health before and after the load.
+struct Health {
+  std::string before = "unreachable", after = "unreachable";
+};
+
+void PrintJsonReport(const Settings& s, std::size_t table_count, const Load& load, const Summary& sum,
+                     const Health& health, std::ostream& out) {
+  google::protobuf::Struct j;
+  auto& f = *j.mutable_fields();
+  f["target"].set_string_value(s.client.target);
+  f["method"].set_string_value(s.method);
+  f["concurrency"].set_number_value(static_cast<double>(s.concurrency));
+  f["requests"].set_number_value(static_cast<double>(s.requests));
+  f["completed"].set_number_value(static_cast<double>(sum.completed));
+  f["tables"].set_number_value(static_cast<double>(table_count));
+  f["elapsedS"].set_number_value(load.elapsed_s);
+  f["throughputPerS"].set_number_value(sum.throughput);
+  auto& lat = *f["latencyMs"].mutable_struct_value()->mutable_fields();
+  lat["p50"].set_number_value(Percentile(sum.latencies, 0.50));
+  lat["p90"].set_number_value(Percentile(sum.latencies, 0.90));
+  lat["p99"].set_number_value(Percentile(sum.latencies, 0.99));
+  lat["max"].set_number_value(sum.latencies.empty() ? 0 : sum.latencies.back());
+  lat["mean"].set_number_value(sum.mean);
+  auto& st = *f["statuses"].mutable_struct_value()->mutable_fields();
+  for (const auto& [name, count] : sum.statuses) st[name].set_number_value(static_cast<double>(count));
+  f["errors"].set_number_value(static_cast<double>(sum.errors));
+  f["badAnswers"].set_number_value(static_cast<double>(sum.bad));
+  auto* list = f["problems"].mutable_list_value();
+  for (const std::string& p : sum.problems) list->add_values()->set_string_value(p);
+  f["ballsMoved"].set_number_value(static_cast<double>(sum.moved));
+  if (s.plan) {
+    f["budgetMs"].set_number_value(s.budget_ms);
+    f["plansWithShots"].set_number_value(static_cast<double>(sum.with_shots));
+  }
+  f["healthBefore"].set_string_value(health.before);
+  f["healthAfter"].set_string_value(health.after);
+  f["timeBoundHit"].set_bool_value(load.time_bound_hit);
+  std::string text;
+  google::protobuf::util::JsonPrintOptions o;
+  (void)google::protobuf::util::MessageToJsonString(j, &text, o);
+  out << text << "\n";
+}
+
+void PrintReadableReport(const Settings& s, std::size_t table_count, const Load& load,
+                         const Summary& sum, const Health& health, std::ostream& out) {
+  const std::vector<double>& lat = sum.latencies;
+  out << std::fixed << std::setprecision(1) << kCommand << ": " << s.requests << " " << s.method
+      << " calls to " << s.client.target << ", concurrency " << s.concurrency << ", " << table_count
+      << (s.tables_dir.empty() ? " built-in tables (seed " + std::to_string(s.seed) + ")"
+                               : " tables from " + s.tables_dir)
+      << "\n  health: " << health.before << " before, " << health.after << " after\n"
+      << "  completed " << sum.completed << " of " << s.requests << " in " << std::setprecision(2)
+      << load.elapsed_s << " s: " << std::setprecision(1) << sum.throughput << " calls/s"
+      << (load.time_bound_hit ? " (stopped at --max-seconds)" : "") << "\n"
+      << "  latency ms: p50 " << std::setprecision(2) << Percentile(lat, 0.5) << ", p90 "
+      << Percentile(lat, 0.9) << ", p99 " << Percentile(lat, 0.99) << ", max "
+      << (lat.empty() ? 0.0 : lat.back()) << " (mean " << sum.mean << ")\n  statuses:";
+  for (const auto& [name, count] : sum.statuses) out << " " << name << " " << count;
+  out << "\n  answers with problems: " << sum.bad << "; balls moved by the vision repair: " << sum.moved
+      << "\n";
+  if (s.plan) {
+    out << "  plans: budget " << Num(s.budget_ms) << " ms each; " << sum.with_shots
+        << " answers with at least one shot\n";
+  }
+  for (const std::string& p : sum.problems) out << "  problem: " << p << "\n";
+}
+
+}  // namespace
+
+int RunLoadTest(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
+  Settings s;
+  if (const std::optional<int> stop = ParseSettings(argv, out, err, &s)) return *stop;
+  // The server's model first: what its answers are checked against. Its health too.
+  auto channel = MakeChannel(s.client);
+  Health health;
+  Expectations expect;
+  if (const int rc = ReadServer(channel, s.client, &health.before, &expect, err); rc != kExitOk) return rc;
+  std::vector<v1::TableState> tables;
+  if (!ChooseTables(s, expect, &tables, err)) return kExitUsage;
+  const Load load = SendLoad(s, tables, expect);
+  CheckHealth(channel, "snooker.v1.ShotPlanner", s.client.deadline, &health.after);
+  const Summary sum = Summarize(load);
+  if (s.json) {
+    PrintJsonReport(s, tables.size(), load, sum, health, out);
+  } else {
+    PrintReadableReport(s, tables.size(), load, sum, health, out);
+  }
+  const bool clean =
+      sum.completed == s.requests && sum.errors == 0 && sum.bad == 0 && health.after == "SERVING";
   return clean ? kExitOk : kExitFailure;
 }
 

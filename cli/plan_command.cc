@@ -3,13 +3,13 @@
 // built-in table, builds the PlanRequest the service takes and calls the same
 // operation (server/plan_api.h), here or on a server (--server: Plan, or PlanStream
 // with --stream), and prints the same answer either way.
-#include <google/protobuf/util/json_util.h>
 
 #include <cstdint>
 #include <fstream>
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string_view>
@@ -18,6 +18,7 @@
 #include "cli/client.h"
 #include "cli/commands.h"
 #include "cli/json.h"
+#include "cli/json_input.h"
 #include "cli/load_tables.h"
 #include "cli/read_file.h"
 #include "cli/svg.h"
@@ -104,9 +105,9 @@ bool ReadTable(const std::string& path, v1::TableState* table, std::ostream& err
     err << "snooker plan: cannot read '" << path << "': " << why << "\n";
     return false;
   }
-  const auto st = google::protobuf::util::JsonStringToMessage(text, table);
-  if (!st.ok()) {
-    err << "snooker plan: '" << path << "' is not a valid TableState JSON: " << st.message() << "\n";
+  if (!ReadJsonMessage(text, table, &why)) {
+    err << "snooker plan: '" << path << "' is not a valid TableState JSON: " << server::BoundMessage(why)
+        << "\n";
     return false;
   }
   return true;
@@ -200,9 +201,84 @@ bool WriteSvg(const std::string& path, const v1::TableState& table, const v1::Pl
   return true;
 }
 
-}  // namespace
+// What the flags ask for: the request (its table read later) and how to run it.
+struct PlanSettings {
+  v1::PlanRequest request;
+  std::string table_path;  // a file, or builtin:NAME
+  ClientOptions client;    // target empty: plan here
+  double vision_tolerance_mm = server::limits::kDefaultVisionToleranceMm;
+  bool vision_tolerance_given = false;
+  bool json = false;
+  bool stream = false;
+  std::string svg_path;  // empty: no drawing
+};
 
-int RunPlan(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
+// --on into the request's ball_on. False after saying why on `err`.
+bool SetBallOn(Args& args, v1::PlanRequest* req, std::ostream& err) {
+  static const std::map<std::string, v1::BallOn> kOn = {
+      {"RED", v1::BALL_ON_RED},       {"COLOUR", v1::BALL_ON_COLOUR}, {"YELLOW", v1::BALL_ON_YELLOW},
+      {"GREEN", v1::BALL_ON_GREEN},   {"BROWN", v1::BALL_ON_BROWN},   {"BLUE", v1::BALL_ON_BLUE},
+      {"PINK", v1::BALL_ON_PINK},     {"BLACK", v1::BALL_ON_BLACK}};
+  const std::string on = *args.Text("on", "");
+  const auto it = kOn.find(on);
+  if (it == kOn.end()) {
+    err << "snooker plan: --on '" << on
+        << "' is not one of RED, YELLOW, GREEN, BROWN, BLUE, PINK, BLACK, COLOUR\n";
+    return false;
+  }
+  req->set_ball_on(it->second);
+  return true;
+}
+
+// The request's fields from the flags given. Each option sets its API field only
+// when given: unset fields keep the planner's defaults. A flag's value must parse as
+// the field's type (a finite number; a whole number that fits the field): anything
+// else is an error in `args`; the API validates the value's range and names the
+// field (max_shots, monte_carlo_samples, ...).
+void SetRequestFields(Args& args, v1::PlanRequest* req) {
+  auto number = [&](const char* flag, auto set) {
+    if (args.Has(flag)) {
+      if (const auto x = args.Number(flag, std::nullopt)) set(*x);
+    }
+  };
+  auto int32 = [&](const char* flag, auto set) {
+    using Limits = std::numeric_limits<std::int32_t>;
+    if (args.Has(flag)) {
+      if (const auto n = args.Integer(flag, std::nullopt, Limits::min(), Limits::max())) {
+        set(static_cast<std::int32_t>(*n));
+      }
+    }
+  };
+  number("budget-ms", [&](double x) { req->set_time_budget_ms(x); });
+  int32("shots", [&](std::int32_t n) { req->set_max_shots(n); });
+  if (args.Has("seed")) {
+    if (const auto n = args.Integer("seed", std::nullopt, 0, std::numeric_limits<long>::max())) {
+      req->set_seed(static_cast<std::uint64_t>(*n));
+    }
+  }
+  int32("max-simulations", [&](std::int32_t n) { req->set_max_simulations(n); });
+  int32("samples", [&](std::int32_t n) { req->set_monte_carlo_samples(n); });
+  v1::NoiseModel* noise = req->mutable_noise();
+  number("noise-heading-deg", [&](double x) { noise->set_heading_sigma_deg(x); });
+  number("noise-speed", [&](double x) { noise->set_speed_sigma_fraction(x); });
+  number("noise-spin", [&](double x) {
+    noise->set_topspin_sigma(x);
+    noise->set_sidespin_sigma(x);
+  });
+  number("noise-position-mm", [&](double x) { noise->set_position_sigma_mm(x); });
+  v1::RobotLimits* limits = req->mutable_limits();
+  number("min-speed", [&](double x) { limits->set_min_speed(x); });
+  number("max-speed", [&](double x) { limits->set_max_speed(x); });
+  number("max-topspin", [&](double x) { limits->set_max_topspin_fraction(x); });
+  number("max-sidespin", [&](double x) { limits->set_max_sidespin_fraction(x); });
+  number("cue-clearance-m", [&](double x) { limits->set_cue_clearance_m(x); });
+  if (args.Switch("pot-only")) req->set_position_play(false);
+}
+
+// Reads and checks the flags, and the table, into `s`. An exit code when the command
+// ends here (after --help, or a usage error said on `err`); nothing to go ahead.
+std::optional<int> ParsePlanFlags(const std::vector<std::string>& argv, std::ostream& out,
+                                  std::ostream& err, PlanSettings* s) {
   std::set<std::string> valued = {"table", "on", "budget-ms", "shots", "seed", "svg",
                                   "noise-heading-deg", "noise-speed", "noise-spin",
                                   "noise-position-mm", "min-speed", "max-speed", "max-topspin",
@@ -214,136 +290,115 @@ int RunPlan(const std::vector<std::string>& argv, std::ostream& out, std::ostrea
     out << kHelp << "\n" << ClientFlagsHelp();
     return kExitOk;
   }
-  v1::PlanRequest req;
   const auto table_path = args.Text("table", std::nullopt);
-  if (args.Has("on")) {
-    static const std::map<std::string, v1::BallOn> kOn = {
-        {"RED", v1::BALL_ON_RED},       {"COLOUR", v1::BALL_ON_COLOUR}, {"YELLOW", v1::BALL_ON_YELLOW},
-        {"GREEN", v1::BALL_ON_GREEN},   {"BROWN", v1::BALL_ON_BROWN},   {"BLUE", v1::BALL_ON_BLUE},
-        {"PINK", v1::BALL_ON_PINK},     {"BLACK", v1::BALL_ON_BLACK}};
-    const std::string on = *args.Text("on", "");
-    const auto it = kOn.find(on);
-    if (it == kOn.end()) {
-      err << "snooker plan: --on '" << on
-          << "' is not one of RED, YELLOW, GREEN, BROWN, BLUE, PINK, BLACK, COLOUR\n";
-      return kExitUsage;
-    }
-    req.set_ball_on(it->second);
-  }
-  // Each option sets its API field only when given: unset fields keep the
-  // planner's defaults; the API validates the values and names the field.
-  auto number = [&](const char* flag, auto set) {
-    if (args.Has(flag)) {
-      if (const auto x = args.Number(flag, std::nullopt)) set(*x);
-    }
-  };
-  number("budget-ms", [&](double x) { req.set_time_budget_ms(x); });
-  if (args.Has("shots")) {
-    if (const auto n = args.Integer("shots", std::nullopt, 1, 20)) req.set_max_shots(static_cast<int>(*n));
-  }
-  if (args.Has("seed")) {
-    if (const auto n = args.Integer("seed", std::nullopt, 0, std::numeric_limits<long>::max())) {
-      req.set_seed(static_cast<std::uint64_t>(*n));
-    }
-  }
-  if (args.Has("max-simulations")) {
-    if (const auto n = args.Integer("max-simulations", std::nullopt, 0, 100'000'000)) {
-      req.set_max_simulations(static_cast<int>(*n));
-    }
-  }
-  if (args.Has("samples")) {
-    if (const auto n = args.Integer("samples", std::nullopt, 0, 100'000)) {
-      req.set_monte_carlo_samples(static_cast<int>(*n));
-    }
-  }
-  v1::NoiseModel* noise = req.mutable_noise();
-  number("noise-heading-deg", [&](double x) { noise->set_heading_sigma_deg(x); });
-  number("noise-speed", [&](double x) { noise->set_speed_sigma_fraction(x); });
-  number("noise-spin", [&](double x) {
-    noise->set_topspin_sigma(x);
-    noise->set_sidespin_sigma(x);
-  });
-  number("noise-position-mm", [&](double x) { noise->set_position_sigma_mm(x); });
-  v1::RobotLimits* limits = req.mutable_limits();
-  number("min-speed", [&](double x) { limits->set_min_speed(x); });
-  number("max-speed", [&](double x) { limits->set_max_speed(x); });
-  number("max-topspin", [&](double x) { limits->set_max_topspin_fraction(x); });
-  number("max-sidespin", [&](double x) { limits->set_max_sidespin_fraction(x); });
-  number("cue-clearance-m", [&](double x) { limits->set_cue_clearance_m(x); });
-  if (args.Switch("pot-only")) req.set_position_play(false);
+  if (args.Has("on") && !SetBallOn(args, &s->request, err)) return kExitUsage;
+  SetRequestFields(args, &s->request);
   const auto vision = args.Number("vision-tolerance-mm", server::limits::kDefaultVisionToleranceMm);
-  ClientOptions client;
-  if (!ClientOptionsFrom(args, "snooker plan", "server", 60'000, &client, err)) return kExitUsage;
-  if (args.error().empty() && !server::limits::kVisionToleranceMm.Contains(*vision)) {
-    err << "snooker plan: --vision-tolerance-mm " << server::FormatNumber(*vision) << " is outside [0, "
-        << server::FormatNumber(server::limits::kVisionToleranceMm.hi) << "]\n";
+  if (!ClientOptionsFrom(args, "snooker plan", "server", 60'000, &s->client, err)) return kExitUsage;
+  // Here, the flag is the tolerance of the local "server" (PlanControl), which the
+  // API takes as given: checked against what `snooker serve --vision-tolerance-mm`
+  // accepts. With --server it is the request's vision_tolerance_mm, which the server
+  // checks.
+  const physics::Range& tolerances = server::limits::kVisionToleranceMm;
+  if (args.error().empty() && s->client.target.empty() && !tolerances.Contains(*vision)) {
+    err << "snooker plan: --vision-tolerance-mm " << server::FormatNumber(*vision) << " is outside ["
+        << server::FormatNumber(tolerances.lo) << ", " << server::FormatNumber(tolerances.hi) << "]\n";
     return kExitUsage;
   }
   if (!args.error().empty()) {
     err << "snooker plan: " << args.error() << "\n(see snooker plan --help)\n";
     return kExitUsage;
   }
-  if (!ReadTable(*table_path, req.mutable_table(), err)) return kExitUsage;
-  const bool json = args.Switch("json");
-  const bool stream = args.Switch("stream");
-  v1::PlanResponse resp;
-  if (!client.target.empty()) {
-    // The same request to a server: its vision tolerance unless one is asked for here.
-    if (args.Has("vision-tolerance-mm")) req.set_vision_tolerance_mm(*vision);
-    auto stub = v1::ShotPlanner::NewStub(MakeChannel(client));
-    grpc::ClientContext context;
-    context.set_deadline(std::chrono::system_clock::now() + client.deadline);
-    if (stream) {
-      auto reader = stub->PlanStream(&context, req);
-      v1::PlanResponse message;
-      bool final_seen = false;
-      // A stream sends one message per improvement (at most one per candidate) and
-      // the final one; the count is bounded here too.
-      for (int i = 0; i < 100'000 && reader->Read(&message); ++i) {
-        if (message.final()) {
-          resp = message;
-          final_seen = true;
-        } else {
-          PrintProgress(message, json, out, err);
-        }
-      }
-      const grpc::Status st = reader->Finish();
-      if (!st.ok()) return ReportCallError("snooker plan", client.target, st, err);
-      if (!final_seen) {
-        err << "snooker plan: " << client.target << " ended the stream without a final answer\n";
-        return kExitFailure;
-      }
+  if (!ReadTable(*table_path, s->request.mutable_table(), err)) return kExitUsage;
+  s->table_path = *table_path;
+  s->vision_tolerance_mm = *vision;
+  s->vision_tolerance_given = args.Has("vision-tolerance-mm");
+  s->json = args.Switch("json");
+  s->stream = args.Switch("stream");
+  s->svg_path = *args.Text("svg", "");
+  return std::nullopt;
+}
+
+// The plan from the server of --server (Plan, or PlanStream with --stream, printing
+// the progress): kExitOk with the answer in `resp`, or the exit code after saying why.
+int PlanOnServer(const PlanSettings& s, v1::PlanResponse* resp, std::ostream& out, std::ostream& err) {
+  // The same request to a server: its vision tolerance unless one is asked for here.
+  v1::PlanRequest req = s.request;
+  if (s.vision_tolerance_given) req.set_vision_tolerance_mm(s.vision_tolerance_mm);
+  auto stub = v1::ShotPlanner::NewStub(MakeChannel(s.client));
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + s.client.deadline);
+  if (!s.stream) {
+    const grpc::Status st = stub->Plan(&context, req, resp);
+    return st.ok() ? kExitOk : ReportCallError("snooker plan", s.client.target, st, err);
+  }
+  auto reader = stub->PlanStream(&context, req);
+  v1::PlanResponse message;
+  bool final_seen = false;
+  // A stream sends one message per improvement (at most one per candidate) and
+  // the final one; the count is bounded here too.
+  for (int i = 0; i < 100'000 && reader->Read(&message); ++i) {
+    if (message.final()) {
+      *resp = message;
+      final_seen = true;
     } else {
-      const grpc::Status st = stub->Plan(&context, req, &resp);
-      if (!st.ok()) return ReportCallError("snooker plan", client.target, st, err);
-    }
-  } else {
-    server::PlanControl control;
-    control.vision_tolerance_mm = *vision;
-    if (stream) control.on_progress = [&](const v1::PlanResponse& best) { PrintProgress(best, json, out, err); };
-    const server::ApiStatus status = server::Plan(req, &resp, control);
-    if (!status.ok()) {
-      err << "snooker plan: " << status.message << "\n";
-      return status.code == server::ApiStatus::Code::kInvalidArgument ? kExitUsage : kExitFailure;
+      PrintProgress(message, s.json, out, err);
     }
   }
-  const auto svg_path = args.Text("svg", "");
-  if (!svg_path->empty() && resp.shots_size() > 0) {
+  const grpc::Status st = reader->Finish();
+  if (!st.ok()) return ReportCallError("snooker plan", s.client.target, st, err);
+  if (!final_seen) {
+    err << "snooker plan: " << s.client.target << " ended the stream without a final answer\n";
+    return kExitFailure;
+  }
+  return kExitOk;
+}
+
+// The plan computed here, with the flags' vision tolerance (printing the progress
+// with --stream): kExitOk with the answer in `resp`, or the exit code after saying why.
+int PlanHere(const PlanSettings& s, v1::PlanResponse* resp, std::ostream& out, std::ostream& err) {
+  server::PlanControl control;
+  control.vision_tolerance_mm = s.vision_tolerance_mm;
+  if (s.stream) {
+    control.on_progress = [&](const v1::PlanResponse& best) { PrintProgress(best, s.json, out, err); };
+  }
+  const server::ApiStatus status = server::Plan(s.request, resp, control);
+  if (!status.ok()) {
+    err << "snooker plan: " << status.message << "\n";
+    return status.code == server::ApiStatus::Code::kInvalidArgument ? kExitUsage : kExitFailure;
+  }
+  return kExitOk;
+}
+
+// The answer: drawn with --svg, and printed (JSON with --json).
+int WriteAnswer(const PlanSettings& s, const v1::PlanResponse& resp, std::ostream& out, std::ostream& err) {
+  if (!s.svg_path.empty() && resp.shots_size() > 0) {
     // Drawn from the table the plan started from (after any vision repair).
-    v1::TableState drawn = req.table();
+    v1::TableState drawn = s.request.table();
     for (const v1::Warning& w : resp.warnings()) {
       for (v1::Ball& b : *drawn.mutable_balls()) {
         if (b.id() == w.ball_id()) *b.mutable_position() = w.to();
       }
     }
-    if (!WriteSvg(*svg_path, drawn, resp, err)) return kExitFailure;
+    if (!WriteSvg(s.svg_path, drawn, resp, err)) return kExitFailure;
   }
-  if (json) {
+  if (s.json) {
     if (!PrintJson(resp, "snooker plan", out, err)) return kExitFailure;
   } else {
     PrintReadable(resp, out);
   }
   return kExitOk;
+}
+
+}  // namespace
+
+int RunPlan(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
+  PlanSettings s;
+  if (const std::optional<int> stop = ParsePlanFlags(argv, out, err, &s)) return *stop;
+  v1::PlanResponse resp;
+  const int rc = s.client.target.empty() ? PlanHere(s, &resp, out, err) : PlanOnServer(s, &resp, out, err);
+  if (rc != kExitOk) return rc;
+  return WriteAnswer(s, resp, out, err);
 }
 
 }  // namespace snooker::cli

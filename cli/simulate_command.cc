@@ -1,7 +1,6 @@
 // snooker simulate: a shot on a table, from JSON files in Protobuf's JSON form (the
 // table and shot messages of proto/snooker/v1/table.proto). Builds the same
 // SimulateRequest the gRPC service takes and calls the same operation.
-#include <google/protobuf/util/json_util.h>
 
 #include <fstream>
 #include <iomanip>
@@ -13,6 +12,7 @@
 #include "cli/client.h"
 #include "cli/commands.h"
 #include "cli/json.h"
+#include "cli/json_input.h"
 #include "cli/read_file.h"
 #include "cli/svg.h"
 #include "server/api.h"
@@ -71,10 +71,9 @@ int ReadJson(const std::string& path, google::protobuf::Message* msg, std::ostre
     return why == kOutOfMemory ? kExitFailure : kExitUsage;
   }
   try {
-    const auto st = google::protobuf::util::JsonStringToMessage(text, msg);
-    if (!st.ok()) {
+    if (!ReadJsonMessage(text, msg, &why)) {
       err << "snooker simulate: '" << path << "' is not a valid " << msg->GetDescriptor()->name()
-          << " JSON: " << server::BoundMessage(std::string(st.message())) << "\n";
+          << " JSON: " << server::BoundMessage(why) << "\n";
       return kExitUsage;
     }
   } catch (const std::bad_alloc&) {

@@ -134,7 +134,17 @@ INSTANTIATE_TEST_SUITE_P(
                     BadInput{"plan --table TABLE --on YELLOW", "ball_on = BALL_ON_YELLOW"},
                     BadInput{"plan --table TABLE --budget-ms 0", "time_budget_ms = 0"},
                     BadInput{"plan --table TABLE --budget-ms soon", "--budget-ms 'soon'"},
-                    BadInput{"plan --table TABLE --shots 50", "--shots 50 is out of range"},
+                    // Ranges are the API's: its error names the field and the value.
+                    BadInput{"plan --table TABLE --shots 50", "max_shots = 50 (must be in [1, 20])"},
+                    BadInput{"plan --table TABLE --max-simulations -1", "max_simulations = -1"},
+                    BadInput{"plan --table TABLE --samples 100001", "monte_carlo_samples = 100001"},
+                    // The command checks only that a value fits the field's type.
+                    BadInput{"plan --table TABLE --shots 3000000000",
+                             "--shots 3000000000 is out of range [-2147483648, 2147483647]"},
+                    BadInput{"plan --table TABLE --samples many", "--samples 'many' is not a whole number"},
+                    // Here the tolerance is the local server's: what `snooker serve` accepts.
+                    BadInput{"plan --table TABLE --vision-tolerance-mm 11",
+                             "--vision-tolerance-mm 11 is outside [0, 10]"},
                     BadInput{"plan --table TABLE --noise-spin -2", "noise.topspin_sigma = -2"},
                     BadInput{"plan --table TABLE --max-speed 0.1 --min-speed 0.5", "limits.max_speed = 0.1"},
                     BadInput{"selfplay --seed 1", "--frames is required"},

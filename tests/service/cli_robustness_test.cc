@@ -1,6 +1,6 @@
-// The `snooker` command under hostile input (issue 7, finding 4, and the service's
-// shutdown): input files that are not regular files or are too large, a table of
-// 3000 stacked balls, memory running out, and SIGTERM with calls in flight.
+// The `snooker` command under hostile input (and the service's shutdown): input
+// files that are not regular files or are too large, JSON with mistakes in it, a table
+// of 3000 stacked balls, memory running out, and SIGTERM with calls in flight.
 #include <fcntl.h>
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
@@ -14,7 +14,9 @@
 #include <fstream>
 #include <string>
 #include <thread>
+#include <vector>
 
+#include "cli/load_tables.h"
 #include "snooker/v1/service.grpc.pb.h"
 #include "tests/service/call_support.h"
 #include "tests/support/cli_support.h"
@@ -101,6 +103,100 @@ TEST(CliInputFileTest, ThreeThousandStackedBallsAreRefusedWithAShortMessage) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(Mentions(r.err, "table.balls = 3000 balls (at most 32)")) << r.err.substr(0, 300);
   EXPECT_LT(r.err.size(), 100u);
+}
+
+// JSON input that a person got wrong, read by each command that reads table files:
+// where a syntax error is (line and column), kinds in any case, and an unknown kind
+// named with its ball and the kinds there are.
+struct TableReader {
+  const char* name;
+  const char* args;  // TABLE: the table file; SHOT: a good shot file
+};
+
+class CliJsonInputTest : public testing::TestWithParam<TableReader> {
+ protected:
+  RunResult Run(const std::string& table_text) {
+    std::string args = GetParam().args;
+    const std::string path = TempFile(std::string(GetParam().name) + "_table.json", table_text);
+    args.replace(args.find("TABLE"), 5, path);
+    if (const std::size_t shot = args.find("SHOT"); shot != std::string::npos) {
+      args.replace(shot, 4, TempFile("json_input_shot.json", kShot));
+    }
+    const RunResult r = RunShell("timeout 60 " + std::string(SNOOKER_CLI_PATH) + " " + args);
+    path_ = path;
+    return r;
+  }
+  std::string path_;
+};
+
+TEST_P(CliJsonInputTest, ASyntaxErrorIsGivenByLineAndColumn) {
+  // No comma after the first ball.
+  const RunResult r = Run(R"({"balls": [
+  {"id": "cue", "kind": "CUE", "position": {"x": 0.9, "y": 0.6}}
+  {"id": "red-1", "kind": "RED", "position": {"x": 0.9, "y": 1.6}}
+]})");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(Mentions(r.err, "'" + path_ + "' is not a valid TableState JSON: line 3, column 3: expected "
+                              "',' or ']' after an element of an array, found '{'"))
+      << r.err;
+}
+
+TEST_P(CliJsonInputTest, KindsAreTakenInAnyCase) {
+  const RunResult r = Run(R"({"balls": [{"id": "cue", "kind": "cue", "position": {"x": 0.9, "y": 0.6}},
+      {"id": "red-1", "kind": "Red", "position": {"x": 0.9, "y": 1.6}}]})");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+}
+
+TEST_P(CliJsonInputTest, AnUnknownKindNamesTheBallAndTheKinds) {
+  const RunResult r = Run(R"({"balls": [{"id": "cue", "kind": "CUE", "position": {"x": 0.9, "y": 0.6}},
+      {"id": "red-1", "kind": "crimson", "position": {"x": 0.9, "y": 1.6}}]})");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(Mentions(r.err, "ball \"red-1\" has kind \"crimson\", which is not one of CUE, RED, YELLOW, "
+                              "GREEN, BROWN, BLUE, PINK, BLACK (in any case)"))
+      << r.err;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Commands, CliJsonInputTest,
+    testing::Values(TableReader{"simulate", "simulate --table TABLE --shot SHOT"},
+                    TableReader{"plan",
+                                "plan --table TABLE --max-simulations 50 --samples 4 --budget-ms 5000"}),
+    [](const testing::TestParamInfo<TableReader>& p) { return std::string(p.param.name); });
+
+TEST(CliJsonInputTest, AShotFilesSyntaxErrorIsGivenByLineAndColumn) {
+  const std::string shot = TempFile("json_input_bad_shot.json", "{\"speed\": 1.5\n \"headingDeg\": 90}");
+  const RunResult r = RunCli("simulate --table " + TempFile("json_input_t.json", R"({"balls": [
+      {"id": "cue", "kind": "cue", "position": {"x": 0.9, "y": 0.6}}]})") + " --shot " + shot);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(Mentions(r.err, "'" + shot + "' is not a valid Shot JSON: line 2, column 2: expected ',' or "
+                              "'}' after a member of an object, found '\"'"))
+      << r.err;
+}
+
+// The load test's folder of tables is read the same way.
+TEST(CliJsonInputTest, AFolderOfTablesIsReadTheSameWay) {
+  const std::string dir = testing::TempDir() + "json_input_tables_" + std::to_string(getpid());
+  ASSERT_EQ(system(("rm -rf " + dir + " && mkdir -p " + dir).c_str()), 0);
+  std::ofstream(dir + "/a.json") << R"({"balls": [
+      {"id": "cue", "kind": "Cue", "position": {"x": 0.9, "y": 0.6}},
+      {"id": "p", "kind": "pink", "position": {"x": 0.9, "y": 1.6}}]})";
+  std::vector<v1::TableState> tables;
+  std::string why;
+  ASSERT_TRUE(cli::ReadTables(dir, &tables, &why)) << why;
+  ASSERT_EQ(tables.size(), 1u);
+  EXPECT_EQ(tables[0].balls(1).kind(), v1::PINK);
+  std::ofstream(dir + "/b.json") << R"({"balls": [{"id": "cue", "kind": "CUE"}, {"kind": "violet"}]})";
+  tables.clear();
+  EXPECT_FALSE(cli::ReadTables(dir, &tables, &why));
+  EXPECT_TRUE(Mentions(why, "b.json' is not a valid TableState JSON: line 1, column 51: ball 1 (counting "
+                            "from 0; it has no id) has kind \"violet\", which is not one of CUE, RED"))
+      << why;
+  std::ofstream(dir + "/b.json") << "{\"balls\": [}";
+  EXPECT_FALSE(cli::ReadTables(dir, &tables, &why));
+  EXPECT_TRUE(Mentions(why, "b.json' is not a valid TableState JSON: line 1, column 12: expected a value"))
+      << why;
+  EXPECT_EQ(system(("rm -rf " + dir).c_str()), 0);
 }
 
 #if defined(__SANITIZE_ADDRESS__) || defined(__has_feature)

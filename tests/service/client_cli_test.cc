@@ -1,8 +1,8 @@
-// The command line as a client of a real server:
-// `snooker simulate --server` prints what the local command prints, and `snooker
-// loadtest` sends bounded load to a loopback server only, checks every answer and
-// reports errors by status code. The server runs in this process; the `snooker`
-// binary connects to it.
+// The command line as a client of a real server: `snooker simulate --server` and
+// `snooker plan --server` print what the local commands print, and `snooker loadtest`
+// sends bounded load to a loopback server only, checks every answer and reports
+// errors by status code. The server runs in this process; the `snooker` binary
+// connects to it.
 #include <google/protobuf/struct.pb.h>
 #include <google/protobuf/util/json_util.h>
 #include <gtest/gtest.h>
@@ -230,6 +230,13 @@ TEST(PlanServerTest, TheServersErrorsExitAsTheLocalOnes) {
   EXPECT_TRUE(Mentions(bad.err, "snooker plan: INVALID_ARGUMENT from " + s.target +
                                     ": time_budget_ms = 20000 (must be in [1, 10000] ms"))
       << bad.err;
+  // The request's values go to the server as given; its answer names each bad one.
+  const RunResult limits = RunCli(
+      "plan --table builtin:red --shots 50 --samples -1 --vision-tolerance-mm 5 --server " + s.target);
+  EXPECT_EQ(limits.exit_code, 2);
+  EXPECT_TRUE(Mentions(limits.err, "vision_tolerance_mm = 5 (must be in [0, 1] mm")) << limits.err;
+  EXPECT_TRUE(Mentions(limits.err, "max_shots = 50 (must be in [1, 20])")) << limits.err;
+  EXPECT_TRUE(Mentions(limits.err, "monte_carlo_samples = -1 (must be in [0, 100000])")) << limits.err;
   const RunResult unknown = RunCli("plan --table builtin:snooker --server " + s.target);
   EXPECT_EQ(unknown.exit_code, 2);
   EXPECT_TRUE(Mentions(unknown.err, "no built-in table 'snooker' (there are: black, red, colours)"))
