@@ -44,6 +44,10 @@ constexpr ApiField kApiFields[] = {
 std::string Converted(double x) {
   if (!std::isfinite(x)) return FormatNumber(x);
   char text[32];
+  if (x == std::trunc(x) && std::abs(x) < 1e15) {  // a count, or a whole number of units: 100000, not 1e+05
+    std::snprintf(text, sizeof text, "%.0f", x);
+    return text;
+  }
   std::snprintf(text, sizeof text, "%.12g", x);
   return FormatNumber(std::strtod(text, nullptr));
 }
