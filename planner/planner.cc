@@ -352,6 +352,26 @@ void PlanRun::Conclude() {
 
 }  // namespace
 
+const char* ToString(ShotKind kind) {
+  switch (kind) {
+    case ShotKind::kPot: return "POT";
+    case ShotKind::kSafety: return "SAFETY";
+    case ShotKind::kEscape: return "ESCAPE";
+    case ShotKind::kBreakOff: return "BREAK_OFF";
+  }
+  return "UNKNOWN";
+}
+
+const char* ToString(PotRoute route) {
+  switch (route) {
+    case PotRoute::kDirect: return "DIRECT";
+    case PotRoute::kPlant: return "PLANT";
+    case PotRoute::kDouble: return "DOUBLE";
+    case PotRoute::kKick: return "KICK";
+  }
+  return "UNKNOWN";
+}
+
 const char* ToString(PlanStatus s) {
   switch (s) {
     case PlanStatus::kOk: return "ok";

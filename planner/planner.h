@@ -49,6 +49,7 @@
 #include "planner/position.h"
 #include "planner/rules.h"
 #include "planner/search.h"
+#include "planner/shot_kind.h"
 #include "planner/throw_model.h"
 
 namespace snooker::planner {
@@ -60,8 +61,12 @@ struct PlannedShot;
 using ProgressFn = void (*)(const PlannedShot& best, void* context);
 
 struct PlanRequest {
-  /// The table as vision saw it (exactly one cue ball).
+  /// The table as vision saw it: exactly one cue ball, or none with cue_in_hand.
   TableState table;
+  /// The striker has the cue ball in hand (the break-off, or after an in-off): the
+  /// table holds no cue ball and the planner places it in the D as part of the
+  /// search (PlannedShot::cue_start).
+  bool cue_in_hand = false;
   /// The ball on; nullopt: a red while reds remain, else the lowest colour.
   std::optional<BallOn> ball_on;
   RobotLimits limits;
@@ -78,6 +83,12 @@ struct PlanRequest {
 
   /// false: pot only (the objective ignores the position left).
   bool position_play = true;
+  /// The kinds of shot the plan may return, and the routes its pots may take.
+  ShotKinds kinds;
+  PotRoutes routes;
+  /// Search the next shot after the best few (two-ply) where the budget allows;
+  /// false: the position left is only estimated (one-ply).
+  bool lookahead = true;
   /// Worker threads (the caller's included).
   int threads = 2;
   /// Cap on simulations; 0: derived from the budget (Planner::Config).
@@ -96,17 +107,32 @@ struct PlanRequest {
 };
 
 /// An event of a shot's verification run (physics::SimEvent; indices into the
-/// request's table.balls; `where` indexes the table's segments, jaws or pockets).
+/// request's table.balls, the placed cue ball last when it was in hand; `where`
+/// indexes the table's segments, jaws or pockets).
 using PlannedEvent = physics::SimEvent;
 
+/// Where a ball ended in a shot's verification run.
+struct BallEnd {
+  /// Table frame, m; a pocketed ball where it dropped.
+  physics::Vec2 position = physics::Vec2::Zero();
+  /// The pocket it dropped into, or nullopt.
+  std::optional<physics::PocketId> pocket;
+};
+
 struct PlannedShot {
+  /// What the shot is, from its verification run; `route` for pots only.
+  ShotKind kind = ShotKind::kPot;
+  PotRoute route = PotRoute::kDirect;
+  /// The cue ball in hand: where the robot places it (table frame, m, in the D).
+  std::optional<physics::Vec2> cue_start;
   /// The shot, as `snooker simulate` takes it (heading in rad here).
   physics::Shot shot;
   /// Cut angle (geometry.h's sign), rad.
   double cut = 0;
-  /// Index of the object ball in the request's table (the first ball the cue ball
-  /// hits), and the pocket it drops into: both from the shot's verification run, so
-  /// the label is what the shot did, whatever pocket the search aimed at.
+  /// The object ball (index as in events): for a pot the ball potted, and the
+  /// pocket it drops into; for other kinds the ball played (first_ball), the pocket
+  /// unused. Both from the shot's verification run, so the label is what the shot
+  /// did, whatever the search aimed at.
   int object_ball = -1;
   physics::PocketId pocket = physics::PocketId::kBaulkLeft;
   /// Probability, under execution and vision noise, that the stroke is legal (no
@@ -122,6 +148,15 @@ struct PlannedShot {
   int next_ball = -1;
   /// Where the cue ball stops (table frame, m).
   physics::Vec2 cue_ball_end = physics::Vec2::Zero();
+  /// The first ball the cue ball hits (a touching ball on counts as hit), or -1:
+  /// for pots other than plants the object ball, for safeties and escapes the ball
+  /// played.
+  int first_ball = -1;
+  /// Probability, under the same noise as pot_probability, that the stroke fouls.
+  double foul_probability = 0;
+  /// Every ball's end in the verification run: the request's balls in order, then
+  /// the placed cue ball when it was in hand.
+  std::vector<BallEnd> balls_end;
   /// The full-fidelity simulation's events.
   std::vector<PlannedEvent> events;
 
