@@ -42,14 +42,14 @@ std::optional<Candidate> AssessPot(const TableState& table, int cue, int object,
     return std::nullopt;
   }
   const double two_r = 2 * ctx.table->ball_radius();
-  if (PathMargin(c, est->aim.ghost, two_r + ctx.path_clearance, table, cue, object) < 0) {
+  if (TravelMargin(c, est->aim.ghost, two_r + ctx.path_clearance, table, cue, object) < 0) {
     reason = PruneReason::kCueBallPath;
     return std::nullopt;
   }
   const physics::Pocket& p = ctx.table->pocket(pocket);
   const Vec2 u(std::cos(est->object_direction), std::sin(est->object_direction));
   const Vec2 mouth = p.mouth_centre + est->window.centre() * Left(u);
-  if (PathMargin(o, mouth, two_r + ctx.path_clearance, table, cue, object) < 0) {
+  if (TravelMargin(o, mouth, two_r + ctx.path_clearance, table, cue, object) < 0) {
     reason = PruneReason::kObjectBallPath;
     return std::nullopt;
   }

@@ -16,6 +16,7 @@
 #include "planner/geometry.h"
 #include "planner/pot_estimate.h"
 #include "planner/rules.h"
+#include "planner/shot_kind.h"
 
 namespace snooker::planner {
 
@@ -35,8 +36,11 @@ struct PotContext {
   /// the throw's curvature).
   double path_clearance = 0.5e-3;
 
+  /// Vision's sigma of ball `ball`; noise.position for balls past position_sigma's
+  /// end (a cue ball placed in hand, whose place the robot sets).
   double sigma_of(int ball) const {
-    return position_sigma.empty() ? noise.position : position_sigma[static_cast<size_t>(ball)];
+    return static_cast<size_t>(ball) < position_sigma.size() ? position_sigma[static_cast<size_t>(ball)]
+                                                             : noise.position;
   }
 };
 
@@ -51,12 +55,47 @@ enum class PruneReason : std::uint8_t {
 inline constexpr int kPruneReasonCount = 6;
 const char* ToString(PruneReason r);
 
+/// How a candidate's fourth search variable becomes the cue ball's heading.
+enum class AimMode : std::uint8_t {
+  /// A cut on aim_ball: PredictCut's throw-corrected aim that sends it along
+  /// aim_direction, plus at most aim_range either way (0: the search's default).
+  kPredictedCut,
+  /// A cut on aim_ball in aim_base +- aim_range.
+  kCut,
+  /// The cue ball's heading aim_base +- aim_range (routes off a cushion).
+  kHeading,
+};
+
+/// One shot to search: a direct pot from AssessPot, or another kind or route.
 struct Candidate {
+  ShotKind kind = ShotKind::kPot;
+  PotRoute route = PotRoute::kDirect;
+  /// A pot's object ball (the ball to pot), or the ball a safety plays (-1: any).
   int object = -1;
+  /// The ball the cue ball must hit first (ShotSetup::first; -1: the object ball
+  /// for a pot, any ball on otherwise).
+  int first = -1;
   physics::PocketId pocket = physics::PocketId::kBaulkLeft;
+  /// The fast estimate of a direct pot; for other candidates its probability is
+  /// the prior's (what the search's share of the work follows).
   PotEstimate estimate;
   /// CueMargin for the aimed heading, m.
   double cue_margin = 0;
+  AimMode aim = AimMode::kPredictedCut;
+  /// The ball the cut is on (-1: the object ball), and for kPredictedCut the
+  /// direction it must leave in (unset: the estimate's object direction).
+  int aim_ball = -1;
+  std::optional<double> aim_direction;
+  double aim_base = 0;   ///< rad
+  double aim_range = 0;  ///< rad; 0: the search's default correction
+  /// The cue-ball speeds searched, m/s; both 0: SpeedRange's for a direct pot.
+  double speed_lo = 0, speed_hi = 0;
+  /// Which of the plan's tables the candidate plays on (0: the request's; others
+  /// place the cue ball in hand), and that placement.
+  int table = 0;
+  std::optional<physics::Vec2> cue_start;
+
+  int AimBall() const { return aim_ball >= 0 ? aim_ball : object; }
 };
 
 /// One ball-pocket pair judged from the geometry: the candidate, or nullopt with

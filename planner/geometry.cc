@@ -53,6 +53,20 @@ double PathMargin(const Vec2& a, const Vec2& b, double clearance, const TableSta
   return margin;
 }
 
+double TravelMargin(const Vec2& a, const Vec2& b, double clearance, const TableState& table, int skip_a,
+                    int skip_b) {
+  const Vec2 d = b - a;
+  double margin = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < table.balls.size(); ++i) {
+    const int k = static_cast<int>(i);
+    if (k == skip_a || k == skip_b) continue;
+    const Vec2& p = table.balls[i].position;
+    if ((p - a).dot(d) <= 0) continue;  // the path only moves away from it
+    margin = std::min(margin, SegmentDistance(a, b, p) - clearance);
+  }
+  return margin;
+}
+
 double CueMargin(const TableState& table, int cue, double heading, const CueClearance& cue_room,
                  const physics::TableModel& model) {
   const double r = model.ball_radius();

@@ -42,7 +42,7 @@ std::optional<double> HeadingForCut(const physics::Vec2& cue, const physics::Vec
 struct GhostAim {
   double cut = 0;       ///< rad
   double heading = 0;   ///< rad
-  physics::Vec2 ghost;  ///< cue-ball centre at contact, m
+  physics::Vec2 ghost = physics::Vec2::Zero();  ///< cue-ball centre at contact, m
 };
 std::optional<GhostAim> AimAlong(const physics::Vec2& cue, const physics::Vec2& object,
                                  double object_direction, double radius);
@@ -56,6 +56,13 @@ double SegmentDistance(const physics::Vec2& a, const physics::Vec2& b, const phy
 /// (2R for a ball's path). +infinity on an empty table. m.
 double PathMargin(const physics::Vec2& a, const physics::Vec2& b, double clearance,
                   const TableState& table, int skip_a, int skip_b);
+
+/// PathMargin for a ball travelling from a to b: balls it moves away from at a
+/// (their nearest point on the path is a itself: behind it, or touching it on the
+/// side it leaves) are no obstacle, so a cue ball frozen to a ball can play away
+/// from it. m.
+double TravelMargin(const physics::Vec2& a, const physics::Vec2& b, double clearance,
+                    const TableState& table, int skip_a, int skip_b);
 
 /// The room the robot's cue needs behind the cue ball: a straight, level stick of
 /// `radius` (m) along the heading, from the ball back over `length` (m) of bed.

@@ -8,8 +8,10 @@
 #include <sstream>
 
 #include "planner/parallel.h"
+#include "planner/placement.h"
 #include "planner/random.h"
 #include "planner/robustness.h"
+#include "planner/safety.h"
 #include "planner/validate.h"
 
 namespace snooker::planner {
@@ -65,9 +67,19 @@ Schedule MakeSchedule(const PlannerConfig& config, const PlanRequest& request, C
   return s;
 }
 
+// The route a pot took, from its run: a plant when the cue ball hit another ball
+// first, a kick when the cue ball met a cushion first, a double when the object ball
+// met one before dropping, else direct.
+PotRoute RouteOf(const ShotOutcome& out, int object) {
+  if (out.first_hit != object) return PotRoute::kPlant;
+  if (out.cue_cushions_first > 0) return PotRoute::kKick;
+  if (out.object_cushions > 0) return PotRoute::kDouble;
+  return PotRoute::kDirect;
+}
+
 // One plan from request to answer, as its stages: Prepare (validation, the ball on,
-// the candidates), Allocate (which candidates get how much search), SearchAndVerify,
-// RankByMonteCarlo, Conclude.
+// the candidates of every kind the request allows), Allocate (which candidates get
+// how much search), SearchAndVerify, RankByMonteCarlo, Conclude.
 class PlanRun {
  public:
   PlanRun(const Planner& planner, const PlanRequest& request)
@@ -87,8 +99,12 @@ class PlanRun {
 
  private:
   bool Prepare();
+  void AddPots();
+  void AddOthers();
+  int TableWithCue();
   void Allocate();
   void SearchAndVerify();
+  ShotSetup SetupFor(const Candidate& cand) const;
   std::optional<PlannedShot> Verify(Worker& w, const Candidate& cand, const ShotCandidate& sc, size_t task);
   void RankByMonteCarlo();
   void Conclude();
@@ -107,13 +123,18 @@ class PlanRun {
 
   // Prepare.
   BallOn on_ = BallOn::kRed;
-  int cue_ = -1;
   PotContext ctx_;
   PotContext after_ctx_;  // the next shot's: vision sees the moved balls afresh
   SearchSettings settings_;
   Schedule schedule_;
-  CandidateSet set_;
-  // Allocate: the candidates searched, in order of their prior, and their evaluations.
+  // The tables candidates play on: the request's first, then one per placement of
+  // the cue ball in hand (the cue ball last).
+  std::vector<TableState> tables_;
+  std::vector<Candidate> candidates_;
+  CandidateSet pots_;  // the direct pots' pruning counts, for the reason
+  double best_pot_ = 0;  // the best pot estimate
+  // Allocate: the candidates searched (pots by prior, then the others) and their
+  // evaluations.
   std::vector<const Candidate*> chosen_;
   std::vector<int> evaluations_;
   // SearchAndVerify, one slot per chosen candidate.
@@ -130,7 +151,6 @@ bool PlanRun::Prepare() {
     answer_.reason = Describe(errors);
     return false;
   }
-  cue_ = table_.cue_index();
   const auto on = request_.ball_on ? request_.ball_on : OpeningBallOn(table_);
   answer_.ball_on = on;
   if (!on) {
@@ -146,17 +166,19 @@ bool PlanRun::Prepare() {
   settings_.limits = request_.limits;
   settings_.position_play = request_.position_play;
   schedule_ = MakeSchedule(config_, request_, start_);
-  set_ = EnumerateCandidates(table_, on_, ctx_);
-  answer_.candidate_pairs = set_.pairs;
-  answer_.candidates = static_cast<int>(set_.candidates.size());
-  if (set_.candidates.empty()) {
+  tables_.push_back(table_);
+  AddPots();
+  AddOthers();
+  answer_.candidate_pairs = pots_.pairs;
+  answer_.candidates = static_cast<int>(candidates_.size());
+  if (candidates_.empty()) {
     answer_.status = PlanStatus::kNoPot;
     std::ostringstream why;
-    why << "no pot: none of the " << set_.pairs << " ball-pocket pairs for the ball on ("
-        << ToString(on_) << ") survives pruning";
+    why << "no pot: none of the " << pots_.pairs << " ball-pocket pairs for the ball on (" << ToString(on_)
+        << ") survives pruning";
     for (int k = 1; k < kPruneReasonCount; ++k) {
-      if (set_.pruned[static_cast<size_t>(k)] > 0) {
-        why << "; " << ToString(static_cast<PruneReason>(k)) << ": " << set_.pruned[static_cast<size_t>(k)];
+      if (pots_.pruned[static_cast<size_t>(k)] > 0) {
+        why << "; " << ToString(static_cast<PruneReason>(k)) << ": " << pots_.pruned[static_cast<size_t>(k)];
       }
     }
     answer_.reason = why.str();
@@ -165,74 +187,152 @@ bool PlanRun::Prepare() {
   return true;
 }
 
-// How much search each candidate gets: by its prior, the estimated points p (value
-// + continuation), the most promising most; hopeless ones none.
+// Direct pots: from the cue ball where it lies, or from the best places in the D for
+// the cue ball in hand (placement.h), each on a table of its own.
+void PlanRun::AddPots() {
+  if (!request_.kinds.Has(ShotKind::kPot) || !request_.routes.Has(PotRoute::kDirect)) return;
+  if (!request_.cue_in_hand) {
+    pots_ = EnumerateCandidates(table_, on_, ctx_);
+    candidates_.insert(candidates_.end(), pots_.candidates.begin(), pots_.candidates.end());
+  } else {
+    const auto placed = PlaceForPots(table_, on_, ctx_, settings_.position.continuation);
+    for (const PlacedCandidate& p : placed) {
+      if (static_cast<int>(tables_.size()) > config_.max_candidates) break;
+      tables_.push_back(WithCueBall(table_, p.place));
+      Candidate c = p.candidate;
+      c.table = static_cast<int>(tables_.size()) - 1;
+      candidates_.push_back(c);
+      ++pots_.pairs;
+    }
+  }
+  for (const Candidate& c : candidates_) best_pot_ = std::max(best_pot_, c.estimate.probability);
+}
+
+// The table the shots that need only a legal place for the cue ball play on: the
+// request's, or with the cue ball in hand one with it placed centrally in the D.
+// -1 when the D has no room.
+int PlanRun::TableWithCue() {
+  if (!request_.cue_in_hand) return 0;
+  const auto place = FreePlaceInTheD(table_, *config_.table);
+  if (!place) return -1;
+  tables_.push_back(WithCueBall(table_, *place));
+  return static_cast<int>(tables_.size()) - 1;
+}
+
+// Shots of other kinds: safeties when no pot is near certain.
+void PlanRun::AddOthers() {
+  if (!request_.kinds.Has(ShotKind::kSafety) || best_pot_ >= config_.safety_below) return;
+  const int t = TableWithCue();
+  if (t < 0) return;
+  const TableState& table = tables_[static_cast<size_t>(t)];
+  const int cue = table.cue_index();
+  const int touching = TouchingBallOn(table, cue, on_, config_.table->ball_radius());
+  std::vector<Candidate> safeties = SafetyCandidates(table, cue, on_, ctx_, touching, t, SafetyOptions{});
+  for (Candidate& c : safeties) {
+    if (t > 0) c.cue_start = table.balls[static_cast<size_t>(cue)].position;
+  }
+  if (static_cast<int>(safeties.size()) > config_.max_others) safeties.resize(static_cast<size_t>(config_.max_others));
+  candidates_.insert(candidates_.end(), safeties.begin(), safeties.end());
+}
+
+// How much search each candidate gets. Pots by their prior, the estimated points p
+// (value + continuation), the most promising most, hopeless ones none; the other
+// kinds share what the pots leave them, more the less likely the best pot is.
 void PlanRun::Allocate() {
   const double continuation = settings_.position.continuation;
   auto prior = [&](const Candidate& c) {
-    return c.estimate.probability * (Value(table_.balls[static_cast<size_t>(c.object)].kind) + continuation);
+    const TableState& t = tables_[static_cast<size_t>(c.table)];
+    return c.estimate.probability * (Value(t.balls[static_cast<size_t>(c.object)].kind) + continuation);
   };
-  std::vector<const Candidate*> ordered;
-  for (const Candidate& c : set_.candidates) ordered.push_back(&c);
-  std::stable_sort(ordered.begin(), ordered.end(),
-                   [&](const Candidate* a, const Candidate* b) { return prior(*a) > prior(*b); });
+  std::vector<const Candidate*> pots, others;
+  for (const Candidate& c : candidates_) (c.kind == ShotKind::kPot ? pots : others).push_back(&c);
+  std::stable_sort(pots.begin(), pots.end(), [&](const Candidate* a, const Candidate* b) { return prior(*a) > prior(*b); });
+  const double pot_share = others.empty() ? 1.0 : pots.empty() ? 0.0 : 0.5 + 0.4 * best_pot_;
+  const double pot_simulations = schedule_.search_simulations * pot_share;
   std::vector<double> weight;
-  const double best_prior = prior(*ordered.front());
-  for (const Candidate* c : ordered) {
+  for (const Candidate* c : pots) {
     if (static_cast<int>(chosen_.size()) >= config_.max_candidates) break;
-    if (!chosen_.empty() && prior(*c) < config_.min_prior_share * best_prior) break;
+    if (!chosen_.empty() && prior(*c) < config_.min_prior_share * prior(*pots.front())) break;
     chosen_.push_back(c);
     weight.push_back(config_.SearchWeight(static_cast<int>(chosen_.size()) - 1));
   }
-  // Drop the least promising until every candidate gets a worthwhile search.
+  // Drop the least promising until every pot gets a worthwhile search.
   for (;;) {
     double sum = 0;
     for (double w : weight) sum += w;
     evaluations_.assign(chosen_.size(), 0);
     bool enough = true;
     for (size_t i = 0; i < chosen_.size(); ++i) {
-      evaluations_[i] = static_cast<int>(schedule_.search_simulations * weight[i] / sum);
+      evaluations_[i] = static_cast<int>(pot_simulations * weight[i] / sum);
       enough = enough && evaluations_[i] >= config_.min_evaluations;
     }
-    if (enough || chosen_.size() == 1) break;
+    if (enough || chosen_.size() <= 1) break;
     chosen_.pop_back();
     weight.pop_back();
+  }
+  const int other_evaluations =
+      others.empty() ? 0
+                     : static_cast<int>(schedule_.search_simulations * (1 - pot_share) / static_cast<double>(others.size()));
+  for (const Candidate* c : others) {
+    chosen_.push_back(c);
+    evaluations_.push_back(other_evaluations);
   }
   for (int& e : evaluations_) e = std::max(e, config_.min_evaluations);
   answer_.searched = static_cast<int>(chosen_.size());
 }
 
-// The candidate's best shot simulated again at full fidelity, to the end. Its label
-// (object ball and pocket) is what this simulation did, not what was intended.
+ShotSetup PlanRun::SetupFor(const Candidate& cand) const {
+  const TableState& table = tables_[static_cast<size_t>(cand.table)];
+  const int cue = table.cue_index();
+  return {&table, cue, cand.object, cand.pocket, on_, cand.kind, cand.first,
+          TouchingBallOn(table, cue, on_, config_.table->ball_radius())};
+}
+
+// The candidate's best shot simulated again at full fidelity, to the end. Its labels
+// (kind, route, object ball, pocket) are what this simulation did, not what was
+// intended.
 std::optional<PlannedShot> PlanRun::Verify(Worker& w, const Candidate& cand, const ShotCandidate& sc,
                                            size_t task) {
-  const ShotSetup setup{&table_, cue_, cand.object, cand.pocket, on_};
+  const ShotSetup setup = SetupFor(cand);
+  const TableState& table = *setup.table;
   const ShotOutcome& out =
       w.full.Run(setup, sc.shot, {}, ShotSimulator::Mode::kFull, schedule_.final.AsInterrupt());
-  if (!out.success) {
+  const bool pot = cand.kind == ShotKind::kPot;
+  const PotRoute route = pot ? RouteOf(out, cand.object) : PotRoute::kDirect;
+  if (!out.success || (pot && !request_.routes.Has(route))) {
     // An interrupted check says nothing about the shot: it is dropped unverified.
     if (out.status != physics::SimStatus::kInterrupted) failed_verification_[task] = 1;
     return std::nullopt;
   }
   PlannedShot ps;
+  ps.kind = cand.kind;
+  ps.route = route;
+  ps.cue_start = cand.cue_start;
   ps.shot = sc.shot;
   ps.cut = sc.cut;
-  ps.object_ball = cand.object;
-  ps.pocket = static_cast<physics::PocketId>(out.object_pocket);
-  ps.pot_probability = sc.pot_estimate;
-  ps.pocket_probability = sc.pot_estimate;
-  ps.pot_estimate = sc.pot_estimate;
+  ps.first_ball = out.first_hit;
+  ps.object_ball = pot ? cand.object : out.first_hit;
+  if (pot) ps.pocket = static_cast<physics::PocketId>(out.object_pocket);
+  ps.pot_probability = pot ? sc.pot_estimate : 0;
+  ps.pocket_probability = ps.pot_probability;
+  ps.pot_estimate = ps.pot_probability;
   const auto events = w.full.simulator().events();
   ps.events.assign(events.begin(), events.end());
   std::vector<Vec2> finals;
   for (const physics::BallState& b : w.full.final_balls()) finals.push_back(b.r);
-  ps.cue_ball_end = finals[static_cast<size_t>(cue_)];
-  const Leave leave = ScoreLeave(table_, on_, cand.object, finals, out.potted, sc.pot_estimate, after_ctx_,
-                                 settings_);
+  for (size_t i = 0; i < finals.size(); ++i) {
+    const int pocket = w.full.simulator().pocket_of(static_cast<int>(i));
+    ps.balls_end.push_back({finals[i], pocket >= 0 ? std::optional<physics::PocketId>(static_cast<physics::PocketId>(pocket))
+                                                   : std::nullopt});
+  }
+  ps.cue_ball_end = finals[static_cast<size_t>(setup.cue)];
+  const Leave leave = pot ? ScoreLeave(table, on_, cand.object, finals, out.potted, sc.pot_estimate, after_ctx_, settings_)
+                          : ScoreSafety(table, on_, out.first_hit, finals, out.potted, after_ctx_, settings_);
   ps.position_value = leave.position.value;
   ps.next_ball = leave.next_ball;
   ps.search_score = leave.score;
   ps.score = leave.score;
+  ps.source = static_cast<int>(&cand - candidates_.data());
   return ps;
 }
 
@@ -254,7 +354,8 @@ void PlanRun::SearchAndVerify() {
     SearchSettings s = settings_;
     s.global_evaluations = static_cast<int>(std::lround(evaluations_[t] * config_.global_share));
     s.local_evaluations = evaluations_[t] - s.global_evaluations;
-    const SearchResult r = SearchCandidate(table_, on_, cand, ctx_, s, w.search, schedule_.search);
+    const SearchResult r = SearchCandidate(tables_[static_cast<size_t>(cand.table)], on_, cand, ctx_, s, w.search,
+                                           schedule_.search);
     w.evaluations += r.evaluations;
     search_simulations[t] = r.simulations;
     interrupted[t] = r.status == SearchStatus::kInterrupted;
@@ -275,50 +376,69 @@ void PlanRun::SearchAndVerify() {
   }
   for (const auto& w : workers_) answer_.evaluations += w->evaluations;
   answer_.verified = static_cast<int>(shots_.size());
-  // Search order: by the nominal objective (stable: ties keep candidate order).
-  std::stable_sort(shots_.begin(), shots_.end(),
-                   [](const PlannedShot& a, const PlannedShot& b) { return a.search_score > b.search_score; });
+  // Search order: pots by their nominal objective (stable: ties keep candidate
+  // order), then the other kinds by theirs.
+  std::stable_sort(shots_.begin(), shots_.end(), [](const PlannedShot& a, const PlannedShot& b) {
+    const bool pa = a.kind == ShotKind::kPot, pb = b.kind == ShotKind::kPot;
+    if (pa != pb) return pa;
+    return a.search_score > b.search_score;
+  });
 }
 
-// Monte Carlo of the best few, blocks across the workers; the final ranking is by
-// the Monte Carlo mean objective.
+// Monte Carlo of the best few pots and the best others, blocks across the workers;
+// the final ranking is by the Monte Carlo mean of what each shot is worth, in
+// points, misses and fouls included (robustness.h), so that pots and safeties
+// compare.
 void PlanRun::RankByMonteCarlo() {
-  const int ranked = std::min(static_cast<int>(shots_.size()),
-                              std::max(request_.max_shots + 2, config_.min_ranked));
+  // The ranked shots: the first pots and the first others, moved to the front.
+  const int pots_ranked = std::max(request_.max_shots + 2, config_.min_ranked);
+  std::vector<PlannedShot> ranked, rest;
+  int pots = 0, others = 0;
+  for (PlannedShot& s : shots_) {
+    const bool pot = s.kind == ShotKind::kPot;
+    const bool take = pot ? pots++ < pots_ranked : others++ < config_.ranked_others;
+    (take ? ranked : rest).push_back(std::move(s));
+  }
+  const int n = static_cast<int>(ranked.size());
+  shots_ = std::move(ranked);
+  shots_.insert(shots_.end(), std::make_move_iterator(rest.begin()), std::make_move_iterator(rest.end()));
   int blocks = (request_.monte_carlo_samples + kBlock - 1) / kBlock;
-  if (ranked > 0) blocks = std::min(blocks, static_cast<int>(schedule_.monte_carlo_simulations / (ranked * kBlock)));
+  if (n > 0) blocks = std::min(blocks, static_cast<int>(schedule_.monte_carlo_simulations / (n * kBlock)));
   blocks = std::max(blocks, request_.monte_carlo_samples > 0 ? 1 : 0);
-  if (ranked == 0 || blocks == 0 || schedule_.monte_carlo.Due()) return;
-  AddWorkers(std::min(request_.threads, ranked * blocks));
-  std::vector<MonteCarloTally> tallies(static_cast<size_t>(ranked * blocks));
-  ParallelFor(request_.threads, ranked * blocks, [&](int task, int worker) {
+  if (n == 0 || blocks == 0 || schedule_.monte_carlo.Due()) return;
+  AddWorkers(std::min(request_.threads, n * blocks));
+  std::vector<MonteCarloTally> tallies(static_cast<size_t>(n * blocks));
+  ParallelFor(request_.threads, n * blocks, [&](int task, int worker) {
     const int s = task / blocks, b = task % blocks;
     const PlannedShot& ps = shots_[static_cast<size_t>(s)];
-    // Streams keyed by the shot itself (object, pocket) and the block, so a shot's
-    // samples do not depend on the other shots ranked with it.
-    const std::uint64_t seed = DeriveSeed(
-        request_.seed, static_cast<std::uint64_t>(ps.object_ball) * 8 + static_cast<std::uint64_t>(ps.pocket),
-        static_cast<std::uint64_t>(b));
+    const Candidate& cand = candidates_[static_cast<size_t>(ps.source)];
+    // Streams keyed by the shot itself (kind, object, pocket) and the block, so a
+    // shot's samples do not depend on the other shots ranked with it.
+    const std::uint64_t key = (static_cast<std::uint64_t>(ps.kind) * 64 + static_cast<std::uint64_t>(ps.object_ball + 1)) * 8 +
+                              static_cast<std::uint64_t>(ps.pocket);
     tallies[static_cast<size_t>(task)] =
-        RunSamples(table_, on_, ps.object_ball, ps.pocket, ps.shot, ctx_, settings_,
-                   workers_[static_cast<size_t>(worker)]->full, schedule_.monte_carlo, seed, kBlock);
+        RunSamples(SetupFor(cand), ps.shot, ctx_, settings_, workers_[static_cast<size_t>(worker)]->full,
+                   schedule_.monte_carlo, DeriveSeed(request_.seed, key, static_cast<std::uint64_t>(b)), kBlock,
+                   config_.in_hand_points);
   });
-  for (int s = 0; s < ranked; ++s) {
+  for (int s = 0; s < n; ++s) {
     MonteCarloTally t;
     for (int b = 0; b < blocks; ++b) t.Add(tallies[static_cast<size_t>(s * blocks + b)]);
     answer_.simulations += t.samples;
     answer_.deadline_hit = answer_.deadline_hit || t.interrupted;
     PlannedShot& ps = shots_[static_cast<size_t>(s)];
-    if (t.samples > 0) {
-      ps.monte_carlo_samples = t.samples;
+    if (t.samples == 0) continue;
+    ps.monte_carlo_samples = t.samples;
+    if (ps.kind == ShotKind::kPot) {
       ps.pot_probability = t.success_rate();
       ps.pocket_probability = t.pocket_rate();
-      ps.score = t.mean_score();
     }
+    ps.foul_probability = t.foul_rate();
+    ps.score = t.mean_score();
   }
   // Shots without samples keep their nominal score, below any sampled competitor in
   // practice.
-  std::stable_sort(shots_.begin(), shots_.begin() + ranked,
+  std::stable_sort(shots_.begin(), shots_.begin() + n,
                    [](const PlannedShot& a, const PlannedShot& b) { return a.score > b.score; });
 }
 
@@ -341,9 +461,9 @@ void PlanRun::Conclude() {
                      " candidates started)";
   } else {
     answer_.status = PlanStatus::kNoPot;
-    answer_.reason = "no pot found: the search of " + std::to_string(answer_.searched) + " of " +
+    answer_.reason = "no shot found: the search of " + std::to_string(answer_.searched) + " of " +
                      std::to_string(answer_.candidates) +
-                     " candidate pots found no shot that pots the ball without a foul";
+                     " candidates found none that does what it is for without a foul";
     if (answer_.verification_failures > 0) {
       answer_.reason += " (" + std::to_string(answer_.verification_failures) + " failed the full-fidelity check)";
     }

@@ -165,6 +165,7 @@ struct PlannedShot {
   double search_score = 0;       ///< the objective at the nominal shot
   double pot_estimate = 0;       ///< fast estimate from the nominal object-ball line
   int monte_carlo_samples = 0;
+  int source = -1;               ///< the plan's candidate it came from
 };
 
 enum class PlanStatus : std::uint8_t {
@@ -249,6 +250,17 @@ struct PlannerConfig {
   double min_search_weight = 0.25;
   /// The weight of the candidate of this rank (0: the best prior).
   double SearchWeight(int rank) const;
+  /// Safeties are searched only when no pot's fast estimate reaches this: a table
+  /// with a near-certain pot is not one to play safe on.
+  double safety_below = 0.85;
+  /// Candidates of kinds other than pots searched at most, and ranked by Monte
+  /// Carlo at most (beside the pots).
+  int max_others = 6;
+  int ranked_others = 2;
+  /// What an opponent can expect from the cue ball in hand, in ShotScore's points
+  /// (a foul that pots the cue ball gives them this besides the penalty): about a
+  /// likely pot from a chosen place, 0.7 x (1 + continuation 30), rounded.
+  double in_hand_points = 20;
 };
 
 class Planner {

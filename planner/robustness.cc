@@ -58,18 +58,55 @@ void MonteCarloTally::Add(const MonteCarloTally& o) {
   samples += o.samples;
   successes += o.successes;
   pocket_successes += o.pocket_successes;
+  fouls += o.fouls;
   score_sum += o.score_sum;
-  position_sum += o.position_sum;
   interrupted = interrupted || o.interrupted;
 }
 
-MonteCarloTally RunSamples(const TableState& table, BallOn on, int object, physics::PocketId pocket,
-                           const physics::Shot& shot, const PotContext& ctx,
-                           const SearchSettings& settings, ShotSimulator& sim,
-                           const StopControl& stop, std::uint64_t seed, int count) {
+int FoulPenalty(const TableState& table, BallOn on, const std::optional<BallKind>& nominated, int first_hit,
+                std::span<const int> potted) {
+  int penalty = 4;
+  if (on == BallOn::kAnyColour) {
+    if (nominated && IsColour(*nominated)) penalty = std::max(penalty, Value(*nominated));
+  } else if (on != BallOn::kRed) {
+    penalty = std::max(penalty, Value(KindOf(static_cast<physics::Colour>(static_cast<int>(on) -
+                                                                         static_cast<int>(BallOn::kYellow)))));
+  }
+  const int n = static_cast<int>(table.balls.size());
+  if (first_hit >= 0 && first_hit < n) penalty = std::max(penalty, Value(table.balls[static_cast<size_t>(first_hit)].kind));
+  for (const int i : potted) {
+    if (i >= 0 && i < n) penalty = std::max(penalty, Value(table.balls[static_cast<size_t>(i)].kind));
+  }
+  return penalty;
+}
+
+double MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span<const Vec2> finals,
+                       const PotContext& after_ctx, const SearchSettings& settings, double in_hand_points) {
+  const TableState& table = *setup.table;
+  if (out.success && setup.kind == ShotKind::kPot) {
+    return ScoreLeave(table, setup.on, setup.object, finals, out.potted, 1.0, after_ctx, settings).score;
+  }
+  if (out.foul == Foul::kNone) {
+    return ScoreSafety(table, setup.on, out.first_hit, finals, out.potted, after_ctx, settings).score;
+  }
+  const int named = setup.object >= 0 ? setup.object : out.first_hit;
+  const std::optional<BallKind> nominated =
+      named >= 0 ? std::optional<BallKind>(table.balls[static_cast<size_t>(named)].kind) : std::nullopt;
+  const int penalty = FoulPenalty(table, setup.on, nominated, out.first_hit, out.potted);
+  const TableState after = ApplyShot(table, setup.on, finals, out.potted, true, *after_ctx.table);
+  double opponent = in_hand_points;
+  if (after.cue_index() >= 0) {
+    const auto opponent_on = OpeningBallOn(after);
+    opponent = opponent_on ? EvaluatePosition(after, *opponent_on, after_ctx, settings.position).expected_points : 0;
+  }
+  return -(penalty + opponent);
+}
+
+MonteCarloTally RunSamples(const ShotSetup& setup, const physics::Shot& shot, const PotContext& ctx,
+                           const SearchSettings& settings, ShotSimulator& sim, const StopControl& stop,
+                           std::uint64_t seed, int count, double in_hand_points) {
   MonteCarloTally tally;
   Rng rng(seed);
-  const ShotSetup setup{&table, table.cue_index(), object, pocket, on};
   const physics::Interrupt interrupt = stop.AsInterrupt();
   PotContext after_ctx = ctx;
   after_ctx.position_sigma.clear();
@@ -79,22 +116,22 @@ MonteCarloTally RunSamples(const TableState& table, BallOn on, int object, physi
       tally.interrupted = true;
       break;
     }
-    SampleTruePositions(table, ctx, rng, &truth);
+    SampleTruePositions(*setup.table, ctx, rng, &truth);
     const physics::Shot played = SampleExecution(shot, ctx.noise, rng);
-    const ShotOutcome& out = sim.Run(setup, played, truth, ShotSimulator::Mode::kDecide, interrupt);
+    // To rest, never stopped early: a miss is scored by the table it leaves.
+    const ShotOutcome& out = sim.Run(setup, played, truth, ShotSimulator::Mode::kToRest, interrupt);
     if (out.status == physics::SimStatus::kInterrupted) {
       tally.interrupted = true;
       break;
     }
     ++tally.samples;
-    if (!out.success) continue;
-    ++tally.successes;
-    if (out.object_pocket == static_cast<int>(pocket)) ++tally.pocket_successes;
     finals.clear();
     for (const physics::BallState& b : sim.final_balls()) finals.push_back(b.r);
-    const Leave leave = ScoreLeave(table, on, object, finals, out.potted, 1.0, after_ctx, settings);
-    tally.score_sum += leave.score;
-    tally.position_sum += leave.position.value;
+    tally.score_sum += MonteCarloScore(setup, out, finals, after_ctx, settings, in_hand_points);
+    if (out.foul != Foul::kNone) ++tally.fouls;
+    if (!out.success) continue;
+    ++tally.successes;
+    if (setup.kind == ShotKind::kPot && out.object_pocket == static_cast<int>(setup.pocket)) ++tally.pocket_successes;
   }
   return tally;
 }

@@ -5,10 +5,13 @@
 // error per axis: NoiseModel::position or the ball's own sigma; balls pushed apart
 // if the draw overlaps them, and kept on the bed) and the shot as the robot plays
 // it (speed x (1 + e_v), heading + e_h, topspin + e_t, sidespin + e_s), then
-// simulates it at full fidelity. Success = the object ball drops, in any pocket,
-// and no foul; the tally also counts the successes in the named pocket. A
-// success also scores the position it really left (position.h), so the ranking
-// prefers shots whose position play survives the noise.
+// simulates it at full fidelity. Success = what the shot is for (a pot's object
+// ball drops, in any pocket, with no foul; a safety is legal); the tally also counts
+// the successes in the named pocket and the fouls. Every sample is scored in points
+// for the striker (MonteCarloScore): a success by the position it really left, a
+// miss or a foul by what it gives the opponent, so that the ranking compares pots
+// and safeties in one currency and prefers shots whose position play survives the
+// noise.
 //
 // Samples come in blocks with their own random stream (DeriveSeed(seed, shot,
 // block)): blocks can run on any thread in any order and give the same sums.
@@ -37,26 +40,46 @@ physics::Shot SampleExecution(const physics::Shot& shot, const NoiseModel& noise
 
 struct MonteCarloTally {
   int samples = 0;
+  /// Samples that did what the shot is for (shot_sim.h's success: a pot's object
+  /// ball dropped legally, any pocket; a safety legal).
   int successes = 0;
   /// Successes with the object ball in the named pocket.
   int pocket_successes = 0;
-  /// Sum over samples of the objective the sample achieved (0 on failure).
+  /// Samples that fouled.
+  int fouls = 0;
+  /// Sum over samples of the points the sample is worth to the striker (MonteCarloScore).
   double score_sum = 0;
-  /// Sum over successful samples of the position value they left.
-  double position_sum = 0;
   bool interrupted = false;
 
   void Add(const MonteCarloTally& o);
-  double success_rate() const { return samples > 0 ? static_cast<double>(successes) / samples : 0; }
-  double pocket_rate() const { return samples > 0 ? static_cast<double>(pocket_successes) / samples : 0; }
+  double success_rate() const { return Rate(successes); }
+  double pocket_rate() const { return Rate(pocket_successes); }
+  double foul_rate() const { return Rate(fouls); }
   double mean_score() const { return samples > 0 ? score_sum / samples : 0; }
+
+ private:
+  double Rate(int n) const { return samples > 0 ? static_cast<double>(n) / samples : 0; }
 };
 
-/// Runs samples [first, first + count) of block stream `seed` for `shot` of ball
-/// `object`, named for `pocket`. `sim` should run at full fidelity.
-MonteCarloTally RunSamples(const TableState& table, BallOn on, int object, physics::PocketId pocket,
-                           const physics::Shot& shot, const PotContext& ctx,
-                           const SearchSettings& settings, ShotSimulator& sim,
-                           const StopControl& stop, std::uint64_t seed, int count);
+/// What one played sample is worth to the striker, in ShotScore's points, whatever
+/// the shot meant to do: a pot that drops, its value and the position left
+/// (ScoreLeave); any other legal stroke, what ScoreSafety makes of the table left
+/// (a ball on dropping after all continues the visit; otherwise the opponent's
+/// expected points, negated); a foul, minus the penalty and the opponent's
+/// expected points (`in_hand_points` when the cue ball went down: the opponent
+/// then plays from the D).
+double MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span<const physics::Vec2> finals,
+                       const PotContext& after_ctx, const SearchSettings& settings, double in_hand_points);
+
+/// The penalty of a foul: 4, or the value of the ball on, of the first ball hit,
+/// or of a ball potted, whichever is highest (7 for the black).
+int FoulPenalty(const TableState& table, BallOn on, const std::optional<BallKind>& nominated, int first_hit,
+                std::span<const int> potted);
+
+/// Runs `count` samples of block stream `seed` for `shot` played as `setup` says
+/// (its table as vision saw it). `sim` should run at full fidelity.
+MonteCarloTally RunSamples(const ShotSetup& setup, const physics::Shot& shot, const PotContext& ctx,
+                           const SearchSettings& settings, ShotSimulator& sim, const StopControl& stop,
+                           std::uint64_t seed, int count, double in_hand_points);
 
 }  // namespace snooker::planner

@@ -20,6 +20,10 @@ using physics::Vec2;
 // Objective of a shot that cannot be played at all (no heading realises the cut,
 // or the cue has no room): below every simulated failure (-1 + P/2 >= -1).
 constexpr double kUnplayable = -2.0;
+// Objective of a safety, escape or break-off that fouls, or of one that cannot be
+// played: below every legal stroke's (whose worst is the opponent's best
+// position, some tens of points).
+constexpr double kFailedSafety = -200.0;
 
 // The cue ball's state when it has travelled `distance` (m) along its heading, or
 // nullopt if it stops (or draws back) first. Straight-line motion (geometry.h).
@@ -90,8 +94,13 @@ class Search {
       : table_(table), on_(on), cand_(cand), ctx_(ctx), settings_(settings), sim_(sim),
         stop_(stop), interrupt_(stop.AsInterrupt()) {
     cue_ = table.cue_index();
-    setup_ = {&table_, cue_, cand.object, cand.pocket, on};
-    std::tie(v_lo_, v_hi_) = SpeedRange(table, cue_, cand, settings.limits, sim.params());
+    setup_ = {&table_, cue_, cand.object, cand.pocket, on, cand.kind, cand.first, TouchingBallOn(table, cue_, on, ctx.table->ball_radius())};
+    if (cand.speed_hi > 0) {
+      v_lo_ = std::clamp(cand.speed_lo, settings.limits.min_speed, settings.limits.max_speed);
+      v_hi_ = std::clamp(cand.speed_hi, v_lo_, settings.limits.max_speed);
+    } else {
+      std::tie(v_lo_, v_hi_) = SpeedRange(table, cue_, cand, settings.limits, sim.params());
+    }
     // The next shot is seen afresh by vision: every ball with the default sigma
     // (the balls' indices change once some drop).
     after_ctx_ = ctx;
@@ -100,14 +109,17 @@ class Search {
   }
 
   SearchResult Run() {
-    // Global stage over (speed, topspin, sidespin), the cut at its prediction.
+    // Global stage over (speed, topspin, sidespin), a pot's cut at its prediction;
+    // over the aim too where the aim is not predicted (safeties, routes off a
+    // cushion), whose range is wide.
     std::vector<double> x = {0.5, 0.5, 0.5, 0.5};
     if (settings_.global_evaluations > 0 && !Stopped()) {
-      nlopt::opt opt(nlopt::GN_DIRECT_L, 3);
+      const unsigned dims = cand_.aim == AimMode::kPredictedCut ? 3 : 4;
+      nlopt::opt opt(nlopt::GN_DIRECT_L, dims);
       Configure(opt, settings_.global_evaluations);
-      std::vector<double> x3 = {0.5, 0.5, 0.5};
-      Optimize(opt, x3, "global");
-      if (best_x_valid_) std::copy(best_x_.begin(), best_x_.begin() + 3, x.begin());
+      std::vector<double> xg(dims, 0.5);
+      Optimize(opt, xg, "global");
+      if (best_x_valid_) std::copy(best_x_.begin(), best_x_.begin() + dims, x.begin());
     }
     // Local stage over all four from the best point so far.
     if (settings_.local_evaluations > 0 && settings_.local != LocalAlgorithm::kNone && !Stopped()) {
@@ -186,7 +198,7 @@ class Search {
   double Objective(unsigned n, const double* x) {
     if (Stopped()) {
       if (opt_ != nullptr) opt_->force_stop();
-      return kUnplayable;
+      return Unplayable();
     }
     ++result_.evaluations;
     std::array<double, 4> u = {x[0], x[1], x[2], n > 3 ? x[3] : 0.5};
@@ -197,39 +209,33 @@ class Search {
     shot.speed = v_lo_ + u[0] * (v_hi_ - v_lo_);
     shot.topspin = (2 * u[1] - 1) * lim.max_topspin_fraction * shot.speed / r;
     shot.sidespin = (2 * u[2] - 1) * lim.max_sidespin_fraction * shot.speed / r;
-    const Vec2 cue = table_.balls[static_cast<size_t>(cue_)].position;
-    const Vec2 object = table_.balls[static_cast<size_t>(cand_.object)].position;
-    const auto predicted =
-        settings_.predict_throw
-            ? PredictCut(cue, object, cand_.estimate.object_direction, shot.speed, shot.topspin,
-                         shot.sidespin, sim_.params())
-            : std::nullopt;
-    const double cut = predicted.value_or(cand_.estimate.aim.cut) +
-                       (2 * u[3] - 1) * settings_.max_cut_correction;
-    const auto heading = HeadingForCut(cue, object, cut, r);
-    if (!heading || CueMargin(table_, cue_, *heading, lim.cue, *ctx_.table) < 0) {
-      return Keep(u, kUnplayable);
+    const Aim aim = AimFor(shot, u[3]);
+    if (!aim.heading || CueMargin(table_, cue_, *aim.heading, lim.cue, *ctx_.table) < 0) {
+      return Keep(u, Unplayable());
     }
-    shot.heading = *heading;
+    shot.heading = *aim.heading;
     ++result_.simulations;
     const ShotOutcome& out = sim_.Run(setup_, shot, {}, ShotSimulator::Mode::kDecide, interrupt_);
     if (out.status == physics::SimStatus::kInterrupted) {
       interrupted_ = true;
       if (opt_ != nullptr) opt_->force_stop();
-      return kUnplayable;
+      return Unplayable();
     }
-    const double p = PotProbability(out, cue, object, *heading, cut);
-    if (!out.success) return Keep(u, -1 + 0.5 * p);
+    const bool pot = cand_.kind == ShotKind::kPot;
+    const double p = pot ? PotProbability(out, *aim.heading, aim.cut) : 1.0;
+    if (!out.success) return Keep(u, pot ? -1 + 0.5 * p : kFailedSafety);
     // The table the shot leaves, by the rules, and the ball on then.
     final_positions_.clear();
     for (const physics::BallState& b : sim_.final_balls()) final_positions_.push_back(b.r);
-    const Leave leave =
-        ScoreLeave(table_, on_, cand_.object, final_positions_, out.potted, p, after_ctx_, settings_);
-    const double score = leave.score;
+    const Leave leave = pot ? ScoreLeave(table_, on_, cand_.object, final_positions_, out.potted, p, after_ctx_,
+                                         settings_)
+                            : ScoreSafety(table_, on_, out.first_hit, final_positions_, out.potted, after_ctx_,
+                                          settings_);
+    const double score = leave.score - SpeedCost(shot.speed);
     if (!result_.best || score > result_.best->score) {
       ShotCandidate c;
       c.shot = shot;
-      c.cut = cut;
+      c.cut = aim.cut;
       c.score = score;
       c.pot_estimate = p;
       c.position = leave.position;
@@ -239,10 +245,49 @@ class Search {
     return Keep(u, score);
   }
 
+  // The objective of a shot that cannot be played, below every simulated failure.
+  double Unplayable() const { return cand_.kind == ShotKind::kPot ? kUnplayable : 1.5 * kFailedSafety; }
+
+  struct Aim {
+    std::optional<double> heading;
+    double cut = 0;
+  };
+
+  // The heading (and cut on the aim ball) for the fourth search variable u in [0, 1].
+  Aim AimFor(const physics::Shot& shot, double u) const {
+    const double r = ctx_.table->ball_radius();
+    const Vec2 cue = table_.balls[static_cast<size_t>(cue_)].position;
+    const double range = cand_.aim_range > 0 ? cand_.aim_range : settings_.max_cut_correction;
+    const double offset = (2 * u - 1) * range;
+    Aim aim;
+    if (cand_.aim == AimMode::kHeading) {
+      aim.heading = WrapAngle(cand_.aim_base + offset);
+      return aim;
+    }
+    const Vec2 ball = table_.balls[static_cast<size_t>(cand_.AimBall())].position;
+    double base = cand_.aim_base;
+    if (cand_.aim == AimMode::kPredictedCut) {
+      const double direction = cand_.aim_direction.value_or(cand_.estimate.object_direction);
+      const auto predicted = settings_.predict_throw
+                                 ? PredictCut(cue, ball, direction, shot.speed, shot.topspin, shot.sidespin,
+                                              sim_.params())
+                                 : std::nullopt;
+      base = predicted.value_or(cand_.aim_direction ? cand_.aim_base : cand_.estimate.aim.cut);
+    }
+    aim.cut = base + offset;
+    aim.heading = HeadingForCut(cue, ball, aim.cut, r);
+    return aim;
+  }
+
+  // A small cost of speed beyond what a shot needs: of two shots that score alike the
+  // softer is kinder to the table and to the robot (points per m/s above 3 m/s).
+  double SpeedCost(double speed) const { return settings_.speed_cost * std::max(0.0, speed - 3.0); }
+
   // The pot probability of this shot from its simulated object-ball line.
-  double PotProbability(const ShotOutcome& out, const Vec2& cue, const Vec2& object,
-                        double heading, double cut) const {
+  double PotProbability(const ShotOutcome& out, double heading, double cut) const {
     if (!out.line.valid) return 0;
+    const Vec2 cue = table_.balls[static_cast<size_t>(cue_)].position;
+    const Vec2 object = table_.balls[static_cast<size_t>(cand_.object)].position;
     const PocketWindow w =
         ctx_.pockets->Window(cand_.pocket, out.line.direction, out.line.arrival_speed);
     const Vec2 u(std::cos(out.line.direction), std::sin(out.line.direction));
@@ -251,7 +296,9 @@ class Search {
     const double sigma = LateralSigma(cue, object, heading, cut, distance, out.line.contact_speed,
                                       ctx_.sigma_of(cue_), ctx_.sigma_of(cand_.object), ctx_.noise,
                                       *ctx_.throws, ctx_.table->ball_radius());
-    return WindowProbability(out.line.offset, sigma, w);
+    // Routes other than the direct one carry their own reliability in the prior.
+    const double route = cand_.route == PotRoute::kDirect ? 1.0 : cand_.estimate.probability;
+    return route * WindowProbability(out.line.offset, sigma, w);
   }
 
   double Keep(const std::array<double, 4>& u, double f) {
@@ -387,6 +434,29 @@ Leave ScoreLeave(const TableState& table, BallOn on, int object, std::span<const
   }
   if (leave.position.next_ball >= 0) leave.next_ball = origin[static_cast<size_t>(leave.position.next_ball)];
   leave.score = ShotScore(pot_probability, Value(object_kind), leave.position, settings.position_play);
+  return leave;
+}
+
+Leave ScoreSafety(const TableState& table, BallOn on, int first_hit, std::span<const Vec2> finals,
+                  std::span<const int> potted, const PotContext& after_ctx, const SearchSettings& settings) {
+  std::vector<int> origin;
+  const TableState after = ApplyShot(table, on, finals, potted, false, *after_ctx.table, &origin);
+  Leave leave;
+  const std::optional<BallKind> nominated =
+      first_hit >= 0 ? std::optional<BallKind>(table.balls[static_cast<size_t>(first_hit)].kind) : std::nullopt;
+  const ShotJudgement j = JudgeShot(table, on, nominated, first_hit, potted);
+  if (j.legal_pots > 0 && j.potted_kind) {
+    // A ball on dropped after all: the visit goes on, scored as a pot.
+    if (const auto next_on = NextBallOn(on, *j.potted_kind, after)) {
+      leave.position = EvaluatePosition(after, *next_on, after_ctx, settings.position);
+    }
+    leave.score = j.points + (settings.position_play ? leave.position.expected_points : 0.0);
+  } else if (const auto opponent_on = OpeningBallOn(after)) {
+    // The opponent plays the table left: what they can expect, in the same points.
+    leave.position = EvaluatePosition(after, *opponent_on, after_ctx, settings.position);
+    leave.score = -leave.position.expected_points;
+  }
+  if (leave.position.next_ball >= 0) leave.next_ball = origin[static_cast<size_t>(leave.position.next_ball)];
   return leave;
 }
 

@@ -91,6 +91,10 @@ struct SearchSettings {
   double x_tolerance = 1e-3;
   /// Score the position left (false: pot only, P x value).
   bool position_play = true;
+  /// Points a shot's score loses per m/s of speed above 3 m/s: of two shots that
+  /// score alike the softer one (a power shot spreads the cue ball's position more
+  /// than the Monte Carlo's few samples show).
+  double speed_cost = 0.3;
   PositionOptions position;
 };
 
@@ -164,6 +168,15 @@ struct Leave {
   /// none).
   int next_ball = -1;
 };
+
+/// Scores what a legal safety, escape or break-off leaves, for the striker, in
+/// ShotScore's points: when a ball on dropped after all, the points and the
+/// striker's position (the visit goes on); otherwise minus the opponent's expected
+/// points from the table left (EvaluatePosition for the side to play, the ball on
+/// theirs: a red while reds remain). `first_hit` is the first ball the cue ball hit.
+/// Leave::next_ball is then the opponent's best ball.
+Leave ScoreSafety(const TableState& table, BallOn on, int first_hit, std::span<const physics::Vec2> finals,
+                  std::span<const int> potted, const PotContext& after_ctx, const SearchSettings& settings);
 
 /// Scores what a succeeding shot of `object` with `on` leaves, the one sequence the
 /// search, the verification and the Monte Carlo share: the table after the rules

@@ -12,6 +12,18 @@ using physics::EventKind;
 using physics::SimStatus;
 using physics::Vec2;
 
+int TouchingBallOn(const TableState& table, int cue, BallOn on, double radius) {
+  if (cue < 0) return -1;
+  const Vec2 c = table.balls[static_cast<size_t>(cue)].position;
+  const double touch = 2 * radius + kTouchingGap;
+  for (size_t i = 0; i < table.balls.size(); ++i) {
+    if (static_cast<int>(i) == cue) continue;
+    const Ball& b = table.balls[i];
+    if (IsLegalTarget(on, b.kind) && (b.position - c).norm() <= touch) return static_cast<int>(i);
+  }
+  return -1;
+}
+
 ShotSimulator::ShotSimulator(const physics::TableModel& table, const physics::SimParams& params)
     : table_(table), params_(params), sim_(table, params) {
   balls_.reserve(physics::Simulator::kMaxBalls);
@@ -62,66 +74,88 @@ const ShotOutcome& ShotSimulator::Run(const ShotSetup& setup, const physics::Sho
   }
   out_ = ShotOutcome{};
   out_.potted.clear();
+  out_.first_hit = setup.touching_on;
   ++runs_;
   // The full mode keeps events and paths for the answer; the others neither (the
   // object ball's state right after its contact comes from StateNow).
   physics::RunOptions options = mode == Mode::kFull ? physics::RunOptions{} : physics::RunOptions::Lean();
   options.interrupt = interrupt;
-  SimStatus status = sim_.Start(balls_, options);
-  const bool decide = mode == Mode::kDecide;
+  const SimStatus status = Loop(setup, sim_.Start(balls_, options), mode == Mode::kDecide);
+  out_.status = status;
+  out_.events = sim_.event_count();
+  out_.object_pocket = setup.object >= 0 ? sim_.pocket_of(setup.object) : -1;
+  Judge(setup, status);
+  return out_;
+}
+
+SimStatus ShotSimulator::Loop(const ShotSetup& setup, SimStatus status, bool decide) {
+  const TableState& table = *setup.table;
+  const bool pot = setup.kind == ShotKind::kPot;
+  const int first = setup.FirstBall();
+  // With any colour on, the colour nominated: the object ball's, else the first hit's.
   auto legal = [&](int i) {
     const BallKind k = table.balls[static_cast<size_t>(i)].kind;
-    if (setup.on == BallOn::kAnyColour) return k == table.balls[static_cast<size_t>(setup.object)].kind;
-    return IsLegalTarget(setup.on, k);
+    if (setup.on != BallOn::kAnyColour) return IsLegalTarget(setup.on, k);
+    const int named = setup.object >= 0 ? setup.object : out_.first_hit;
+    return named >= 0 ? k == table.balls[static_cast<size_t>(named)].kind : IsColour(k);
+  };
+  auto stop = [&]() {
+    out_.stopped_early = true;
+    return true;
   };
   while (status == SimStatus::kRunning) {
     status = sim_.Step();
     if (status != SimStatus::kRunning) break;
     const physics::SimEvent& ev = sim_.last_event();
-    if (ev.kind == EventKind::kBallBall && out_.first_hit < 0 &&
-        (ev.ball == setup.cue || ev.other == setup.cue)) {
+    const bool cue_involved = ev.ball == setup.cue || ev.other == setup.cue;
+    if (ev.kind == EventKind::kBallBall && out_.first_hit < 0 && cue_involved) {
       out_.first_hit = ev.ball == setup.cue ? ev.other : ev.ball;
-      if (out_.first_hit == setup.object) {
-        MeasureLine(setup, sim_.StateNow(setup.object));
-      } else if (decide) {
-        out_.stopped_early = true;
-        break;
-      }
+      const bool wrong = first >= 0 ? out_.first_hit != first : !legal(out_.first_hit);
+      if (decide && wrong && stop()) break;
+    } else if (ev.kind == EventKind::kCushion && ev.ball == setup.cue && out_.first_hit < 0) {
+      ++out_.cue_cushions_first;
     } else if (ev.kind == EventKind::kPocket) {
       out_.potted.push_back(ev.ball);
-      if (decide && (ev.ball == setup.cue || !legal(ev.ball))) {
-        out_.stopped_early = true;
-        break;
-      }
+      if (decide && (ev.ball == setup.cue || !legal(ev.ball)) && stop()) break;
     }
-    if (decide) {
-      // A miss: the object ball (after contact) or the cue ball (before) at rest.
-      if (out_.first_hit == setup.object && sim_.pocket_of(setup.object) < 0 &&
-          sim_.Decided(setup.object)) {
-        out_.stopped_early = true;
-        break;
-      }
-      if (out_.first_hit < 0 && sim_.Decided(setup.cue)) {
-        out_.stopped_early = true;
-        break;
-      }
+    // The object ball's line from its latest contact (the cue ball's, for a direct pot).
+    if (setup.object >= 0 && out_.first_hit >= 0 && sim_.pocket_of(setup.object) < 0 &&
+        (ev.ball == setup.object || ev.other == setup.object) &&
+        (ev.kind == EventKind::kBallBall || ev.kind == EventKind::kCushion)) {
+      if (ev.kind == EventKind::kCushion) ++out_.object_cushions;
+      MeasureLine(setup, sim_.StateNow(setup.object));
     }
+    if (!decide) continue;
+    // A miss: a pot's object ball at rest after contact, or the cue ball at rest
+    // before touching anything.
+    if (pot && out_.first_hit >= 0 && sim_.pocket_of(setup.object) < 0 && sim_.Decided(setup.object) &&
+        stop()) {
+      break;
+    }
+    if (out_.first_hit < 0 && sim_.Decided(setup.cue) && stop()) break;
   }
-  out_.status = status;
-  out_.events = sim_.event_count();
-  out_.object_pocket = sim_.pocket_of(setup.object);
-  if (status == SimStatus::kRunning || status == SimStatus::kAtRest) {
-    // For the judgement the intended object ball is the nominated colour.
-    const BallKind object_kind = table.balls[static_cast<size_t>(setup.object)].kind;
-    const ShotJudgement j = JudgeShot(table, setup.on, object_kind, out_.first_hit, out_.potted);
-    out_.foul = j.foul;
-    if (out_.foul == Foul::kNone && out_.first_hit != setup.object) out_.foul = Foul::kWrongBallFirst;
-  } else {
+  return status;
+}
+
+void ShotSimulator::Judge(const ShotSetup& setup, SimStatus status) {
+  const TableState& table = *setup.table;
+  if (status != SimStatus::kRunning && status != SimStatus::kAtRest) {
     out_.foul = Foul::kSimulationFailed;
+    return;
   }
-  out_.success = status == SimStatus::kAtRest && !out_.stopped_early && out_.foul == Foul::kNone &&
-                 out_.object_pocket >= 0;
-  return out_;
+  // For the judgement the colour nominated is the object ball's (or, with none, the
+  // first ball's).
+  const int named = setup.object >= 0 ? setup.object : out_.first_hit;
+  const std::optional<BallKind> nominated =
+      named >= 0 ? std::optional<BallKind>(table.balls[static_cast<size_t>(named)].kind) : std::nullopt;
+  out_.foul = JudgeShot(table, setup.on, nominated, out_.first_hit, out_.potted).foul;
+  const bool at_rest = status == SimStatus::kAtRest && !out_.stopped_early && out_.foul == Foul::kNone;
+  if (setup.kind != ShotKind::kPot) {
+    out_.success = at_rest;
+    return;
+  }
+  const bool first_ok = setup.touching_on >= 0 || out_.first_hit == setup.FirstBall();
+  out_.success = at_rest && first_ok && out_.object_pocket >= 0;
 }
 
 }  // namespace snooker::planner

@@ -1,23 +1,29 @@
 // One shot simulated and judged by the rules, with the stop rule the caller needs.
 //
-// Search and Monte Carlo runs (Mode::kDecide) stop as soon as the shot has failed:
-// the cue ball's first contact is not the object ball, the cue ball or a ball not on
-// drops, the object ball comes to rest (Simulator::Decided) outside a pocket, or the
-// cue ball stops without touching anything. A shot that is succeeding runs on until
-// every ball rests, because the position it leaves is the point of it (and a late
-// in-off would still foul it). Verification runs (Mode::kFull) never stop early and
-// record the events. kEventLimit, kSolverFailure, kEventOrder and kTimeLimit are
-// failures, never successes (Foul::kSimulationFailed). Simulator::Decided does not
-// foresee a ball that a later bounce brings back, so a fluke (a moving ball knocking
-// the resting object ball in afterwards) counts as a miss in these runs: the rule
-// errs on the safe side, and tests/planner/shot_sim_test.cc checks that it changes
-// no verdict on a set of random shots.
+// A shot has a kind (shot_kind.h). A pot succeeds when its first contact is legal
+// (the ball it names first: the object ball, or for a plant the ball that pots it),
+// its object ball drops (in any pocket) and nothing fouls; a safety, escape or
+// break-off succeeds when nothing fouls. A ball on touching the cue ball before the
+// stroke counts as hit (the touching-ball rule), so a shot may play away from it.
 //
-// At the cue ball's first contact with the object ball the object ball's rolling
-// line is measured (its post-impact state carried through its slip phase in closed
-// form): its offset from the target pocket's mouth centre, its direction and the
-// speed it will reach the mouth with. That is what the fast estimate of this
-// shot's pot probability and the aim's correction use.
+// Search and Monte Carlo runs (Mode::kDecide) stop as soon as the shot has failed:
+// a wrong first contact, the cue ball or a ball not on dropping, a pot's object ball
+// at rest (Simulator::Decided) outside a pocket, or the cue ball stopping without
+// touching anything. A shot that is succeeding runs on until every ball rests,
+// because the position it leaves is the point of it (and a late in-off would still
+// foul it). Verification runs (Mode::kFull) never stop early and record the events.
+// kEventLimit, kSolverFailure, kEventOrder and kTimeLimit are failures, never
+// successes (Foul::kSimulationFailed). Simulator::Decided does not foresee a ball that
+// a later bounce brings back, so a fluke (a moving ball knocking the resting object
+// ball in afterwards) counts as a miss in these runs: the rule errs on the safe side,
+// and tests/planner/shot_sim_test.cc checks that it changes no verdict on a set of
+// random shots.
+//
+// When the object ball leaves its last contact before the pocket (the cue ball's,
+// for a direct pot), its rolling line is measured (its state carried through its
+// slip phase in closed form): its offset from the target pocket's mouth centre, its
+// direction and the speed it will reach the mouth with. That is what the fast
+// estimate of a pot's probability and the aim's correction use.
 #pragma once
 
 #include <span>
@@ -26,16 +32,34 @@
 #include "physics/core/shot.h"
 #include "physics/sim/simulate.h"
 #include "planner/rules.h"
+#include "planner/shot_kind.h"
 
 namespace snooker::planner {
 
 struct ShotSetup {
   const TableState* table = nullptr;  ///< kinds (and seen positions)
   int cue = -1;
+  /// A pot's object ball (the ball to pot); for other kinds the ball aimed at, or -1.
   int object = -1;
   physics::PocketId pocket = physics::PocketId::kBaulkLeft;  ///< the intended pocket
   BallOn on = BallOn::kRed;
+  ShotKind kind = ShotKind::kPot;
+  /// The ball the cue ball must hit first; -1: a pot's object ball, or any ball on
+  /// for the other kinds. A plant names here the ball that pots the object ball.
+  int first = -1;
+  /// A ball on touching the cue ball before the stroke (deemed hit), or -1.
+  int touching_on = -1;
+
+  /// The ball the cue ball must hit first, or -1 for any ball on.
+  int FirstBall() const { return first >= 0 ? first : (kind == ShotKind::kPot ? object : -1); }
 };
+
+/// Balls closer than this to the cue ball (gap, m) are touching it: the cue ball
+/// then plays away from them (the touching-ball rule).
+inline constexpr double kTouchingGap = 1e-4;
+
+/// A ball on touching the cue ball (the lowest index), or -1. `radius`: the balls', m.
+int TouchingBallOn(const TableState& table, int cue, BallOn on, double radius);
 
 struct ObjectLine {
   bool valid = false;
@@ -49,19 +73,27 @@ struct ObjectLine {
 struct ShotOutcome {
   physics::SimStatus status = physics::SimStatus::kAtRest;
   bool stopped_early = false;
+  /// The first ball the cue ball touched (the touching ball on, when there is one).
   int first_hit = -1;
   Foul foul = Foul::kNone;
-  /// The object ball dropped (any pocket), no foul, and the run ended at rest.
+  /// A pot: the first contact legal, the object ball dropped (any pocket), no foul,
+  /// and the run ended at rest. Other kinds: no foul, at rest.
   bool success = false;
   int object_pocket = -1;
   std::vector<int> potted;
   ObjectLine line;
   int events = 0;
+  /// Cushions the cue ball met before its first contact, and the object ball met
+  /// before it dropped (a kick, a double).
+  int cue_cushions_first = 0;
+  int object_cushions = 0;
 };
 
 class ShotSimulator {
  public:
-  enum class Mode { kDecide, kFull };
+  /// kDecide stops a failed shot early; kToRest runs every shot to rest (what a
+  /// miss leaves matters too); kFull also records the events and paths.
+  enum class Mode { kDecide, kToRest, kFull };
 
   ShotSimulator(const physics::TableModel& table, const physics::SimParams& params);
 
@@ -82,6 +114,9 @@ class ShotSimulator {
 
  private:
   void MeasureLine(const ShotSetup& setup, const physics::BallState& object);
+  // The run's loop: steps until the end, or until the shot has failed in kDecide.
+  physics::SimStatus Loop(const ShotSetup& setup, physics::SimStatus status, bool decide);
+  void Judge(const ShotSetup& setup, physics::SimStatus status);
 
   const physics::TableModel& table_;
   physics::SimParams params_;

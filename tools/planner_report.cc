@@ -236,9 +236,10 @@ int Search() {
       ++found;
       const PlannedShot& s = a.shots.front();
       // An independent judge: the same Monte Carlo objective, its own seed.
-      MonteCarloTally t = RunSamples(r.table, BallOn::kRed, s.object_ball, s.pocket, s.shot,
-                                     reference.ContextFor(r), reference.config().search_settings,
-                                     judge, StopControl{}, DeriveSeed(9, k), kJudgeSamples);
+      const ShotSetup setup{&r.table, r.table.cue_index(), s.object_ball, s.pocket, BallOn::kRed};
+      MonteCarloTally t = RunSamples(setup, s.shot, reference.ContextFor(r), reference.config().search_settings,
+                                     judge, StopControl{}, DeriveSeed(9, k), kJudgeSamples,
+                                     reference.config().in_hand_points);
       score += t.mean_score();
       pot += t.success_rate();
     }

@@ -236,9 +236,10 @@ TEST(PlannerTest, PotOnlyAndColoursOn) {
   }
 }
 
-// Why a shot's label (object ball and pocket) differs from what its own events show,
-// or "" when they agree: the cue ball's first contact must be the object ball, the
-// object ball must drop in the named pocket, the cue ball must not drop.
+// Why a shot's label (kind, first ball, object ball and pocket) differs from what its
+// own events show, or "" when they agree: the cue ball's first contact must be the
+// first ball (the object ball but for a plant), a pot's object ball must drop in the
+// named pocket, the cue ball must not drop.
 std::string LabelMismatch(const PlannedShot& s, int cue) {
   int first = -1;
   bool object_in_pocket = false;
@@ -247,7 +248,7 @@ std::string LabelMismatch(const PlannedShot& s, int cue) {
       first = e.ball == cue ? e.other : e.ball;
     }
     if (e.kind == physics::EventKind::kPocket && e.ball == cue) return "the cue ball drops";
-    if (e.kind == physics::EventKind::kPocket && e.ball == s.object_ball) {
+    if (e.kind == physics::EventKind::kPocket && e.ball == s.object_ball && s.kind == ShotKind::kPot) {
       if (e.where != static_cast<int>(s.pocket)) {
         return std::string("the object ball drops in ") + physics::ToString(static_cast<PocketId>(e.where)) +
                ", labelled " + physics::ToString(s.pocket);
@@ -255,7 +256,12 @@ std::string LabelMismatch(const PlannedShot& s, int cue) {
       object_in_pocket = true;
     }
   }
-  if (first != s.object_ball) {
+  if (s.kind != ShotKind::kPot) {
+    // A safety names the ball it plays: the first the cue ball hits.
+    return first == s.object_ball && first == s.first_ball ? "" : "a safety's first ball differs";
+  }
+  if (first != s.first_ball) return "the cue ball first hits ball " + std::to_string(first) + ", labelled first " + std::to_string(s.first_ball);
+  if (s.route != PotRoute::kPlant && first != s.object_ball) {
     return "the cue ball first hits ball " + std::to_string(first) + ", labelled " + std::to_string(s.object_ball);
   }
   return object_in_pocket ? "" : "the object ball does not drop";
