@@ -20,5 +20,6 @@ int RunLoadTest(const std::vector<std::string>& args, std::ostream& out, std::os
 int RunDemo(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int RunPlan(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int RunSelfPlay(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int RunMatch(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 }  // namespace snooker::cli

@@ -16,6 +16,7 @@ commands:
   simulate   simulate a shot on a table until every ball is at rest
   plan       plan the shots that pot a ball on and leave the cue ball well
   selfplay   the planner plays breaks alone: mean break, pot rate, planning time
+  match      two players play whole frames by the rules: frames, points, breaks, fouls
   serve      run the gRPC service (snooker.v1.ShotPlanner)
   loadtest   load-test a server on this machine: throughput, latency, errors
   demo       start the service and use it on built-in examples
@@ -36,6 +37,7 @@ int Run(int argc, char** argv) {
   if (command == "simulate") return RunSimulate(args, std::cout, std::cerr);
   if (command == "plan") return RunPlan(args, std::cout, std::cerr);
   if (command == "selfplay") return RunSelfPlay(args, std::cout, std::cerr);
+  if (command == "match") return RunMatch(args, std::cout, std::cerr);
   if (command == "serve") return RunServe(args, std::cout, std::cerr);
   if (command == "loadtest") return RunLoadTest(args, std::cout, std::cerr);
   if (command == "demo") return RunDemo(args, std::cout, std::cerr);

@@ -149,18 +149,69 @@ const char* ToString(Foul f) {
   return "unknown";
 }
 
-ShotJudgement JudgeShot(const TableState& table, BallOn on, std::optional<BallKind> nominated,
-                        int first_hit, std::span<const int> potted) {
-  ShotJudgement j;
-  // With any colour on, the nominated colour is the ball on for this shot.
-  const BallOn effective = on == BallOn::kAnyColour && nominated && IsColour(*nominated)
-                               ? BallOnFor(*nominated)
-                               : on;
+std::vector<int> TouchingCueBall(const TableState& table, const physics::TableModel& model) {
+  std::vector<int> touching;
+  const int cue = table.cue_index();
+  if (cue < 0) return touching;
+  const physics::Vec2 c = table.balls[static_cast<size_t>(cue)].position;
+  const double reach = 2 * model.ball_radius() + kTouchingGap;
+  for (size_t i = 0; i < table.balls.size(); ++i) {
+    if (static_cast<int>(i) != cue && (table.balls[i].position - c).norm() <= reach) {
+      touching.push_back(static_cast<int>(i));
+    }
+  }
+  return touching;
+}
+
+namespace {
+
+// With any colour on, the nominated colour is the ball on for this shot.
+BallOn EffectiveBallOn(BallOn on, std::optional<BallKind> nominated) {
+  return on == BallOn::kAnyColour && nominated && IsColour(*nominated) ? BallOnFor(*nominated) : on;
+}
+
+// The value of the ball on: a red 1, a colour its value, any colour (none
+// nominated) 0 (the first ball hit then counts).
+int BallOnValue(BallOn on) {
+  switch (on) {
+    case BallOn::kRed: return Value(BallKind::kRed);
+    case BallOn::kAnyColour: return 0;
+    default: return static_cast<int>(on) - static_cast<int>(BallOn::kYellow) + Value(BallKind::kYellow);
+  }
+}
+
+}  // namespace
+
+int FoulPenalty(const TableState& table, BallOn on, std::optional<BallKind> nominated, int first_hit,
+                std::span<const int> potted) {
+  constexpr int kMinimumPenalty = 4;
   const int n = static_cast<int>(table.balls.size());
-  if (first_hit < 0 || first_hit >= n) {
-    j.foul = Foul::kNoBallHit;
-  } else if (!IsLegalTarget(effective, table.balls[static_cast<size_t>(first_hit)].kind)) {
-    j.foul = Foul::kWrongBallFirst;
+  int penalty = std::max(kMinimumPenalty, BallOnValue(EffectiveBallOn(on, nominated)));
+  if (first_hit >= 0 && first_hit < n) {
+    penalty = std::max(penalty, Value(table.balls[static_cast<size_t>(first_hit)].kind));
+  }
+  for (const int i : potted) {
+    if (i >= 0 && i < n) penalty = std::max(penalty, Value(table.balls[static_cast<size_t>(i)].kind));
+  }
+  return penalty;
+}
+
+ShotJudgement JudgeShot(const TableState& table, BallOn on, std::optional<BallKind> nominated,
+                        int first_hit, std::span<const int> potted, std::span<const int> touching) {
+  ShotJudgement j;
+  const BallOn effective = EffectiveBallOn(on, nominated);
+  const int n = static_cast<int>(table.balls.size());
+  auto is_on = [&](int i) {
+    return i >= 0 && i < n && IsLegalTarget(effective, table.balls[static_cast<size_t>(i)].kind);
+  };
+  // A touching ball on counts as hit: playing away from it is a fair first contact.
+  const bool touching_on = std::any_of(touching.begin(), touching.end(), is_on);
+  if (!touching_on) {
+    if (first_hit < 0 || first_hit >= n) {
+      j.foul = Foul::kNoBallHit;
+    } else if (!is_on(first_hit)) {
+      j.foul = Foul::kWrongBallFirst;
+    }
   }
   for (const int i : potted) {
     if (i < 0 || i >= n) continue;
@@ -171,7 +222,10 @@ ShotJudgement JudgeShot(const TableState& table, BallOn on, std::optional<BallKi
       j.foul = Foul::kWrongBallPotted;
     }
   }
-  if (j.foul != Foul::kNone) return j;
+  if (j.foul != Foul::kNone) {
+    j.penalty = FoulPenalty(table, on, nominated, first_hit, potted);
+    return j;
+  }
   for (const int i : potted) {
     if (i < 0 || i >= n) continue;
     const BallKind k = table.balls[static_cast<size_t>(i)].kind;

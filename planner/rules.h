@@ -86,19 +86,41 @@ struct ShotJudgement {
   Foul foul = Foul::kNone;
   /// Legal balls potted (no foul): the visit goes on when this is > 0.
   int legal_pots = 0;
-  /// Points scored by the striker (0 on a foul; the opponent's penalty is not
-  /// modelled, the visit simply ends).
+  /// Points scored by the striker (0 on a foul).
   int points = 0;
+  /// On a foul, the points it gives the opponent (FoulPenalty); 0 otherwise.
+  int penalty = 0;
   /// The kind potted legally (the last one for several reds).
   std::optional<BallKind> potted_kind;
 };
+
+/// Balls whose gap (centre distance less 2R) is at most this count as touching. m.
+inline constexpr double kTouchingGap = 1e-4;
+
+/// The indices of the balls touching the cue ball (gap at most kTouchingGap, balls
+/// of `model`'s radius), ascending; empty when the table has no cue ball.
+std::vector<int> TouchingCueBall(const TableState& table, const physics::TableModel& model);
+
+/// The value of a foul (docs/planning-notes.md §1.4): 4, or the value of the ball
+/// on (the nominated colour when a colour is on and one was nominated), of the first
+/// ball hit, or of any ball potted in the stroke, whichever is highest: 4 to 7.
+/// Arguments as JudgeShot's.
+int FoulPenalty(const TableState& table, BallOn on, std::optional<BallKind> nominated, int first_hit,
+                std::span<const int> potted);
 
 /// Judges a shot. `on` is the ball on; with kAnyColour, `nominated` is the colour
 /// the striker chose (required then, ignored otherwise). `first_hit` is the index
 /// of the first ball the cue ball touched (-1 for none); `potted` lists the indices
 /// of the balls that dropped. `table` is the state before the shot.
+///
+/// `touching` lists the balls that touched the cue ball before the stroke
+/// (TouchingCueBall). When one of them is on, the striker counts as having hit a
+/// ball on (docs/planning-notes.md §1.5): playing away from it is neither "no ball
+/// hit" nor "wrong ball first", whatever the cue ball meets next; potting a ball
+/// not on is still a foul. A touching ball that is not on changes nothing. On a
+/// foul, `penalty` is FoulPenalty's.
 ShotJudgement JudgeShot(const TableState& table, BallOn on, std::optional<BallKind> nominated,
-                        int first_hit, std::span<const int> potted);
+                        int first_hit, std::span<const int> potted, std::span<const int> touching = {});
 
 /// The ball on after a shot that potted `potted_kind` legally while `on` was on,
 /// given the table after the shot (potted balls removed, colours re-spotted):

@@ -1,9 +1,12 @@
-// Tests of snooker's rules (planner/rules.h): values, the ball on, fouls and the
-// score of a shot, and every re-spotting case of WPBSA rule 3.4.
+// Tests of snooker's rules (planner/rules.h): values, the ball on, fouls, their
+// penalties and the score of a shot, the touching ball, and every re-spotting case
+// of WPBSA rule 3.4.
 #include "planner/rules.h"
 
 #include <gtest/gtest.h>
 
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace snooker::planner {
@@ -125,6 +128,100 @@ TEST_F(JudgeTest, TheNominatedColourIsTheBallOn) {
   // A red is never on after a red.
   EXPECT_EQ(JudgeShot(t_, BallOn::kAnyColour, BallKind::kYellow, 1, {}).foul,
             Foul::kWrongBallFirst);
+}
+
+TEST_F(JudgeTest, AFairShotHasNoPenalty) {
+  const std::vector<int> potted = {1};
+  EXPECT_EQ(JudgeShot(t_, BallOn::kRed, std::nullopt, 1, potted).penalty, 0);
+  EXPECT_EQ(JudgeShot(t_, BallOn::kRed, std::nullopt, 1, {}).penalty, 0);
+}
+
+// A foul's value: 4, or the ball on, the ball hit first or a ball potted, whichever
+// is highest. One case per value from 4 to 7 and per source of the value.
+struct PenaltyCase {
+  const char* name;
+  BallOn on;
+  std::optional<BallKind> nominated;
+  int first_hit;  // index into JudgeTest's table: 0 cue, 1-2 red, 3 yellow, 4 black
+  std::vector<int> potted;
+  Foul foul;
+  int penalty;
+};
+
+class PenaltyTest : public JudgeTest, public testing::WithParamInterface<PenaltyCase> {};
+
+TEST_P(PenaltyTest, TheFoulIsWorthTheHighestValueInvolved) {
+  const PenaltyCase& c = GetParam();
+  const ShotJudgement j = JudgeShot(t_, c.on, c.nominated, c.first_hit, c.potted);
+  EXPECT_EQ(j.foul, c.foul);
+  EXPECT_EQ(j.penalty, c.penalty);
+  EXPECT_EQ(j.points, 0);
+  EXPECT_EQ(FoulPenalty(t_, c.on, c.nominated, c.first_hit, c.potted), c.penalty);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Values, PenaltyTest,
+    testing::Values(
+        PenaltyCase{"NoBallHitOnARedIs4", BallOn::kRed, std::nullopt, -1, {}, Foul::kNoBallHit, 4},
+        PenaltyCase{"YellowFirstOnARedIs4", BallOn::kRed, std::nullopt, 3, {}, Foul::kWrongBallFirst, 4},
+        PenaltyCase{"InOffOffARedIs4", BallOn::kRed, std::nullopt, 1, {1, 0}, Foul::kCuePotted, 4},
+        PenaltyCase{"BlackFirstOnARedIs7", BallOn::kRed, std::nullopt, 4, {}, Foul::kWrongBallFirst, 7},
+        PenaltyCase{"BlackPottedOffARedIs7", BallOn::kRed, std::nullopt, 1, {4}, Foul::kWrongBallPotted, 7},
+        PenaltyCase{"NominatedBlackMissedIs7", BallOn::kAnyColour, BallKind::kBlack, -1, {}, Foul::kNoBallHit, 7},
+        PenaltyCase{"NominatedYellowHittingBlackIs7", BallOn::kAnyColour, BallKind::kYellow, 4, {},
+                    Foul::kWrongBallFirst, 7},
+        PenaltyCase{"BlackOnMissedIs7", BallOn::kBlack, std::nullopt, -1, {}, Foul::kNoBallHit, 7},
+        PenaltyCase{"BlueOnMissedIs5", BallOn::kBlue, std::nullopt, -1, {}, Foul::kNoBallHit, 5},
+        PenaltyCase{"PinkOnRedHitIs6", BallOn::kPink, std::nullopt, 1, {}, Foul::kWrongBallFirst, 6},
+        PenaltyCase{"YellowOnInOffIs4", BallOn::kYellow, std::nullopt, 3, {3, 0}, Foul::kCuePotted, 4}),
+    [](const testing::TestParamInfo<PenaltyCase>& param) { return std::string(param.param.name); });
+
+TEST(TouchingTest, BallsWithinTheTouchingGapTouchTheCueBall) {
+  // 0 cue; 1 red just touching; 2 red half kTouchingGap away (touching); 3 black
+  // twice kTouchingGap away (not); 4 yellow far off.
+  const Vec2 cue(0.8, 1.5);
+  TableState t;
+  t.balls = {{BallKind::kCue, cue},
+             {BallKind::kRed, cue + Vec2(2 * R(), 0)},
+             {BallKind::kRed, cue + Vec2(0, 2 * R() + 0.5 * kTouchingGap)},
+             {BallKind::kBlack, cue + Vec2(0, -(2 * R() + 2 * kTouchingGap))},
+             {BallKind::kYellow, Spot(BallKind::kYellow)}};
+  EXPECT_EQ(TouchingCueBall(t, Table()), (std::vector<int>{1, 2}));
+  t.balls.erase(t.balls.begin());
+  EXPECT_TRUE(TouchingCueBall(t, Table()).empty());  // no cue ball
+}
+
+TEST_F(JudgeTest, PlayingAwayFromATouchingBallOnIsFair) {
+  const std::vector<int> red = {1};
+  // Touching a red with a red on: hitting nothing, or the black, is no foul.
+  EXPECT_EQ(JudgeShot(t_, BallOn::kRed, std::nullopt, -1, {}, red).foul, Foul::kNone);
+  const ShotJudgement black_first = JudgeShot(t_, BallOn::kRed, std::nullopt, 4, {}, red);
+  EXPECT_EQ(black_first.foul, Foul::kNone);
+  EXPECT_EQ(black_first.penalty, 0);
+  // Without the touching ball the same strokes foul.
+  EXPECT_EQ(JudgeShot(t_, BallOn::kRed, std::nullopt, -1, {}).foul, Foul::kNoBallHit);
+  EXPECT_EQ(JudgeShot(t_, BallOn::kRed, std::nullopt, 4, {}).foul, Foul::kWrongBallFirst);
+  // Potting a ball not on is still a foul, and so is an in-off.
+  const std::vector<int> black = {4};
+  const ShotJudgement potted_black = JudgeShot(t_, BallOn::kRed, std::nullopt, -1, black, red);
+  EXPECT_EQ(potted_black.foul, Foul::kWrongBallPotted);
+  EXPECT_EQ(potted_black.penalty, 7);
+  const std::vector<int> in_off = {0};
+  EXPECT_EQ(JudgeShot(t_, BallOn::kRed, std::nullopt, -1, in_off, red).foul, Foul::kCuePotted);
+  // A red potted after playing away scores.
+  const std::vector<int> other_red = {2};
+  EXPECT_EQ(JudgeShot(t_, BallOn::kRed, std::nullopt, 2, other_red, red).points, 1);
+}
+
+TEST_F(JudgeTest, ATouchingBallNotOnChangesNothing) {
+  const std::vector<int> black = {4};
+  EXPECT_EQ(JudgeShot(t_, BallOn::kRed, std::nullopt, -1, {}, black).foul, Foul::kNoBallHit);
+  EXPECT_EQ(JudgeShot(t_, BallOn::kRed, std::nullopt, 3, {}, black).foul, Foul::kWrongBallFirst);
+  EXPECT_EQ(JudgeShot(t_, BallOn::kRed, std::nullopt, 1, {}, black).foul, Foul::kNone);
+  // With a colour on, the touching colour counts only when it is the nominated one.
+  const std::vector<int> yellow = {3};
+  EXPECT_EQ(JudgeShot(t_, BallOn::kAnyColour, BallKind::kBlack, -1, {}, yellow).foul, Foul::kNoBallHit);
+  EXPECT_EQ(JudgeShot(t_, BallOn::kAnyColour, BallKind::kYellow, -1, {}, yellow).foul, Foul::kNone);
 }
 
 // Re-spotting (WPBSA 3.4), one test per case.

@@ -1,0 +1,239 @@
+// snooker match: two players, each a way of asking the planner, play whole frames
+// of snooker by the rules (planner/match.h), and the frames, points, breaks, fouls,
+// safeties, stalls and planning times of each are reported.
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "planner/match.h"
+
+namespace snooker::cli {
+namespace {
+
+constexpr const char* kHelp = R"(usage: snooker match --frames N --seed S [--player-a NAME] [--player-b NAME]
+                     [--budget-ms MS] [--noise-heading-deg X] [--noise-speed X]
+                     [--noise-spin X] [--noise-position-mm X] [--cue-clearance-m X]
+                     [--max-simulations N] [--samples N] [--threads N]
+                     [--max-shots N] [--progress] [--json]
+
+Two players play whole frames of snooker by the rules: the standard start (15 reds,
+the colours on their spots, the cue ball in hand for the break-off; player A breaks
+off in the first, third, ... frame), scores and penalties (4 to 7), the touching-ball
+rule, ball in hand after an in-off, re-spotting, the colours in order once the reds
+are gone, and a re-spotted black when a frame ends level. Each turn the striker's
+planner sees the table as vision would (every ball moved by the position noise); its
+first shot is played on the true table with the execution noise added and simulated
+at full fidelity. A turn with no shot is a stall: the player then plays a firm
+straight shot at the nearest ball on, one with a clear path if there is one. Not
+applied: the free ball and the miss rule; a ball cannot leave the simulated table.
+
+Players:
+  default       the planner with every shot kind, pot route and the lookahead
+  direct-pots   direct pots only, no lookahead (no pot: the straight shot above)
+  one-ply       the default without the lookahead
+
+  --frames N       frames to play (1 to 100000)
+  --seed S         seed of the frames, the noise and the planners
+  --player-a NAME  player A (default: default)
+  --player-b NAME  player B (default: direct-pots)
+  --budget-ms MS   planning budget per shot for both players, ms (default 80)
+  --json           print one JSON object: {"frames", "framesWonA", "framesWonB",
+                   "pointsA", "pointsB", "meanBreakA", "meanBreakB", "highestBreak",
+                   "centuries", "foulsA", "foulsB", "safetiesA", "safetiesB", "stalls",
+                   "shots", "planMsP50", "planMsP99"} and more: the players and
+                   settings, "framesCapped" (frames stopped at the shot cap),
+                   "framesUndecided" (of those, level), "blackRespots",
+                   "simulationFailures", and per player (suffix A or B) highestBreak,
+                   centuries, penaltyPoints (from the opponent's fouls), shots, stalls,
+                   planMsP50, planMsP99, safetyOutlook (null: not measured)
+Noise (standard deviations; the same options as snooker selfplay):
+  --noise-heading-deg X   cue heading, degrees (default 0.02)
+  --noise-speed X         cue speed, fraction of the speed (default 0.01)
+  --noise-spin X          topspin and sidespin, rad/s (default 2)
+  --noise-position-mm X   vision, each ball centre per axis, mm (default 0.2)
+Robot:
+  --cue-clearance-m X     clear bed the level cue needs behind the cue ball, m (0.10)
+Planner:
+  --max-simulations N    per-plan cap on simulations (default: from the budget); set,
+                         the whole match is a function of the seed
+  --samples N            Monte Carlo samples per ranked shot (default 48)
+  --threads N            planner threads (default 2)
+Match:
+  --max-shots N          strokes after which a frame is stopped (1 to 200, default 200)
+  --progress             print each frame's score on stderr as it ends
+  --help                 this text
+)";
+
+struct Parsed {
+  planner::MatchOptions options;
+  double budget_ms = 80;
+};
+
+// The options from the flags; an error message naming the flag and value otherwise.
+std::string Parse(Args& args, Parsed* p) {
+  planner::MatchOptions& o = p->options;
+  const auto frames = args.Integer("frames", std::nullopt, 1, 100'000);
+  const auto seed = args.Integer("seed", std::nullopt, 0, std::numeric_limits<long>::max());
+  const auto player_a = args.Text("player-a", "default");
+  const auto player_b = args.Text("player-b", "direct-pots");
+  const auto budget = args.Number("budget-ms", 80.0);
+  const auto heading = args.Number("noise-heading-deg", physics::RadToDeg(o.noise.heading));
+  const auto speed = args.Number("noise-speed", o.noise.speed_fraction);
+  const auto spin = args.Number("noise-spin", o.noise.topspin);
+  const auto position = args.Number("noise-position-mm", o.noise.position * 1e3);
+  const auto clearance = args.Number("cue-clearance-m", o.limits.cue.length);
+  const auto sims = args.Integer("max-simulations", 0, 0, 100'000'000);
+  const auto samples = args.Integer("samples", o.monte_carlo_samples, 0, 100'000);
+  const auto threads = args.Integer("threads", o.threads, 1, 64);
+  const auto shots = args.Integer("max-shots", planner::kFrameShotCap, 1, planner::kFrameShotCap);
+  if (!args.error().empty()) return args.error();
+  const auto a = planner::ParsePlayerKind(*player_a);
+  const auto b = planner::ParsePlayerKind(*player_b);
+  const char* players = "(one of default, direct-pots, one-ply)";
+  if (!a) return "--player-a '" + *player_a + "' is not a player " + players;
+  if (!b) return "--player-b '" + *player_b + "' is not a player " + players;
+  auto range = [](const char* flag, double x, double lo, double hi) -> std::string {
+    if (x >= lo && x <= hi) return "";
+    std::ostringstream s;
+    s << "--" << flag << " " << x << " is out of range [" << lo << ", " << hi << "]";
+    return s.str();
+  };
+  for (const std::string& e :
+       {range("budget-ms", *budget, 1, 60'000), range("noise-heading-deg", *heading, 0, 10),
+        range("noise-speed", *speed, 0, 0.5), range("noise-spin", *spin, 0, 100),
+        range("noise-position-mm", *position, 0, 50), range("cue-clearance-m", *clearance, 0, 2)}) {
+    if (!e.empty()) return e;
+  }
+  o.frames = static_cast<int>(*frames);
+  o.seed = static_cast<std::uint64_t>(*seed);
+  o.players = {*a, *b};
+  p->budget_ms = *budget;
+  o.time_budget = *budget * 1e-3;
+  o.noise.heading = physics::DegToRad(*heading);
+  o.noise.speed_fraction = *speed;
+  o.noise.topspin = o.noise.sidespin = *spin;
+  o.noise.position = *position * 1e-3;
+  o.limits.cue.length = *clearance;
+  o.max_simulations = *sims;
+  o.monte_carlo_samples = static_cast<int>(*samples);
+  o.threads = static_cast<int>(*threads);
+  o.max_shots_per_frame = static_cast<int>(*shots);
+  return planner::MatchOptionsError(o);
+}
+
+// A JSON number, or null when it is not finite.
+std::string Number(double x) {
+  if (!std::isfinite(x)) return "null";
+  std::ostringstream s;
+  s.precision(10);
+  s << x;
+  return s.str();
+}
+
+void PrintJson(const Parsed& p, const planner::MatchReport& r, std::ostream& out) {
+  const planner::MatchOptions& o = p.options;
+  const planner::PlayerStats& a = r.players[0];
+  const planner::PlayerStats& b = r.players[1];
+  std::ostringstream j;
+  j << "{\"frames\": " << r.frames << ", \"framesWonA\": " << a.frames_won << ", \"framesWonB\": " << b.frames_won
+    << ", \"pointsA\": " << a.points << ", \"pointsB\": " << b.points << ", \"meanBreakA\": " << Number(a.mean_break)
+    << ", \"meanBreakB\": " << Number(b.mean_break) << ", \"highestBreak\": " << r.highest_break
+    << ", \"centuries\": " << r.centuries << ", \"foulsA\": " << a.fouls << ", \"foulsB\": " << b.fouls
+    << ", \"safetiesA\": " << a.safeties << ", \"safetiesB\": " << b.safeties << ", \"stalls\": " << r.stalls
+    << ", \"shots\": " << r.shots << ", \"planMsP50\": " << Number(r.plan_ms_p50)
+    << ", \"planMsP99\": " << Number(r.plan_ms_p99);
+  j << ", \"playerA\": \"" << planner::ToString(a.kind) << "\", \"playerB\": \"" << planner::ToString(b.kind)
+    << "\", \"seed\": " << o.seed << ", \"budgetMs\": " << Number(p.budget_ms)
+    << ", \"maxSimulations\": " << o.max_simulations
+    << ", \"noiseHeadingDeg\": " << Number(physics::RadToDeg(o.noise.heading))
+    << ", \"noiseSpeed\": " << Number(o.noise.speed_fraction) << ", \"noiseSpin\": " << Number(o.noise.topspin)
+    << ", \"noisePositionMm\": " << Number(o.noise.position * 1e3) << ", \"maxShots\": " << o.max_shots_per_frame
+    << ", \"framesCapped\": " << r.frames_capped << ", \"framesUndecided\": " << r.frames_undecided
+    << ", \"blackRespots\": " << r.black_respots << ", \"simulationFailures\": " << r.simulation_failures;
+  for (size_t i = 0; i < 2; ++i) {
+    const planner::PlayerStats& s = r.players[i];
+    const char* x = i == 0 ? "A" : "B";
+    j << ", \"highestBreak" << x << "\": " << s.highest_break << ", \"centuries" << x << "\": " << s.centuries
+      << ", \"penaltyPoints" << x << "\": " << s.penalty_points << ", \"shots" << x << "\": " << s.shots
+      << ", \"stalls" << x << "\": " << s.stalls << ", \"planMsP50" << x << "\": " << Number(s.plan_ms_p50)
+      << ", \"planMsP99" << x << "\": " << Number(s.plan_ms_p99) << ", \"safetyOutlook" << x
+      << "\": " << Number(s.mean_safety_outlook);
+  }
+  j << "}\n";
+  out << j.str();
+}
+
+void PrintText(const planner::MatchReport& r, std::ostream& out) {
+  const planner::PlayerStats& a = r.players[0];
+  const planner::PlayerStats& b = r.players[1];
+  auto row = [&](const char* what, const auto& x, const auto& y) {
+    out << "  " << std::left << std::setw(26) << what << std::right << std::setw(10) << x << std::setw(10) << y
+        << "\n";
+  };
+  out << std::fixed << std::setprecision(1) << r.frames << " frames, " << r.shots << " strokes: A "
+      << planner::ToString(a.kind) << " against B " << planner::ToString(b.kind) << "\n";
+  row("", "A", "B");
+  row("frames won", a.frames_won, b.frames_won);
+  row("points", a.points, b.points);
+  row("  of them from penalties", a.penalty_points, b.penalty_points);
+  row("mean break", a.mean_break, b.mean_break);
+  row("highest break", a.highest_break, b.highest_break);
+  row("centuries", a.centuries, b.centuries);
+  row("fouls", a.fouls, b.fouls);
+  row("safeties", a.safeties, b.safeties);
+  row("strokes", a.shots, b.shots);
+  row("stalls", a.stalls, b.stalls);
+  row("planning ms, median", a.plan_ms_p50, b.plan_ms_p50);
+  row("planning ms, 99th pct", a.plan_ms_p99, b.plan_ms_p99);
+  if (std::isfinite(a.mean_safety_outlook) || std::isfinite(b.mean_safety_outlook)) {
+    row("opponent's pot after safety", a.mean_safety_outlook, b.mean_safety_outlook);
+  }
+  out << "frames stopped at the shot cap: " << r.frames_capped << " (" << r.frames_undecided
+      << " level); re-spotted blacks: " << r.black_respots << "; strokes not simulated to rest: "
+      << r.simulation_failures << "\n";
+  std::map<std::string, int> ends;
+  for (const planner::FrameSummary& f : r.records) ++ends[planner::ToString(f.end)];
+  out << "frames ended by:";
+  for (const auto& [why, n] : ends) out << " " << why << " " << n << ";";
+  out << "\n";
+}
+
+}  // namespace
+
+int RunMatch(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
+  Args args(argv,
+            {"frames", "seed", "player-a", "player-b", "budget-ms", "noise-heading-deg", "noise-speed", "noise-spin",
+             "noise-position-mm", "cue-clearance-m", "max-simulations", "samples", "threads", "max-shots"},
+            {"json", "help", "progress"});
+  if (args.error().empty() && args.Switch("help")) {
+    out << kHelp;
+    return kExitOk;
+  }
+  Parsed p;
+  if (const std::string e = Parse(args, &p); !e.empty()) {
+    err << "snooker match: " << e << "\n(see snooker match --help)\n";
+    return kExitUsage;
+  }
+  std::function<void(int, const planner::FrameSummary&)> progress;
+  if (args.Switch("progress")) {
+    progress = [&err](int f, const planner::FrameSummary& s) {
+      err << "frame " << f + 1 << ": " << s.score[0] << "-" << s.score[1] << " ("
+          << (s.winner < 0 ? "level" : (s.winner == 0 ? "A" : "B")) << "), " << s.shots << " strokes, "
+          << s.stalls << " stalls, " << s.fouls << " fouls, " << planner::ToString(s.end) << "\n";
+    };
+  }
+  const planner::MatchReport r = planner::RunMatch(planner::Planner::Default(), p.options, progress);
+  if (args.Switch("json")) {
+    PrintJson(p, r, out);
+  } else {
+    PrintText(r, out);
+  }
+  return kExitOk;
+}
+
+}  // namespace snooker::cli

@@ -1,0 +1,128 @@
+// `snooker match` as a user (or scripts/frame-play) runs it: the JSON field names are a
+// contract, the same seed gives the same match, and bad flags name the value.
+#include <google/protobuf/struct.pb.h>
+#include <google/protobuf/util/json_util.h>
+#include <google/protobuf/util/message_differencer.h>
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <set>
+#include <string>
+
+#include "tests/support/cli_support.h"
+
+namespace snooker {
+namespace {
+
+using google::protobuf::Struct;
+using cli_support::RunCli;
+using cli_support::RunResult;
+
+std::set<std::string> Keys(const Struct& s) {
+  std::set<std::string> k;
+  for (const auto& [name, value] : s.fields()) k.insert(name);
+  return k;
+}
+
+// Two frames of at most 8 strokes, plans capped in simulations (not in time).
+constexpr const char* kShortMatch =
+    "match --frames 2 --seed 11 --json --max-simulations 60 --samples 8 --budget-ms 30000 --max-shots 8";
+
+TEST(CliMatchTest, JsonHasTheContractedNames) {
+  const RunResult r = RunCli(kShortMatch);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  Struct json;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &json).ok()) << r.out;
+  const std::set<std::string> contract = {"frames",     "framesWonA", "framesWonB", "pointsA",   "pointsB",
+                                          "meanBreakA", "meanBreakB", "highestBreak", "centuries", "foulsA",
+                                          "foulsB",     "safetiesA",  "safetiesB",  "stalls",    "shots",
+                                          "planMsP50",  "planMsP99"};
+  const std::set<std::string> more = {
+      "playerA",      "playerB",       "seed",           "budgetMs",          "maxSimulations",
+      "noiseHeadingDeg", "noiseSpeed", "noiseSpin",      "noisePositionMm",   "maxShots",
+      "framesCapped", "framesUndecided", "blackRespots", "simulationFailures", "highestBreakA",
+      "highestBreakB", "centuriesA",   "centuriesB",     "penaltyPointsA",    "penaltyPointsB",
+      "shotsA",       "shotsB",        "stallsA",        "stallsB",           "planMsP50A",
+      "planMsP50B",   "planMsP99A",    "planMsP99B",     "safetyOutlookA",    "safetyOutlookB"};
+  std::set<std::string> all = contract;
+  all.insert(more.begin(), more.end());
+  EXPECT_EQ(Keys(json), all);
+  const auto& f = json.fields();
+  EXPECT_EQ(f.at("frames").number_value(), 2);
+  EXPECT_EQ(f.at("playerA").string_value(), "default");
+  EXPECT_EQ(f.at("playerB").string_value(), "direct-pots");
+  EXPECT_LE(f.at("framesWonA").number_value() + f.at("framesWonB").number_value(), 2);
+  EXPECT_GT(f.at("shots").number_value(), 0);
+  EXPECT_LE(f.at("shots").number_value(), 16);
+  EXPECT_EQ(f.at("shotsA").number_value() + f.at("shotsB").number_value(), f.at("shots").number_value());
+  EXPECT_EQ(f.at("stallsA").number_value() + f.at("stallsB").number_value(), f.at("stalls").number_value());
+  EXPECT_LE(f.at("planMsP50").number_value(), f.at("planMsP99").number_value());
+  // No outlook is measured from the command line yet.
+  EXPECT_TRUE(f.at("safetyOutlookA").has_null_value());
+}
+
+TEST(CliMatchTest, TheSameSeedPlaysTheSameMatch) {
+  const RunResult a = RunCli(kShortMatch);
+  const RunResult b = RunCli(kShortMatch);
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  Struct ja, jb;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(a.out, &ja).ok()) << a.out;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(b.out, &jb).ok()) << b.out;
+  // Everything but the planning times (the clock's) is equal.
+  for (Struct* j : {&ja, &jb}) {
+    for (const char* timing : {"planMsP50", "planMsP99", "planMsP50A", "planMsP50B", "planMsP99A", "planMsP99B"}) {
+      j->mutable_fields()->erase(timing);
+    }
+  }
+  EXPECT_TRUE(google::protobuf::util::MessageDifferencer::Equals(ja, jb)) << a.out << b.out;
+  EXPECT_GT(ja.fields().at("shots").number_value(), 0);
+}
+
+TEST(CliMatchTest, ReadableOutputNamesThePlayers) {
+  const RunResult r = RunCli(
+      "match --frames 1 --seed 3 --player-a one-ply --player-b default --max-simulations 40 --samples 8 "
+      "--budget-ms 30000 --max-shots 3");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("A one-ply against B default"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("frames won"), std::string::npos) << r.out;
+}
+
+struct BadFlag {
+  const char* args;
+  const char* message;
+};
+
+class CliMatchBadFlagTest : public testing::TestWithParam<BadFlag> {};
+
+TEST_P(CliMatchBadFlagTest, NamesTheValue) {
+  const RunResult r = RunCli(GetParam().args);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(GetParam().message), std::string::npos) << r.err;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Flags, CliMatchBadFlagTest,
+    testing::Values(BadFlag{"match --seed 1", "--frames is required"},
+                    BadFlag{"match --frames 0 --seed 1", "--frames 0 is out of range"},
+                    BadFlag{"match --frames 1 --seed 1 --player-a grandmaster", "--player-a 'grandmaster' is not a player"},
+                    BadFlag{"match --frames 1 --seed 1 --player-b ''", "--player-b '' is not a player"},
+                    BadFlag{"match --frames 1 --seed 1 --noise-speed 2", "--noise-speed 2 is out of range"},
+                    BadFlag{"match --frames 1 --seed 1 --budget-ms 0", "--budget-ms 0 is out of range"},
+                    BadFlag{"match --frames 1 --seed 1 --max-shots 201", "--max-shots 201 is out of range"},
+                    BadFlag{"match --frames 1 --seed 1 --colour pink", "unknown option --colour"}),
+    [](const testing::TestParamInfo<BadFlag>& param) {
+      std::string name;
+      for (const char c : std::string(param.param.args).substr(6)) {
+        if (std::isalnum(static_cast<unsigned char>(c))) {
+          name += c;
+        } else if (!name.empty() && name.back() != '_') {
+          name += '_';
+        }
+      }
+      while (!name.empty() && name.back() == '_') name.pop_back();
+      return name;
+    });
+
+}  // namespace
+}  // namespace snooker

@@ -1,0 +1,207 @@
+// Tests of the match (planner/match.h): the players by name and what they ask the
+// planner for, the fallback stroke of a stall, bad options named, and a short match
+// that is consistent and a function of its seed.
+#include "planner/match.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "planner/geometry.h"
+
+namespace snooker::planner {
+namespace {
+
+using physics::Vec2;
+
+const physics::TableModel& Table() { return physics::DefaultTable(); }
+double R() { return Table().ball_radius(); }
+
+TEST(MatchTest, PlayersByName) {
+  for (int k = 0; k < kPlayerKindCount; ++k) {
+    const auto kind = static_cast<PlayerKind>(k);
+    EXPECT_EQ(ParsePlayerKind(ToString(kind)), kind);
+  }
+  EXPECT_EQ(ParsePlayerKind("Default"), std::nullopt);
+  EXPECT_EQ(ParsePlayerKind(""), std::nullopt);
+}
+
+TEST(MatchTest, EachPlayerAsksThePlannerForItsOwnShots) {
+  PlanRequest r;
+  ConfigureRequest(PlayerKind::kDirectPots, &r);
+  EXPECT_EQ(r.kinds, ShotKinds::Of(ShotKind::kPot));
+  EXPECT_EQ(r.routes, PotRoutes::Of(PotRoute::kDirect));
+  EXPECT_FALSE(r.lookahead);
+  ConfigureRequest(PlayerKind::kOnePly, &r);
+  EXPECT_EQ(r.kinds, ShotKinds{});
+  EXPECT_EQ(r.routes, PotRoutes{});
+  EXPECT_FALSE(r.lookahead);
+  ConfigureRequest(PlayerKind::kDefault, &r);
+  EXPECT_TRUE(r.kinds.Has(ShotKind::kSafety));
+  EXPECT_TRUE(r.routes.Has(PotRoute::kPlant));
+  EXPECT_TRUE(r.lookahead);
+}
+
+TEST(MatchTest, BadOptionsAreNamed) {
+  MatchOptions o;
+  EXPECT_EQ(MatchOptionsError(o), "");
+  o.frames = 0;
+  o.max_shots_per_frame = 201;
+  o.time_budget = -1;
+  const std::string e = MatchOptionsError(o);
+  EXPECT_NE(e.find("frames = 0"), std::string::npos) << e;
+  EXPECT_NE(e.find("max_shots_per_frame = 201"), std::string::npos) << e;
+  EXPECT_NE(e.find("time_budget"), std::string::npos) << e;
+  EXPECT_THROW(RunMatch(Planner::Default(), o), std::invalid_argument);
+}
+
+TEST(FallbackTest, AimsAtTheNearestBallOnWithAClearPath) {
+  // Red 1 is nearest but the black stands in the way; red 2 is clear. Then the
+  // yellow stands in red 2's way too.
+  TableState t;
+  t.balls = {{BallKind::kCue, Vec2(0.9, 1.0)},
+             {BallKind::kRed, Vec2(0.9, 1.3)},
+             {BallKind::kBlack, Vec2(0.9, 1.15)},
+             {BallKind::kRed, Vec2(1.3, 1.1)}};
+  RobotLimits limits;
+  FallbackShot s = NearestBallOnShot(t, false, BallOn::kRed, limits, Table());
+  EXPECT_EQ(s.target, 3);
+  EXPECT_EQ(s.first_ball, 3);
+  EXPECT_TRUE(s.clear);
+  EXPECT_FALSE(s.cue_start);
+  EXPECT_NEAR(s.shot.heading, Direction(Vec2(0.4, 0.1)), 1e-12);
+  EXPECT_EQ(s.shot.speed, kFallbackSpeed);
+  EXPECT_EQ(s.shot.topspin, 0);
+  EXPECT_EQ(s.shot.sidespin, 0);
+  // Red 2 blocked too (by a yellow): the nearest red, though not clear.
+  t.balls.push_back({BallKind::kYellow, Vec2(1.1, 1.05)});
+  s = NearestBallOnShot(t, false, BallOn::kRed, limits, Table());
+  EXPECT_EQ(s.target, 1);
+  EXPECT_EQ(s.first_ball, 2);  // the black
+  EXPECT_FALSE(s.clear);
+  // The robot's speed limits hold.
+  limits.max_speed = 1.0;
+  EXPECT_EQ(NearestBallOnShot(t, false, BallOn::kRed, limits, Table()).shot.speed, 1.0);
+}
+
+TEST(FallbackTest, WithTheCueBallInHandItPlacesItInTheD) {
+  const FrameState f = StartFrame(1, 0);
+  const FallbackShot s = NearestBallOnShot(f.table, true, BallOn::kRed, RobotLimits{}, Table());
+  ASSERT_TRUE(s.cue_start);
+  EXPECT_EQ(CuePlacementError(f.table, *s.cue_start, Table()), "");
+  ASSERT_GE(s.target, 0);
+  ASSERT_LT(s.target, static_cast<int>(f.table.balls.size()));
+  EXPECT_EQ(f.table.balls[static_cast<size_t>(s.target)].kind, BallKind::kRed);
+  // From the D no red of the triangle is free of its neighbours, but a red in front
+  // of the one aimed at is met first: the shot is a fair hit.
+  EXPECT_TRUE(s.clear);
+  EXPECT_NE(s.first_ball, s.target);
+  ASSERT_GE(s.first_ball, 0);
+  ASSERT_LT(s.first_ball, static_cast<int>(f.table.balls.size()));
+  EXPECT_EQ(f.table.balls[static_cast<size_t>(s.first_ball)].kind, BallKind::kRed);
+  // The shot goes from the placement at the target.
+  const Vec2 to = f.table.balls[static_cast<size_t>(s.target)].position - *s.cue_start;
+  EXPECT_NEAR(s.shot.heading, Direction(to), 1e-12);
+}
+
+TEST(FallbackTest, PlaysAwayFromATouchingBallOn) {
+  // Only the black is on, and it touches the cue ball.
+  TableState t;
+  t.balls = {{BallKind::kCue, Vec2(0.9, 2.0)}, {BallKind::kBlack, Vec2(0.9, 2.0 + 2 * R())}};
+  const FallbackShot s = NearestBallOnShot(t, false, BallOn::kBlack, RobotLimits{}, Table());
+  EXPECT_EQ(s.target, -1);
+  EXPECT_NEAR(s.shot.heading, -physics::kPi / 2, 1e-12);
+}
+
+MatchOptions ShortMatch() {
+  MatchOptions o;
+  o.frames = 2;
+  o.seed = 7;
+  o.players = {PlayerKind::kDefault, PlayerKind::kDirectPots};
+  o.time_budget = 30;  // the simulation cap, not the clock, ends each plan
+  o.max_simulations = 60;
+  o.monte_carlo_samples = 8;
+  o.max_shots_per_frame = 10;
+  return o;
+}
+
+TEST(MatchTest, AShortMatchIsConsistent) {
+  MatchOptions o = ShortMatch();
+  int outlooks = 0;
+  o.outlook = [&outlooks](const TableState&, bool, BallOn) {
+    ++outlooks;
+    return 0.25;
+  };
+  int frames_seen = 0;
+  const MatchReport r = RunMatch(Planner::Default(), o, [&](int frame, const FrameSummary&) {
+    EXPECT_EQ(frame, frames_seen);
+    ++frames_seen;
+  });
+  EXPECT_EQ(frames_seen, 2);
+  ASSERT_EQ(r.frames, 2);
+  ASSERT_EQ(r.records.size(), 2u);
+  EXPECT_EQ(r.records[0].breaker, 0);
+  EXPECT_EQ(r.records[1].breaker, 1);
+  int shots = 0, stalls = 0, points_a = 0, points_b = 0, decided = 0;
+  for (const FrameSummary& f : r.records) {
+    EXPECT_GT(f.shots, 0);
+    EXPECT_LE(f.shots, o.max_shots_per_frame);
+    EXPECT_NE(f.end, FrameEnd::kPlaying);
+    shots += f.shots;
+    stalls += f.stalls;
+    points_a += f.score[0];
+    points_b += f.score[1];
+    if (f.winner >= 0) {
+      ++decided;
+      EXPECT_GT(f.score[static_cast<size_t>(f.winner)], f.score[static_cast<size_t>(1 - f.winner)]);
+    }
+  }
+  EXPECT_EQ(r.shots, shots);
+  EXPECT_EQ(r.stalls, stalls);
+  EXPECT_EQ(r.players[0].shots + r.players[1].shots, shots);
+  EXPECT_EQ(r.players[0].stalls + r.players[1].stalls, stalls);
+  EXPECT_EQ(r.players[0].points, points_a);
+  EXPECT_EQ(r.players[1].points, points_b);
+  EXPECT_EQ(r.players[0].frames_won + r.players[1].frames_won, decided);
+  EXPECT_EQ(decided + r.frames_undecided, 2);
+  EXPECT_LE(r.frames_undecided, r.frames_capped);
+  for (const PlayerStats& p : r.players) {
+    EXPECT_EQ(static_cast<int>(p.plan_ms.size()), p.shots);
+    EXPECT_LE(p.plan_ms_p50, p.plan_ms_p99);
+    EXPECT_LE(p.penalty_points, p.points);
+    // A player's points are its breaks and the opponent's penalties.
+    EXPECT_EQ(std::accumulate(p.breaks.begin(), p.breaks.end(), 0) + p.penalty_points, p.points);
+    EXPECT_LE(static_cast<int>(p.safety_outlook.size()), p.safeties);
+    for (const double v : p.safety_outlook) EXPECT_EQ(v, 0.25);
+  }
+  EXPECT_EQ(r.players[0].kind, PlayerKind::kDefault);
+  EXPECT_EQ(r.players[1].kind, PlayerKind::kDirectPots);
+  EXPECT_EQ(outlooks, static_cast<int>(r.players[0].safety_outlook.size() + r.players[1].safety_outlook.size()));
+}
+
+TEST(MatchTest, AMatchIsAFunctionOfItsSeed) {
+  const MatchOptions o = ShortMatch();
+  const MatchReport a = RunMatch(Planner::Default(), o);
+  const MatchReport b = RunMatch(Planner::Default(), o);
+  ASSERT_EQ(a.records.size(), b.records.size());
+  for (size_t i = 0; i < a.records.size(); ++i) {
+    EXPECT_EQ(a.records[i].score, b.records[i].score);
+    EXPECT_EQ(a.records[i].shots, b.records[i].shots);
+    EXPECT_EQ(a.records[i].stalls, b.records[i].stalls);
+    EXPECT_EQ(a.records[i].fouls, b.records[i].fouls);
+    EXPECT_EQ(a.records[i].end, b.records[i].end);
+  }
+  for (size_t p = 0; p < 2; ++p) {
+    EXPECT_EQ(a.players[p].breaks, b.players[p].breaks);
+    EXPECT_EQ(a.players[p].fouls, b.players[p].fouls);
+    EXPECT_EQ(a.players[p].safeties, b.players[p].safeties);
+    EXPECT_EQ(a.players[p].penalty_points, b.players[p].penalty_points);
+  }
+  EXPECT_EQ(a.simulation_failures, b.simulation_failures);
+}
+
+}  // namespace
+}  // namespace snooker::planner
