@@ -106,13 +106,6 @@ void Refine(const TableState& table, PlacedCandidate* best, const PotContext& ct
 
 }  // namespace
 
-bool InTheD(const Vec2& p, const physics::TableModel& table) {
-  const Vec2 d = p - DCentre(table);
-  const double c = table.cushion_contact_distance();
-  return d.y() <= 0 && d.norm() <= table.spec().d_radius && p.y() >= c && p.x() >= c &&
-         p.x() <= table.spec().width - c;
-}
-
 TableState WithCueBall(const TableState& table, const Vec2& p) {
   TableState out = table;
   out.balls.push_back({BallKind::kCue, p});

@@ -20,12 +20,9 @@
 #include <vector>
 
 #include "planner/candidates.h"
+#include "planner/frame.h"
 
 namespace snooker::planner {
-
-/// True when `p` lies in the D (on or inside the semicircle of radius d_radius
-/// centred on the brown spot, behind the baulk line), on the bed. Table frame, m.
-bool InTheD(const physics::Vec2& p, const physics::TableModel& table);
 
 /// `table` (no cue ball) with a cue ball appended at `p`.
 TableState WithCueBall(const TableState& table, const physics::Vec2& p);

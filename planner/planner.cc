@@ -226,7 +226,7 @@ void PlanRun::AddOthers() {
   if (t < 0) return;
   const TableState& table = tables_[static_cast<size_t>(t)];
   const int cue = table.cue_index();
-  const int touching = TouchingBallOn(table, cue, on_, config_.table->ball_radius());
+  const int touching = TouchingBallOn(table, on_, *config_.table);
   std::vector<Candidate> safeties = SafetyCandidates(table, cue, on_, ctx_, touching, t, SafetyOptions{});
   for (Candidate& c : safeties) {
     if (t > 0) c.cue_start = table.balls[static_cast<size_t>(cue)].position;
@@ -285,7 +285,7 @@ ShotSetup PlanRun::SetupFor(const Candidate& cand) const {
   const TableState& table = tables_[static_cast<size_t>(cand.table)];
   const int cue = table.cue_index();
   return {&table, cue, cand.object, cand.pocket, on_, cand.kind, cand.first,
-          TouchingBallOn(table, cue, on_, config_.table->ball_radius())};
+          TouchingBallOn(table, on_, *config_.table)};
 }
 
 // The candidate's best shot simulated again at full fidelity, to the end. Its labels

@@ -63,23 +63,6 @@ void MonteCarloTally::Add(const MonteCarloTally& o) {
   interrupted = interrupted || o.interrupted;
 }
 
-int FoulPenalty(const TableState& table, BallOn on, const std::optional<BallKind>& nominated, int first_hit,
-                std::span<const int> potted) {
-  int penalty = 4;
-  if (on == BallOn::kAnyColour) {
-    if (nominated && IsColour(*nominated)) penalty = std::max(penalty, Value(*nominated));
-  } else if (on != BallOn::kRed) {
-    penalty = std::max(penalty, Value(KindOf(static_cast<physics::Colour>(static_cast<int>(on) -
-                                                                         static_cast<int>(BallOn::kYellow)))));
-  }
-  const int n = static_cast<int>(table.balls.size());
-  if (first_hit >= 0 && first_hit < n) penalty = std::max(penalty, Value(table.balls[static_cast<size_t>(first_hit)].kind));
-  for (const int i : potted) {
-    if (i >= 0 && i < n) penalty = std::max(penalty, Value(table.balls[static_cast<size_t>(i)].kind));
-  }
-  return penalty;
-}
-
 double MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span<const Vec2> finals,
                        const PotContext& after_ctx, const SearchSettings& settings, double in_hand_points) {
   const TableState& table = *setup.table;

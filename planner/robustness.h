@@ -71,11 +71,6 @@ struct MonteCarloTally {
 double MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span<const physics::Vec2> finals,
                        const PotContext& after_ctx, const SearchSettings& settings, double in_hand_points);
 
-/// The penalty of a foul: 4, or the value of the ball on, of the first ball hit,
-/// or of a ball potted, whichever is highest (7 for the black).
-int FoulPenalty(const TableState& table, BallOn on, const std::optional<BallKind>& nominated, int first_hit,
-                std::span<const int> potted);
-
 /// Runs `count` samples of block stream `seed` for `shot` played as `setup` says
 /// (its table as vision saw it). `sim` should run at full fidelity.
 MonteCarloTally RunSamples(const ShotSetup& setup, const physics::Shot& shot, const PotContext& ctx,

@@ -94,7 +94,7 @@ class Search {
       : table_(table), on_(on), cand_(cand), ctx_(ctx), settings_(settings), sim_(sim),
         stop_(stop), interrupt_(stop.AsInterrupt()) {
     cue_ = table.cue_index();
-    setup_ = {&table_, cue_, cand.object, cand.pocket, on, cand.kind, cand.first, TouchingBallOn(table, cue_, on, ctx.table->ball_radius())};
+    setup_ = {&table_, cue_, cand.object, cand.pocket, on, cand.kind, cand.first, TouchingBallOn(table, on, *ctx.table)};
     if (cand.speed_hi > 0) {
       v_lo_ = std::clamp(cand.speed_lo, settings.limits.min_speed, settings.limits.max_speed);
       v_hi_ = std::clamp(cand.speed_hi, v_lo_, settings.limits.max_speed);

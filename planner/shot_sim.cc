@@ -12,14 +12,9 @@ using physics::EventKind;
 using physics::SimStatus;
 using physics::Vec2;
 
-int TouchingBallOn(const TableState& table, int cue, BallOn on, double radius) {
-  if (cue < 0) return -1;
-  const Vec2 c = table.balls[static_cast<size_t>(cue)].position;
-  const double touch = 2 * radius + kTouchingGap;
-  for (size_t i = 0; i < table.balls.size(); ++i) {
-    if (static_cast<int>(i) == cue) continue;
-    const Ball& b = table.balls[i];
-    if (IsLegalTarget(on, b.kind) && (b.position - c).norm() <= touch) return static_cast<int>(i);
+int TouchingBallOn(const TableState& table, BallOn on, const physics::TableModel& model) {
+  for (const int i : TouchingCueBall(table, model)) {
+    if (IsLegalTarget(on, table.balls[static_cast<size_t>(i)].kind)) return i;
   }
   return -1;
 }
@@ -148,7 +143,10 @@ void ShotSimulator::Judge(const ShotSetup& setup, SimStatus status) {
   const int named = setup.object >= 0 ? setup.object : out_.first_hit;
   const std::optional<BallKind> nominated =
       named >= 0 ? std::optional<BallKind>(table.balls[static_cast<size_t>(named)].kind) : std::nullopt;
-  out_.foul = JudgeShot(table, setup.on, nominated, out_.first_hit, out_.potted).foul;
+  const int touching[] = {setup.touching_on};
+  out_.foul = JudgeShot(table, setup.on, nominated, out_.first_hit, out_.potted,
+                        setup.touching_on >= 0 ? std::span<const int>(touching) : std::span<const int>())
+                  .foul;
   const bool at_rest = status == SimStatus::kAtRest && !out_.stopped_early && out_.foul == Foul::kNone;
   if (setup.kind != ShotKind::kPot) {
     out_.success = at_rest;

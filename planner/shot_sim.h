@@ -54,12 +54,8 @@ struct ShotSetup {
   int FirstBall() const { return first >= 0 ? first : (kind == ShotKind::kPot ? object : -1); }
 };
 
-/// Balls closer than this to the cue ball (gap, m) are touching it: the cue ball
-/// then plays away from them (the touching-ball rule).
-inline constexpr double kTouchingGap = 1e-4;
-
-/// A ball on touching the cue ball (the lowest index), or -1. `radius`: the balls', m.
-int TouchingBallOn(const TableState& table, int cue, BallOn on, double radius);
+/// A ball on touching the cue ball (rules.h TouchingCueBall; the lowest index), or -1.
+int TouchingBallOn(const TableState& table, BallOn on, const physics::TableModel& model);
 
 struct ObjectLine {
   bool valid = false;
