@@ -7,20 +7,20 @@
 //
 // Colours. A colour's pottability is how well it can be potted from where it lies,
 // wherever the cue ball may come from. For each pocket: the line from the colour to
-// the pocket, aimed at the centre of the pocket's acceptance window for that
-// direction (PocketModel, at the typical arrival speed of pot_estimate.h), must
-// find the window open and pass every other ball by 2R + path_clearance; the ghost
-// ball (the cue ball's centre at contact) must lie on the bed, 2R + path_clearance
-// clear of every ball; and a cue ball must have a run of at least min_cue_run
-// (up to cue_distance) to it, on the bed and clear, straight behind (a straight
-// pot) or, when that is blocked or off the bed, at the smallest cut in steps of
-// cut_step up to max_cut. The bed is the rectangle of the cushions' contact lines,
-// widened by touch_gap, so that a ball frozen to a cushion can be potted along it
-// by a cue ball on the cushion (the ghost ball and the cue ball then lie up to
-// touch_gap past the contact line: on the cushion, the line a fraction of a
-// millimetre off the window's centre). The pocket's chance is that of a pot whose object-ball
-// line is off by a Gaussian angle of sigma = line_sigma / cos(cut) (the ghost-ball
-// leverage, docs/planning-notes.md §2.2):
+// the pocket, aimed at the centre of the pocket's acceptance window (PocketModel,
+// taken along the line to the mouth's centre, at the typical arrival speed of
+// pot_estimate.h), must find the window open and pass every other ball by 2R +
+// path_clearance; the ghost ball (the cue ball's centre at contact) must lie on the
+// bed, 2R + path_clearance clear of every ball; and a cue ball must have a run of
+// at least min_cue_run (up to cue_distance) to it, on the bed and clear, straight
+// behind (a straight pot) or, when that is blocked or off the bed, at the smallest
+// cut in steps of cut_step up to max_cut. The bed is the rectangle of the
+// cushions' contact lines, widened by touch_gap, so that a ball frozen to a cushion
+// can be potted along it by a cue ball on the cushion (the ghost ball and the cue
+// ball then lie up to touch_gap past the contact line: on the cushion, the line a
+// fraction of a millimetre off the window's centre). The pocket's chance is that of
+// a pot whose object-ball line is off by a Gaussian angle of sigma = line_sigma /
+// cos(cut) (the ghost-ball leverage, docs/planning-notes.md §2.2):
 //   P = 2 Phi(w / (2 L sigma)) - 1,   w the window's width, L the distance to the mouth.
 // The pottability is the best pocket's P plus pocket_weights[1] times the second
 // best (a colour with two pockets beats one with one, as position.h's alternatives
@@ -37,13 +37,18 @@
 // tied_red_cost (a potted red that was tied up is one fewer).
 //
 // LayoutChange (points, positive: better for the striker's next shots) is the sum
-// of both. Cost: per table, 6 colours x 6 pockets of window lookups and path checks
-// and up to 6 pockets per red (stopping at the first open one); no allocation.
+// of both. Cost: per table, 6 colours x 6 pockets of window lookups, the pockets'
+// paths checked best first until the best two are settled, and up to 6 pockets per
+// red (stopping at the first open one); the table after a shot judges again only
+// the balls the shot can have changed (LayoutChange with a summary); no allocation.
+// bench/planner_outlook_bench.cc measures it.
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <optional>
 
+#include "physics/core/limits.h"
 #include "planner/pocket_model.h"
 #include "planner/rules.h"
 
@@ -68,10 +73,13 @@ struct LayoutOptions {
   /// (sqrt(2) x 0.2 mm / 2R, 5.4e-3 rad) and 0.02 deg of heading over a 0.3 m run
   /// (0.3 m x 3.5e-4 rad / 2R, 2.0e-3 rad), added in quadrature.
   double line_sigma = 0.0058;
-  /// The cue ball's run to the ghost ball that the test looks for, m: 0.3 m, a
-  /// position a player aims for; shorter where the bed ends, down to min_cue_run
-  /// (closer than 5 cm the cue ball is all but touching the colour).
-  double cue_distance = 0.3;
+  /// The cue ball's run to the ghost ball that must be clear and on the bed, m:
+  /// 0.1 m. A cue ball that can stop that close behind the ghost ball can play the
+  /// pot; a ball further back on the line only means it must stop nearer. Shorter
+  /// where the bed ends, down to min_cue_run (closer than 5 cm the cue ball is all
+  /// but touching the object ball). The noise of line_sigma is a 0.3 m run's, a
+  /// position a player aims for.
+  double cue_distance = 0.1;
   double min_cue_run = 0.05;
   /// Cuts tried when the straight pot is blocked: steps and the thinnest, rad (60
   /// deg: every error counts twice there, §2.2); at most 90 steps each side.
@@ -99,6 +107,12 @@ struct LayoutSummary {
   std::array<bool, physics::kColourCount> colour_present{};
   int reds = 0;
   int tied_reds = 0;
+  /// Per ball of the table, by index (the first physics::limits::kMaxBalls): a
+  /// colour's pottability, 1 for a red tied up, otherwise 0; and for a red, why:
+  /// the first pocket found open (its PocketId's value) when free, -1 when closed
+  /// to every pocket, -2 when touching (unused for other balls).
+  std::array<double, physics::limits::kMaxBalls> ball{};
+  std::array<std::int8_t, physics::limits::kMaxBalls> red_state{};
 };
 
 /// A pot that the layout's test finds open (see above).
@@ -139,5 +153,19 @@ LayoutSummary SummarizeLayout(const TableState& table, const physics::TableModel
 /// the same balls at the same places.
 double LayoutChange(const TableState& before, const TableState& after,
                     const physics::TableModel& model, const LayoutOptions& options);
+
+/// The same with `before_summary` = SummarizeLayout(before, model, options) given,
+/// for a planner that scores many shots from one table. A ball of `after` that lies
+/// exactly where a ball of its kind lay in `before` keeps its result from
+/// before_summary instead of being judged again when no change can alter it: balls
+/// that arrive (moved to a place, re-spotted) can only close lines and balls that
+/// leave (moved away, potted) only open them, so a free red is judged again only
+/// when a ball arrives within reach of its approaches or of its open pocket's line,
+/// a tied red only when a ball leaves within reach of its approaches or of any of
+/// its lines, a colour when any change comes within reach of either. The answer is
+/// the same, for a fraction of the cost.
+double LayoutChange(const TableState& before, const LayoutSummary& before_summary,
+                    const TableState& after, const physics::TableModel& model,
+                    const LayoutOptions& options);
 
 }  // namespace snooker::planner

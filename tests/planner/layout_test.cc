@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
+#include "planner/geometry.h"
 #include "planner/planner.h"
 #include "planner/pot_estimate.h"
 #include "planner/selfplay.h"
@@ -159,13 +161,15 @@ TEST(LayoutTest, PotsCloseWhenTheLineOrTheGhostBallIsTaken) {
   TableState ghost = t;
   ghost.balls.push_back({BallKind::kRed, ball - 2 * R() * p.axis});
   EXPECT_FALSE(OpenPot(ghost, 0, PocketId::kTopRight, Model(), o).has_value());
-  // A ball straight behind the ghost ball: the straight approach is blocked and a
-  // cut is needed, which is less likely to pot.
+  // A ball straight behind the ghost ball, 97.5 mm from it: the 10 cm run behind
+  // the ghost ball passes it at 0.0975 sin(cut) (its foot on the run), under 2R +
+  // 0.5 mm at 15 and 30 deg (25 and 49 mm), clear at 45 deg (69 mm). A cut is less
+  // likely to pot.
   TableState behind = t;
-  behind.balls.push_back({BallKind::kRed, ball - 0.35 * p.axis});
+  behind.balls.push_back({BallKind::kRed, ball - (0.0975 + 2 * R()) * p.axis});
   const auto cut = OpenPot(behind, 0, PocketId::kTopRight, Model(), o);
   ASSERT_TRUE(cut.has_value());
-  EXPECT_NEAR(std::abs(cut->cut), o.cut_step, 1e-12);
+  EXPECT_NEAR(std::abs(cut->cut), 3 * o.cut_step, 1e-12);
   EXPECT_LT(cut->chance, open->chance);
   // The cue ball is no obstacle.
   TableState cue = t;
@@ -210,6 +214,46 @@ TEST(LayoutTest, OpenStraightPotsDropInTheSimulator) {
     }
   }
   EXPECT_GE(played, 12);
+}
+
+
+TEST(LayoutTest, KeepingUntouchedBallsChangesNothing) {
+  // Random strokes at a red on random 10-red tables, simulated, the rules applied:
+  // the change computed keeping the untouched balls' results is the change from
+  // both tables judged afresh, to the bit.
+  const LayoutOptions o = Options();
+  ShotSimulator sim(Model(), physics::SimParams{});
+  Rng rng(17);
+  std::vector<Vec2> ends;
+  int moved_far = 0;
+  for (int k = 0; k < 60; ++k) {
+    const TableState before = RandomFrame(rng, 10, Model());
+    const int cue = before.cue_index();
+    int red = cue;
+    while (before.balls[static_cast<size_t>(red)].kind != BallKind::kRed) {
+      red = static_cast<int>(rng.Uniform() * static_cast<double>(before.balls.size()));
+    }
+    physics::Shot shot;
+    shot.speed = rng.Uniform(1.0, 5.0);
+    shot.heading = Direction(before.balls[static_cast<size_t>(red)].position - before.balls[static_cast<size_t>(cue)].position) +
+                   rng.Uniform(-0.05, 0.05);
+    const ShotSetup setup{&before, cue, red, PocketId::kTopLeft, BallOn::kRed};
+    const ShotOutcome& out = sim.Run(setup, shot, {}, ShotSimulator::Mode::kFull, {});
+    ends.clear();
+    for (const physics::BallState& b : sim.final_balls()) ends.push_back(b.r);
+    const TableState after = ApplyShot(before, BallOn::kRed, ends, out.potted, out.foul != Foul::kNone, Model());
+    const LayoutSummary a = SummarizeLayout(before, Model(), o);
+    const LayoutSummary b = SummarizeLayout(after, Model(), o);
+    double fresh = -o.tied_red_cost * (b.tied_reds - a.tied_reds);
+    for (int c = 0; c < physics::kColourCount; ++c) {
+      const auto i = static_cast<size_t>(c);
+      fresh += Value(KindOf(static_cast<physics::Colour>(c))) * (b.colour_pottability[i] - a.colour_pottability[i]);
+    }
+    EXPECT_EQ(LayoutChange(before, a, after, Model(), o), fresh) << k;
+    EXPECT_EQ(LayoutChange(before, after, Model(), o), fresh) << k;
+    if (fresh != 0) ++moved_far;
+  }
+  EXPECT_GT(moved_far, 10);  // shots that changed the layout
 }
 
 }  // namespace
