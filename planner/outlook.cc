@@ -37,6 +37,13 @@ TouchMask TouchingBalls(const TableState& table, int cue, double radius) {
 // and is ignored by one away from it (the player plays away from it).
 bool PathClear(const TableState& table, int cue, int target, const Vec2& c, const Vec2& g,
                const Vec2& u, double clearance, TouchMask touching) {
+  // geometry.h's SegmentDistance, squared, behind a box test: the inner loop.
+  const Vec2 d = g - c;
+  const double len2 = d.squaredNorm();
+  const double inv = len2 > 0 ? 1 / len2 : 0.0;
+  const double c2 = clearance * clearance;
+  const double x0 = std::min(c.x(), g.x()) - clearance, x1 = std::max(c.x(), g.x()) + clearance;
+  const double y0 = std::min(c.y(), g.y()) - clearance, y1 = std::max(c.y(), g.y()) + clearance;
   for (size_t i = 0; i < table.balls.size(); ++i) {
     const int k = static_cast<int>(i);
     if (k == cue || k == target) continue;
@@ -45,7 +52,10 @@ bool PathClear(const TableState& table, int cue, int target, const Vec2& c, cons
       if (u.dot(p - c) > 0) return false;
       continue;
     }
-    if (SegmentDistance(c, g, p) < clearance) return false;
+    if (p.x() < x0 || p.x() > x1 || p.y() < y0 || p.y() > y1) continue;
+    const Vec2 cp = p - c;
+    const double t = std::clamp(cp.dot(d) * inv, 0.0, 1.0);
+    if ((cp - t * d).squaredNorm() < c2) return false;
   }
   return true;
 }
@@ -60,11 +70,14 @@ std::optional<double> OpenContact(const TableState& table, int cue, int ball, do
   const Vec2 o = table.balls[static_cast<size_t>(ball)].position;
   const double d = (o - c).norm();
   if (!(d > std::abs(b)) || !(d > 2 * r)) return std::nullopt;
-  const double h = WrapAngle(Direction(o - c) - std::asin(b / d));
-  const Vec2 u(std::cos(h), std::sin(h));
-  const double along = std::sqrt(d * d - b * b) - std::sqrt(std::max(0.0, 4 * r * r - b * b));
+  // The heading: the direction to the ball turned by -asin(b / d).
+  const Vec2 to = (o - c) / d;
+  const double sb = b / d, cb = std::sqrt(1 - sb * sb);
+  const Vec2 u = cb * to - sb * Left(to);
+  const double along = d * cb - std::sqrt(std::max(0.0, 4 * r * r - b * b));
   const Vec2 g = c + along * u;
   if (!PathClear(table, cue, ball, c, g, u, 2 * r + ctx.path_clearance, touching)) return std::nullopt;
+  const double h = Direction(u);
   if (CueMargin(table, cue, h, ctx.cue, *ctx.table) < 0) return std::nullopt;
   return h;
 }
