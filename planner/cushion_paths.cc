@@ -100,6 +100,7 @@ std::optional<CushionPath> MirrorPath(const physics::TableModel& table, const Ve
   }
   CushionPath path;
   path.cushions = n;
+  path.sliding = options.sliding;
   std::array<Vec2, 3> image{};  // image[i]: the target seen across contacts i..n-1
   image[static_cast<size_t>(n)] = target;
   for (int i = n - 1; i >= 0; --i) {
@@ -172,32 +173,41 @@ double LegsMargin(const CushionPath& path, double clearance, const TableState& t
   return margin;
 }
 
-ReboundError MirrorReboundError(double incidence) {
-  // The envelope of the measured eps (deg) of a ball struck rolling at 1 to 4 m/s
-  // with legs of 0.3 to 1 m before and after the cushion (MirrorErrorTable's
-  // cases), widened by a tenth, at incidences 0, 5, 15, ..., 75 deg; square on the
-  // rebound stays on the normal. Linear in between; constant beyond 75 deg.
-  struct Knot {
-    double incidence, lo, hi;
-  };
-  static constexpr std::array<Knot, 9> kKnots = {{
-      {0, 0.0, 0.0},
-      {5, -1.6, 0.1},
-      {15, -4.7, 0.1},
-      {25, -6.9, 0.1},
-      {35, -6.6, 1.5},
-      {45, -5.3, 4.5},
-      {55, -3.6, 8.4},
-      {65, -2.0, 12.9},
-      {75, -0.2, 14.1},
-  }};
-  const double deg = std::clamp(std::abs(incidence) * physics::kDegPerRad, 0.0, kKnots.back().incidence);
+namespace {
+
+// Linear interpolation in a table over incidences 0, 5, 15, ..., 75 deg (constant
+// beyond 75).
+constexpr std::array<double, 9> kIncidences = {0, 5, 15, 25, 35, 45, 55, 65, 75};
+
+double Interpolate(const std::array<double, 9>& values, double incidence) {
+  const double deg = std::clamp(std::abs(incidence) * physics::kDegPerRad, 0.0, kIncidences.back());
   size_t i = 1;
-  while (i + 1 < kKnots.size() && kKnots[i].incidence < deg) ++i;
-  const Knot& a = kKnots[i - 1];
-  const Knot& b = kKnots[i];
-  const double f = (deg - a.incidence) / (b.incidence - a.incidence);
-  return {physics::DegToRad(a.lo + f * (b.lo - a.lo)), physics::DegToRad(a.hi + f * (b.hi - a.hi))};
+  while (i + 1 < kIncidences.size() && kIncidences[i] < deg) ++i;
+  const double f = (deg - kIncidences[i - 1]) / (kIncidences[i] - kIncidences[i - 1]);
+  return values[i - 1] + f * (values[i] - values[i - 1]);
+}
+
+}  // namespace
+
+ReboundError MirrorReboundError(double incidence, bool sliding) {
+  // The envelope of the measured eps (deg) over speeds of 1 to 4 m/s and legs of
+  // 0.3 to 1 m before and after the cushion (MirrorErrorTable's cases), struck
+  // rolling, or (sliding) rolling or stun, widened by a tenth; square on, the
+  // rebound stays on the normal.
+  static constexpr std::array<double, 9> kRollingLo = {0, -1.6, -4.7, -6.9, -6.6, -5.3, -3.6, -2.0, -0.2};
+  static constexpr std::array<double, 9> kRollingHi = {0, 0.1, 0.1, 0.1, 1.5, 4.5, 8.4, 12.9, 14.1};
+  static constexpr std::array<double, 9> kSlidingLo = {0, -2.2, -6.0, -8.8, -10.0, -8.8, -6.2, -3.9, -1.5};
+  static constexpr std::array<double, 9> kSlidingHi = {0, 0.15, 0.5, 1.1, 4.3, 9.8, 12.3, 16.0, 14.1};
+  return {physics::DegToRad(Interpolate(sliding ? kSlidingLo : kRollingLo, incidence)),
+          physics::DegToRad(Interpolate(sliding ? kSlidingHi : kRollingHi, incidence))};
+}
+
+double ReboundSpeedSensitivity(double incidence, bool sliding) {
+  // Root mean square of d(eps)/d(ln speed), deg, over the same cases (by differences
+  // of 2 % in speed), rolling, or the larger of rolling and stun.
+  static constexpr std::array<double, 9> kRolling = {0, 1.0, 2.9, 4.0, 5.5, 5.3, 6.5, 8.1, 7.5};
+  static constexpr std::array<double, 9> kSliding = {0, 1.5, 4.4, 6.4, 8.5, 10.5, 11.4, 12.5, 12.2};
+  return physics::DegToRad(Interpolate(sliding ? kSliding : kRolling, incidence));
 }
 
 double ReboundHeadingGain(const CushionPath& path, int contact) {
@@ -211,7 +221,7 @@ double ReboundHeadingGain(const CushionPath& path, int contact) {
 AimBracket BracketFor(const CushionPath& path, double floor) {
   AimBracket b;
   for (int i = 0; i < path.cushions; ++i) {
-    const ReboundError e = MirrorReboundError(path.contacts[static_cast<size_t>(i)].incidence);
+    const ReboundError e = MirrorReboundError(path.contacts[static_cast<size_t>(i)].incidence, path.sliding);
     const double g = ReboundHeadingGain(path, i);
     b.lo += std::min(g * e.lo, g * e.hi);
     b.hi += std::max(g * e.lo, g * e.hi);

@@ -47,13 +47,15 @@
 // speed); slow and steep, wider (the topspin it brought in pulls it back towards
 // the cushion as it curves). The error is systematic, several degrees, and changes
 // sign with speed, so the bracket is wide: MirrorReboundError is the envelope of
-// eps over speeds of 1 to 4 m/s and legs of 0.3 to 1 m before and after the cushion
-// (72 cases per incidence), widened by a tenth: from [-1.6, +0.1] deg at 5 deg of
-// incidence through [-6.9, +0.1] at 25, [-5.3, +4.5] at 45 to [-0.2, +14.1] at 75.
-// Outside it: a stun ball (no topspin; eps from -9 to +15 deg over the same cases),
-// spin the search adds, speeds under 1 m/s. The rebound's noise is small in the
-// simulator: 2 rad/s of sidespin noise decays (22 rad/s^2) before the cushion, and
-// 1 % of speed moves eps by at most 0.11 deg (routes.h's rebound_sigma).
+// eps over speeds of 1, 1.5, 2, 3 and 4 m/s and legs of 0.3, 0.6 and 1 m before
+// and after the cushion (45 cases per incidence), widened by a tenth: from
+// [-1.6, +0.1] deg at 5 deg of incidence through [-6.9, +0.1] at 25, [-5.3, +4.5] at
+// 45 to [-0.2, +14.1] at 75. A stun ball (no topspin) errs more, eps from -10 to
+// +15 deg over the same cases: CushionPathOptions::sliding widens the bracket to
+// cover it (doubles: an object ball leaves a contact without topspin). Neither
+// covers the spin the search adds, nor speeds under 1 m/s. The rebound's noise is small in the simulator: 2 rad/s of
+// sidespin noise decays (22 rad/s^2) before the cushion, and 1 % of speed moves
+// eps by 0.01 to 0.08 deg (root mean square; ReboundSpeedSensitivity).
 //
 // Cost: a path is a few reflections and intersections (tens of ns); the clearance
 // check is one segment distance per leg and ball.
@@ -130,8 +132,10 @@ struct CushionPath {
   /// Length of each leg (cushions + 1 used) and in all. m.
   std::array<double, 3> legs{};
   double length = 0;
-  /// The headings to search (see above).
+  /// The headings to search (see above), for a ball that arrives rolling, or
+  /// (sliding) one that may arrive sliding.
   AimBracket bracket;
+  bool sliding = false;
 
   int leg_count() const { return cushions + 1; }
   const physics::Vec2& start() const { return points[0]; }
@@ -167,6 +171,9 @@ struct CushionPathOptions {
   /// Added to each side of every bracket, for what the measured rebound error leaves
   /// out (a path's other approximations). rad.
   double bracket_floor = 0.1 * physics::kPi / 180;
+  /// The ball may reach a cushion sliding (an object ball just hit, which leaves
+  /// without topspin): brackets and sensitivities cover stun arrivals too.
+  bool sliding = false;
 };
 
 /// The path from `start` to `target` off the contact lines `lines` in order (one or
@@ -194,12 +201,19 @@ double LegsMargin(const CushionPath& path, double clearance, const TableState& t
 
 /// The range of the mirror's error on the outgoing direction at a cushion (rad,
 /// positive wider of the normal than the mirror), covering the measured errors
-/// (table above) of a ball arriving rolling at moderate speeds at `incidence` (rad).
+/// (table above) of a ball struck rolling at 1 to 4 m/s, or (sliding) struck
+/// rolling or stun, meeting the cushion at `incidence` (rad).
 struct ReboundError {
   double lo = 0;
   double hi = 0;
 };
-ReboundError MirrorReboundError(double incidence);
+ReboundError MirrorReboundError(double incidence, bool sliding = false);
+
+/// How much the rebound turns with the speed, |d(eps)/d(ln speed)| (rad per unit
+/// relative speed change, the root mean square over the same cases): what the
+/// speed noise does to a path the search has aimed. At 1 % of speed, 0.01 to 0.08
+/// deg rolling, up to 0.13 deg sliding.
+double ReboundSpeedSensitivity(double incidence, bool sliding = false);
 
 /// d(heading)/d(eps_i): the turn of the start heading that keeps the path through
 /// the target when the outgoing direction at contact i turns by eps_i (positive
