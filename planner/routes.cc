@@ -48,6 +48,7 @@ const char* ToString(RouteRefusal r) {
     case RouteRefusal::kObjectBallPath: return "object ball's path blocked";
     case RouteRefusal::kCueRoom: return "no room for the cue";
     case RouteRefusal::kUnlikely: return "estimate under the minimum";
+    case RouteRefusal::kTooLong: return "kick path too long";
   }
   return "unknown";
 }
@@ -148,6 +149,14 @@ void SetCutAim(RouteCandidate& cand, const Vec2& cue, const Vec2& first, const G
   cut.hi = std::min(cut.hi, max_cut - aim.cut);
   cand.cut_bracket = {std::min(cut.lo, 0.0), std::max(cut.hi, 0.0)};
   SpanHeadings(cand, cue, first, r);
+}
+
+// The standard deviation of the outgoing direction at contact i of `path` that the
+// search cannot aim away: the speed noise through the rebound, and the extra.
+double ReboundSigma(const CushionPath& path, int i, const PotContext& ctx, const RouteOptions& options) {
+  const double speed = ReboundSpeedSensitivity(path.contacts[static_cast<size_t>(i)].incidence, path.sliding) *
+                       ctx.noise.speed_fraction;
+  return std::hypot(speed, options.rebound_extra_sigma);
 }
 
 void SetProbability(RouteCandidate& cand, double mean, double sigma, const PocketWindow& window) {
@@ -315,13 +324,15 @@ std::optional<RouteCandidate> DoubleFrom(const TableState& table, int cue, int o
   const Vec2 c = At(table, cue), o = At(table, object);
   const physics::Pocket& p = ctx.table->pocket(pocket);
   const std::array<CushionLine, 1> lines = {line};
+  CushionPathOptions path_options = options.paths;
+  path_options.sliding = true;  // the object ball leaves the contact without topspin
   // Aim at the window's centre for the last leg's direction: settled in two passes,
   // as EstimatePot settles a direct pot's.
   Vec2 target = p.mouth_centre;
   std::optional<CushionPath> path;
   PocketWindow window;
   for (int pass = 0; pass < 3; ++pass) {
-    path = MirrorPath(*ctx.table, o, target, lines, options.paths);
+    path = MirrorPath(*ctx.table, o, target, lines, path_options);
     if (!path) return Refuse(why, RouteRefusal::kNoCushionPath);
     if (pass == 2) break;
     window = ctx.pockets->Window(pocket, path->final_direction, kTypicalArrivalSpeed);
@@ -348,7 +359,7 @@ std::optional<RouteCandidate> DoubleFrom(const TableState& table, int cue, int o
   const double contact = TypicalContactSpeed(path->length, aim->cut);
   const double lateral = LateralSigma(c, o, aim->heading, aim->cut, path->length, contact, ctx.sigma_of(cue),
                                       ctx.sigma_of(object), ctx.noise, *ctx.throws, r);
-  const double bounce = options.rebound_sigma * path->LengthAfter(0);
+  const double bounce = ReboundSigma(*path, 0, ctx, options) * path->LengthAfter(0);
   SetProbability(cand, window.centre(), std::hypot(lateral, bounce), window);
   SetCutAim(cand, c, o, *aim, path->heading, path->bracket, ctx.max_cut, r);
   cand.path = path;
@@ -387,6 +398,7 @@ std::optional<RouteCandidate> KickFrom(const TableState& table, int cue, int obj
   const Vec2 ghost = target.ghost;
   const auto path = MirrorPath(*ctx.table, c, ghost, lines, options.paths);
   if (!path) return Refuse(why, RouteRefusal::kNoCushionPath);
+  if (path->length > options.max_kick_length) return Refuse(why, RouteRefusal::kTooLong);
   const double cut = WrapAngle(line->direction - path->final_direction);
   if (!(std::abs(cut) <= ctx.max_cut)) return Refuse(why, RouteRefusal::kCutTooThin);
   const double clear = 2 * r + ctx.path_clearance;
@@ -415,7 +427,7 @@ std::optional<RouteCandidate> KickFrom(const TableState& table, int cue, int obj
   const double k = line->distance / (2 * r * cos_c);
   double var = lateral * lateral;
   for (int i = 0; i < path->cushions; ++i) {
-    const double b = k * options.rebound_sigma * path->LengthAfter(i);
+    const double b = k * ReboundSigma(*path, i, ctx, options) * path->LengthAfter(i);
     var += b * b;
   }
   SetProbability(cand, line->window.centre(), std::sqrt(var), line->window);
@@ -543,7 +555,7 @@ std::optional<RouteCandidate> EscapeFrom(const TableState& table, int cue, int o
   // The cue ball's lateral error at the ball against the clear run.
   double var = std::pow(ctx.noise.heading * cand.distance, 2) + std::pow(ctx.sigma_of(cue), 2) +
                std::pow(ctx.sigma_of(object), 2);
-  for (int i = 0; i < path->cushions; ++i) var += std::pow(options.rebound_sigma * path->LengthAfter(i), 2);
+  for (int i = 0; i < path->cushions; ++i) var += std::pow(ReboundSigma(*path, i, ctx, options) * path->LengthAfter(i), 2);
   cand.sigma = std::sqrt(var);
   cand.probability = std::max(0.0, NormalCdf((run.hi - mean) / cand.sigma) - NormalCdf((run.lo - mean) / cand.sigma));
   cand.miss_probability = 1 - cand.probability;

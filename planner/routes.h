@@ -30,10 +30,11 @@
 //  * set: the line of centres, error sqrt(sigma_A^2 + sigma_B^2) / 2R in angle;
 //  * double and kick: the mirror path is a straight line when unfolded, so the
 //    direct pot's terms hold over the unfolded length; each cushion adds an
-//    independent error of the outgoing direction, rebound_sigma (RouteOptions),
-//    carried over the path after it (and, for a kick, through the lever k);
+//    independent error of the outgoing direction, the speed noise through
+//    ReboundSpeedSensitivity (cushion_paths.h), carried over the path after it
+//    (and, for a kick, through the lever k);
 //  * escape: the cue ball's lateral error at the ball, (heading x L, vision, each
-//    cushion's rebound_sigma over the rest of the path), against the offsets where
+//    cushion's rebound error over the rest of the path), against the offsets where
 //    it hits the ball first: P = the Gaussian's mass over the widest clear run of
 //    offsets in (-2R, 2R), aimed at its centre; miss_probability = 1 - P.
 //
@@ -145,8 +146,9 @@ enum class RouteRefusal : std::uint8_t {
   kObjectBallPath,  ///< the potted ball's path passes too near a ball
   kCueRoom,         ///< no room for the cue
   kUnlikely,        ///< the pot's estimate is under min_probability
+  kTooLong,         ///< a kick's cue-ball path is longer than max_kick_length
 };
-inline constexpr int kRouteRefusalCount = 10;
+inline constexpr int kRouteRefusalCount = 11;
 const char* ToString(RouteRefusal r);
 
 struct RouteOptions {
@@ -154,12 +156,17 @@ struct RouteOptions {
   /// Cushions a kick and an escape may take (1 or 2). A double takes one.
   int kick_cushions = 2;
   int escape_cushions = 2;
-  /// Standard deviation of the outgoing direction at each cushion that the search
-  /// cannot correct: the speed noise's effect on the simulator's rebound (at most
-  /// 0.11 deg for 1 %, routes_test.cc ReboundNoiseIsWithinReboundSigma; sidespin
-  /// noise decays before the cushion), about doubled for a real cushion's
-  /// variation, which the simulator does not model. rad.
-  double rebound_sigma = 0.25 * physics::kPi / 180;
+  /// A kick's cue-ball path longer than this is refused: the cue ball meets the
+  /// object ball slowly, after rebounds that have taken it far from the mirror's
+  /// line (a 9 m kick up and down the table, aimed over its whole bracket in the
+  /// simulator, never sends the object ball within 0.3 m of its line). m.
+  double max_kick_length = 5.0;
+  /// Each cushion's error that the search cannot correct is the speed noise's
+  /// effect on the rebound (cushion_paths.h ReboundSpeedSensitivity times the noise
+  /// model's speed_fraction), so the estimate stays in the noise model's currency.
+  /// A real cushion varies more than the simulator's; this standard deviation of
+  /// the outgoing direction (rad) is added per cushion for it (0: none).
+  double rebound_extra_sigma = 0;
   /// Two balls whose centres are within 2R + set_gap touch: a set. m.
   double set_gap = 0.5e-3;
   /// How far the throw between the balls of a set can turn B off their line of
