@@ -10,11 +10,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <tuple>
 #include <vector>
 
 #include "physics/core/shot.h"
 #include "planner/planner.h"
 #include "planner/random.h"
+#include "planner/robustness.h"
 #include "planner/selfplay.h"
 #include "planner/shot_sim.h"
 
@@ -502,6 +505,91 @@ TEST(RoutesTest, EscapeRefusedWhenEveryOffsetIsBlocked) {
   bool nominal = false;
   Replay(t, 0, *side, 1.5, 1, &nominal);
   EXPECT_TRUE(nominal);
+}
+
+// ------------------------------------------------------------ the estimates
+
+// The estimate against Monte Carlo with the full simulator, as pot_estimate_test.cc
+// checks the direct pot's: the aim centred first (the middle of the widest run of
+// potting aims in a scan of 1001 over the bracket, struck rolling: the correction
+// the search makes), then 300 samples of execution and vision noise. The binomial
+// error of 300 samples is at most 0.03; each estimate within kEach (the direct
+// pot's tolerance) of the sampled rate.
+constexpr double kEach = 0.15;
+
+double CentredAim(const TableState& t, const RouteCandidate& cand, double speed, ShotSimulator& sim) {
+  const AimBracket b = cand.aim == AimBy::kCut ? cand.cut_bracket : cand.heading_bracket;
+  constexpr int kScan = 1001;
+  int run = -1, best_lo = -1, best_hi = -1;
+  for (int k = 0; k <= kScan; ++k) {
+    bool pots = false;
+    if (k < kScan) {
+      const double x = b.lo + k * b.width() / (kScan - 1);
+      physics::Shot s{speed, cand.heading + x, speed / kR, 0};
+      if (cand.aim == AimBy::kCut) s.heading = *HeadingForCut(t.balls[0].position, t.balls[static_cast<size_t>(cand.first_ball)].position, cand.cut + x, kR);
+      const ShotSetup setup{&t, 0, cand.potted_ball, *cand.pocket, BallOn::kRed};
+      const ShotOutcome& out = sim.Run(setup, s, {}, ShotSimulator::Mode::kFull, {});
+      pots = out.first_hit == cand.first_ball && sim.simulator().pocket_of(cand.potted_ball) == static_cast<int>(*cand.pocket);
+    }
+    if (pots && run < 0) run = k;
+    if (!pots && run >= 0) {
+      if (k - run > best_hi - best_lo) best_lo = run, best_hi = k;
+      run = -1;
+    }
+  }
+  EXPECT_GE(best_lo, 0) << "no aim pots";
+  return b.lo + 0.5 * (best_lo + best_hi - 1) * b.width() / (kScan - 1);
+}
+
+double SampledRate(const TableState& t, const RouteCandidate& cand, double speed, const PotContext& ctx) {
+  ShotSimulator sim(Table(), PlannerConfig().full);
+  const double x = CentredAim(t, cand, speed, sim);
+  physics::Shot shot{speed, cand.heading + x, speed / kR, 0};
+  if (cand.aim == AimBy::kCut) shot.heading = *HeadingForCut(t.balls[0].position, t.balls[static_cast<size_t>(cand.first_ball)].position, cand.cut + x, kR);
+  Rng rng(DeriveSeed(17, static_cast<std::uint64_t>(cand.potted_ball), static_cast<std::uint64_t>(*cand.pocket)));
+  std::vector<Vec2> truth;
+  constexpr int kSamples = 300;
+  int potted = 0;
+  const ShotSetup setup{&t, 0, cand.potted_ball, *cand.pocket, BallOn::kRed};
+  for (int k = 0; k < kSamples; ++k) {
+    SampleTruePositions(t, ctx, rng, &truth);
+    const ShotOutcome& out = sim.Run(setup, SampleExecution(shot, ctx.noise, rng), truth, ShotSimulator::Mode::kFull, {});
+    potted += out.first_hit == cand.first_ball && sim.simulator().pocket_of(cand.potted_ball) == static_cast<int>(*cand.pocket);
+  }
+  return static_cast<double>(potted) / kSamples;
+}
+
+TEST(RoutesTest, EstimatesAgreeWithMonteCarlo) {
+  const PotContext ctx = Context();
+  const physics::Pocket& p = Pocket(PocketId::kTopRight);
+  struct Case {
+    const char* name;
+    TableState table;
+    std::optional<RouteCandidate> cand;
+    double speed;
+  };
+  std::vector<Case> cases;
+  for (const auto& [lb, la, cut_ab] : {std::tuple{0.6, 0.4, 15.0}, std::tuple{0.3, 0.2, 30.0}}) {
+    const Vec2 b = p.mouth_centre - lb * p.axis;
+    const Vec2 dir_a = Turn(p.axis, cut_ab);
+    const Vec2 a = b - 2 * kR * p.axis - la * dir_a;
+    TableState t;
+    t.balls = {{BallKind::kCue, a - 2 * kR * dir_a - 0.4 * Turn(dir_a, -20)}, {BallKind::kRed, a}, {BallKind::kRed, b}};
+    cases.push_back({"plant", t, AssessPlant(t, 0, BallOn::kRed, 1, 2, PocketId::kTopRight, ctx), 2.0});
+  }
+  for (const Vec2& red : {Vec2(1.35, 1.5), Vec2(1.5, 1.65)}) {
+    TableState t;
+    t.balls = {{BallKind::kCue, Vec2(1.0, red.y() - 0.25)}, {BallKind::kRed, red}};
+    cases.push_back({"double", t, AssessDouble(t, 0, BallOn::kRed, 1, PocketId::kMiddleLeft, CushionLine::kRight, ctx), 3.0});
+  }
+  const std::array<CushionLine, 1> left = {CushionLine::kLeft};
+  cases.push_back({"kick", KickTable(), AssessKick(KickTable(), 0, BallOn::kRed, 1, PocketId::kTopRight, left, ctx), 2.5});
+  for (const Case& c : cases) {
+    ASSERT_TRUE(c.cand) << c.name;
+    const double rate = SampledRate(c.table, *c.cand, c.speed, ctx);
+    EXPECT_NEAR(c.cand->probability, rate, kEach) << c.name;
+    std::printf("%s: estimate %.3f, Monte Carlo %.3f\n", c.name, c.cand->probability, rate);
+  }
 }
 
 // ------------------------------------------------------------------ full frames
