@@ -52,11 +52,12 @@
 // path_clearance of another ball, no room for the cue (CueMargin), cushion contacts
 // in a jaw or a mouth or too glancing; pots whose estimate is under min_probability.
 //
-// Cost (Release, 15 reds and the colours, red on, mean of 50 random frames, on the
-// 2-core development machine under load): plants 140 to 165 us per call (1260
-// ball-ball-pocket triples), doubles 110 to 140 us (360), kicks 190 to 250 us (1440
-// ball-pocket-cushion sequences), escapes 200 to 280 us (240); the direct pots'
-// EnumerateCandidates takes 31 to 36 us on the same frames.
+// Cost (Release, 15 reds and the colours, red on, 50 random frames, the best of 7
+// runs per frame, on the 2-core development machine shared with other builds):
+// plants 134 us per call (1260 ball-ball-pocket triples, 0.11 us each), doubles
+// 102 us (360 ball-pocket-cushion triples), kicks 158 us (1440 ball-pocket-cushion
+// sequences), escapes 209 us (240 ball-cushion sequences, 0.87 us each); the direct
+// pots' EnumerateCandidates takes 29 us on the same frames.
 #pragma once
 
 #include <array>
