@@ -637,12 +637,20 @@ void Count(RouteStats* stats, const std::optional<RouteCandidate>& cand, RouteRe
   if (!cand) ++stats->refused[static_cast<size_t>(why)];
 }
 
-// Pots: most likely first. Escapes: least likely to miss, then fewer cushions, then
-// shorter. Ties keep the enumeration order (stable), for determinism.
+// An escape's miss probability in steps of kMissStep: escapes whose chances differ
+// by less are equal for ranking (most clear escapes miss with a chance of 1e-6 or
+// less, and a difference there says nothing).
+constexpr double kMissStep = 1e-3;
+int MissRank(const RouteCandidate& c) {
+  return static_cast<int>(std::floor(std::clamp(c.miss_probability, 0.0, 1.0) / kMissStep));
+}
+
+// Pots: most likely first. Escapes: least likely to miss (MissRank), then fewer
+// cushions, then shorter. Ties keep the enumeration order (stable), for determinism.
 void Rank(std::vector<RouteCandidate>& out, const RouteOptions& options, bool escapes) {
   if (escapes) {
     std::stable_sort(out.begin(), out.end(), [](const RouteCandidate& a, const RouteCandidate& b) {
-      if (a.miss_probability != b.miss_probability) return a.miss_probability < b.miss_probability;
+      if (MissRank(a) != MissRank(b)) return MissRank(a) < MissRank(b);
       const int ca = a.path ? a.path->cushions : 0, cb = b.path ? b.path->cushions : 0;
       if (ca != cb) return ca < cb;
       return a.distance < b.distance;

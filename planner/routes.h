@@ -225,9 +225,9 @@ struct RouteStats {
 /// over ordered pairs of balls on and pockets; doubles over balls on, pockets and
 /// the four cushions; kicks over balls on, pockets and the cushion sequences (one,
 /// then two cushions); escapes over balls on and the cushion sequences. Pots by
-/// probability, most likely first; escapes by miss_probability, least first, ties
-/// to fewer cushions and the shorter path; at most max_candidates. Empty without a
-/// cue ball.
+/// probability, most likely first; escapes by miss_probability in steps of 0.001,
+/// least first (chances closer than that are equal), then fewer cushions, then the
+/// shorter path; at most max_candidates. Empty without a cue ball.
 std::vector<RouteCandidate> EnumeratePlants(const TableState& table, int cue, BallOn on,
                                             const PotContext& ctx, const RouteOptions& options = {},
                                             RouteStats* stats = nullptr);

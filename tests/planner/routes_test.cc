@@ -451,7 +451,15 @@ TEST(RoutesTest, EscapeOffOneCushionHitsTheRed) {
   const auto all = EnumerateEscapes(t, 0, BallOn::kRed, ctx);
   ASSERT_FALSE(all.empty());
   EXPECT_LE(all.front().miss_probability, cand->miss_probability);
-  for (size_t i = 1; i < all.size(); ++i) EXPECT_LE(all[i - 1].miss_probability, all[i].miss_probability);
+  for (size_t i = 1; i < all.size(); ++i) {
+    // By the miss in steps of 0.001, then fewer cushions, then shorter.
+    const auto key = [](const RouteCandidate& c) {
+      return std::tuple{std::floor(c.miss_probability / 1e-3), c.path->cushions, c.distance};
+    };
+    EXPECT_LE(key(all[i - 1]), key(all[i]));
+  }
+  // Here the one-cushion escapes come first: every clear escape is nearly sure.
+  EXPECT_EQ(all.front().path->cushions, 1);
 }
 
 TEST(RoutesTest, EscapeOffTwoCushionsHitsTheRed) {
