@@ -103,6 +103,17 @@ void CheckApiFields(const v1::PlanRequest& r, const PlanBounds& bounds, std::vec
                          "names no ball of the table"});
     }
   }
+  if (r.cue_in_hand()) {
+    // The answer names the placed cue ball "cue": no ball of the table may.
+    for (int i = 0; i < r.table().balls_size(); ++i) {
+      const v1::Ball& b = r.table().balls(i);
+      if (b.id() != kPlacedCueId) continue;
+      errors->push_back({"table.balls[" + std::to_string(i) + "].id",
+                         QuoteId(b.id()) + " (a " + v1::BallKind_Name(b.kind()) + " ball)",
+                         "is taken with cue_in_hand: the answer names the cue ball placed from hand \"" +
+                             std::string(kPlacedCueId) + "\""});
+    }
+  }
   if (r.has_time_budget_ms()) {
     const physics::Range allowed{limits::kPlanBudgetMs.lo, bounds.max_budget_ms};
     if (!allowed.Contains(r.time_budget_ms())) {
@@ -165,13 +176,14 @@ PlanCheck CheckPlanRequest(const v1::PlanRequest& r, const physics::TableModel& 
                            const PlanBounds& bounds) {
   PlanCheck result;
   // The table as Simulate checks it (ids, kinds, one cue ball, placement), with the
-  // same vision repair. A bad tolerance is reported alone: the table is then
-  // checked with the server's.
+  // same vision repair; with the cue ball in hand, no cue ball. A bad tolerance is
+  // reported alone: the table is then checked with the server's.
   std::vector<FieldError> tolerance_errors;
   const std::optional<double> tolerance = VisionTolerance(
       r.has_vision_tolerance_mm() ? std::optional<double>(r.vision_tolerance_mm()) : std::nullopt,
       bounds.vision_tolerance_mm, "vision_tolerance_mm", &tolerance_errors);
-  TableCheck check = CheckTable(r.table(), table, tolerance.value_or(bounds.vision_tolerance_mm * 1e-3));
+  TableCheck check = CheckTable(r.table(), table, tolerance.value_or(bounds.vision_tolerance_mm * 1e-3),
+                                r.cue_in_hand() ? CueBall::kInHand : CueBall::kOnTable);
   std::vector<FieldError>& errors = result.errors;
   errors = std::move(check.errors);
   const bool table_ok = errors.empty();
@@ -191,7 +203,7 @@ PlanCheck CheckPlanRequest(const v1::PlanRequest& r, const physics::TableModel& 
   const planner::PlanRequest p = PlanRequestFrom(*checked);
   std::vector<planner::FieldError> rules = planner::ValidateSettings(p);
   if (table_ok) {
-    std::vector<planner::FieldError> more = planner::ValidateTable(p.table, p.ball_on, table);
+    std::vector<planner::FieldError> more = planner::ValidateTable(p.table, p.cue_in_hand, p.ball_on, table);
     rules.insert(rules.begin(), more.begin(), more.end());
   }
   const auto api_end = static_cast<std::ptrdiff_t>(errors.size());
@@ -210,6 +222,7 @@ planner::PlanRequest PlanRequestFrom(const v1::PlanRequest& r, std::optional<dou
   for (const v1::Ball& b : r.table().balls()) {
     p.table.balls.push_back({BallKindFrom(b.kind()), physics::Vec2(b.position().x(), b.position().y())});
   }
+  p.cue_in_hand = r.cue_in_hand();
   p.ball_on = BallOnFrom(r.ball_on());
   const v1::RobotLimits& l = r.limits();
   if (l.has_min_speed()) p.limits.min_speed = l.min_speed();

@@ -14,6 +14,10 @@
 
 namespace snooker::server {
 
+/// The id the answer gives the cue ball placed from hand (PlanRequest.cue_in_hand),
+/// in its events and balls_end; no ball of such a request's table may have it.
+inline constexpr const char* kPlacedCueId = "cue";
+
 /// What a server allows a plan request (snooker serve's flags).
 struct PlanBounds {
   /// The vision repair's tolerance, mm: the default of a request that sets none and

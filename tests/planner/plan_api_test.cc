@@ -40,6 +40,14 @@ v1::PlanRequest ObviousPot() {
   return r;
 }
 
+// ObviousPot with the cue ball in hand: the table without its CUE ball.
+v1::PlanRequest ObviousPotInHand() {
+  v1::PlanRequest r = ObviousPot();
+  r.mutable_table()->mutable_balls()->DeleteSubrange(0, 1);
+  r.set_cue_in_hand(true);
+  return r;
+}
+
 std::vector<std::string> Fields(const std::vector<FieldError>& errors) {
   std::vector<std::string> f;
   for (const FieldError& e : errors) f.push_back(e.field);
@@ -106,6 +114,40 @@ TEST(ValidatePlanRequestTest, TheTableIsCheckedAsSimulateChecksIt) {
   EXPECT_NE(d.find("r7"), std::string::npos) << d;
 }
 
+TEST(ValidatePlanRequestTest, WithTheCueBallInHandTheTableHasNone) {
+  EXPECT_TRUE(ValidatePlanRequest(ObviousPotInHand(), physics::DefaultTable()).empty())
+      << Describe(ValidatePlanRequest(ObviousPotInHand(), physics::DefaultTable()));
+  // Without cue_in_hand the same table lacks its cue ball.
+  v1::PlanRequest r = ObviousPotInHand();
+  r.clear_cue_in_hand();
+  std::string d = Describe(ValidatePlanRequest(r, physics::DefaultTable()));
+  EXPECT_NE(d.find("table.balls = 0 CUE balls (must have exactly one)"), std::string::npos) << d;
+  // With it, a CUE ball on the table is refused, naming the count and the ball.
+  r = ObviousPot();
+  r.set_cue_in_hand(true);
+  const std::vector<FieldError> errors = ValidatePlanRequest(r, physics::DefaultTable());
+  ASSERT_EQ(errors.size(), 1u) << Describe(errors);
+  EXPECT_EQ(errors[0].field, "table.balls");
+  EXPECT_EQ(errors[0].value, "1 CUE ball (\"white\")");
+  EXPECT_NE(errors[0].rule.find("must have none"), std::string::npos) << errors[0].rule;
+  EXPECT_NE(errors[0].rule.find("cue_in_hand"), std::string::npos) << errors[0].rule;
+}
+
+TEST(ValidatePlanRequestTest, WithTheCueBallInHandNoBallMayBeNamedCue) {
+  v1::PlanRequest r = ObviousPotInHand();
+  r.mutable_table()->mutable_balls(1)->set_id("cue");  // the black
+  std::vector<FieldError> errors = ValidatePlanRequest(r, physics::DefaultTable());
+  ASSERT_EQ(errors.size(), 1u) << Describe(errors);
+  EXPECT_EQ(errors[0].field, "table.balls[1].id");
+  EXPECT_EQ(errors[0].value, "\"cue\" (a BLACK ball)");
+  EXPECT_NE(errors[0].rule.find("cue_in_hand"), std::string::npos) << errors[0].rule;
+  // The id is free when the cue ball is on the table (ObviousPot's is "white").
+  r.clear_cue_in_hand();
+  AddBall(&r, "white", v1::CUE, 0.889, 0.6);
+  errors = ValidatePlanRequest(r, physics::DefaultTable());
+  EXPECT_TRUE(errors.empty()) << Describe(errors);
+}
+
 TEST(PlanRequestFromTest, ConvertsUnitsAtTheEdge) {
   v1::PlanRequest r = ObviousPot();
   r.mutable_noise()->set_heading_sigma_deg(0.05);
@@ -127,6 +169,11 @@ TEST(PlanRequestFromTest, ConvertsUnitsAtTheEdge) {
   EXPECT_EQ(d.time_budget, planner::PlanRequest{}.time_budget);
   EXPECT_EQ(d.limits.max_speed, planner::RobotLimits{}.max_speed);
   EXPECT_FALSE(d.ball_on.has_value());
+  EXPECT_FALSE(d.cue_in_hand);
+  EXPECT_FALSE(p.cue_in_hand);
+  const planner::PlanRequest in_hand = PlanRequestFrom(ObviousPotInHand());
+  EXPECT_TRUE(in_hand.cue_in_hand);
+  EXPECT_EQ(in_hand.table.balls.size(), 2u);
 }
 
 TEST(PlanTest, AnswersWithTheTablesIds) {

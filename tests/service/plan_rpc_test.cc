@@ -263,6 +263,17 @@ const BadPlan kBadPlans[] = {
        r->mutable_table()->mutable_balls(2)->mutable_position()->set_y(red.y());
      },
      "beyond the vision tolerance of 1 mm"},
+    {"CueInHandWithACueBall", [](v1::PlanRequest* r) { r->set_cue_in_hand(true); },
+     "table.balls = 1 CUE ball (\"cue\") (must have none: the cue ball is in hand (cue_in_hand)"},
+    {"CueInHandWithABallNamedCue",
+     [](v1::PlanRequest* r) {
+       r->set_cue_in_hand(true);
+       r->mutable_table()->mutable_balls()->DeleteSubrange(0, 1);
+       r->mutable_table()->mutable_balls(1)->set_id("cue");  // the black
+     },
+     "table.balls[1].id = \"cue\" (a BLACK ball) (is taken with cue_in_hand"},
+    {"NoCueBallNotInHand", [](v1::PlanRequest* r) { r->mutable_table()->mutable_balls()->DeleteSubrange(0, 1); },
+     "table.balls = 0 CUE balls (must have exactly one)"},
 };
 
 void PrintTo(const BadPlan& p, std::ostream* os) { *os << p.name; }
