@@ -257,22 +257,82 @@ planner::PlanRequest PlanRequestFrom(const v1::PlanRequest& r, std::optional<dou
   return p;
 }
 
+v1::ShotKind ToProto(planner::ShotKind kind) {
+  switch (kind) {
+    case planner::ShotKind::kPot: return v1::POT;
+    case planner::ShotKind::kSafety: return v1::SAFETY;
+    case planner::ShotKind::kEscape: return v1::ESCAPE;
+    case planner::ShotKind::kBreakOff: return v1::BREAK_OFF;
+  }
+  return v1::SHOT_KIND_UNSPECIFIED;
+}
+
+v1::PotRoute ToProto(planner::PotRoute route) {
+  switch (route) {
+    case planner::PotRoute::kDirect: return v1::DIRECT;
+    case planner::PotRoute::kPlant: return v1::PLANT;
+    case planner::PotRoute::kDouble: return v1::DOUBLE;
+    case planner::PotRoute::kKick: return v1::KICK;
+  }
+  return v1::POT_ROUTE_UNSPECIFIED;
+}
+
+namespace {
+
+// The balls a shot's indices name: `table`'s, or, when the shot placed the cue ball
+// from hand (or names a ball past the table's), `table` with the placed cue ball
+// "cue" after its balls (at cue_start), kept in `with_cue`. Every index past the
+// table's balls names the placed cue ball.
+const v1::TableState& BallsOf(const planner::PlannedShot& s, const v1::TableState& table,
+                              v1::TableState* with_cue) {
+  int last = std::max({s.object_ball, s.first_ball, s.next_ball, static_cast<int>(s.balls_end.size()) - 1});
+  for (const physics::SimEvent& e : s.events) {
+    last = std::max({last, static_cast<int>(e.ball), static_cast<int>(e.other)});
+  }
+  if (!s.cue_start && last < table.balls_size()) return table;
+  *with_cue = table;
+  do {
+    v1::Ball* cue = with_cue->add_balls();
+    cue->set_id(kPlacedCueId);
+    cue->set_kind(v1::CUE);
+    ToProto(s.cue_start.value_or(physics::Vec2::Zero()), cue->mutable_position());
+  } while (with_cue->balls_size() <= last);
+  return *with_cue;
+}
+
+}  // namespace
+
 void ToProto(const planner::PlannedShot& s, const v1::TableState& table,
              const physics::TableModel& model, v1::PlannedShot* out) {
-  auto id = [&](int i) -> const std::string& { return table.balls(i).id(); };
+  v1::TableState with_cue;
+  const v1::TableState& balls = BallsOf(s, table, &with_cue);
+  auto id = [&](int i) -> std::string { return i >= 0 ? balls.balls(i).id() : std::string(); };
   out->set_speed(s.shot.speed);
   out->set_heading_deg(physics::RadToDeg(s.shot.heading));
   out->set_topspin(s.shot.topspin);
   out->set_sidespin(s.shot.sidespin);
   out->set_cut_deg(physics::RadToDeg(s.cut));
   out->set_object_ball(id(s.object_ball));
-  out->set_pocket(physics::ToString(s.pocket));
+  const bool pot = s.kind == planner::ShotKind::kPot;
+  if (pot) out->set_pocket(physics::ToString(s.pocket));
   out->set_pot_probability(s.pot_probability);
   out->set_pocket_probability(s.pocket_probability);
   out->set_position_value(s.position_value);
-  if (s.next_ball >= 0) out->set_next_ball(id(s.next_ball));
+  out->set_next_ball(id(s.next_ball));
   ToProto(s.cue_ball_end, out->mutable_cue_ball_end());
-  for (const physics::SimEvent& e : s.events) ToProto(e, table, model, out->add_events());
+  for (const physics::SimEvent& e : s.events) ToProto(e, balls, model, out->add_events());
+  out->set_kind(ToProto(s.kind));
+  if (pot) out->set_route(ToProto(s.route));
+  out->set_first_ball(id(s.first_ball));
+  out->set_foul_probability(s.foul_probability);
+  if (s.cue_start) ToProto(*s.cue_start, out->mutable_cue_ball_start());
+  for (std::size_t i = 0; i < s.balls_end.size(); ++i) {
+    const planner::BallEnd& end = s.balls_end[i];
+    v1::BallEnd* b = out->add_balls_end();
+    b->set_ball(id(static_cast<int>(i)));
+    ToProto(end.position, b->mutable_position());
+    if (end.pocket) b->set_pocket(physics::ToString(*end.pocket));
+  }
 }
 
 void ToProto(const planner::PlanAnswer& a, const v1::TableState& table,

@@ -56,12 +56,17 @@ TEST(CliPlanTest, JsonHasExactlyTheContractedNames) {
   const auto& shots = json.fields().at("shots").list_value();
   ASSERT_GT(shots.values_size(), 0);
   const Struct& s = shots.values(0).struct_value();
+  // No "cueBallStart": the cue ball is on the table.
   EXPECT_EQ(Keys(s), (std::set<std::string>{"speed", "headingDeg", "topspin", "sidespin", "cutDeg",
                                             "objectBall", "pocket", "potProbability", "pocketProbability",
-                                            "positionValue", "nextBall", "cueBallEnd", "events"}));
+                                            "positionValue", "nextBall", "cueBallEnd", "events", "kind",
+                                            "route", "firstBall", "foulProbability", "ballsEnd"}));
   EXPECT_EQ(Keys(s.fields().at("cueBallEnd").struct_value()), (std::set<std::string>{"x", "y"}));
   EXPECT_EQ(s.fields().at("objectBall").string_value(), "red-1");
   EXPECT_EQ(s.fields().at("pocket").string_value(), "top-right");
+  EXPECT_EQ(s.fields().at("kind").string_value(), "POT");
+  const std::set<std::string> routes = {"DIRECT", "PLANT", "DOUBLE", "KICK"};
+  EXPECT_EQ(routes.count(s.fields().at("route").string_value()), 1u) << r.out;
   EXPECT_GT(json.fields().at("simulations").number_value(), 0);
 
   // The shot fed straight back to `snooker simulate` pots the red.
