@@ -2,6 +2,8 @@
 
 #include <map>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace snooker::cli {
 namespace {
@@ -23,18 +25,14 @@ const char* Colour(v1::BallKind k) {
   }
 }
 
-}  // namespace
-
-std::string ShotSvg(const physics::TableModel& table, const v1::TableState& table_state,
-                    const v1::SimulateResponse& result, double ball_radius) {
+// The document's start and the table (bed, pockets, cushions, jaws, baulk line and
+// D) on `s`, `extra_height` px taller than the table for what goes below it.
+void DrawTable(const physics::TableModel& table, double extra_height, std::ostringstream& s) {
   const physics::TableSpec& spec = table.spec();
-  const double w = spec.width * kScale + 2 * kMargin, h = spec.length * kScale + 2 * kMargin;
+  const double w = spec.width * kScale + 2 * kMargin, h = spec.length * kScale + 2 * kMargin + extra_height;
   // Table frame to SVG: x right, y up the page (the top cushion at the top).
   auto X = [&](double x) { return kMargin + x * kScale; };
   auto Y = [&](double y) { return kMargin + (spec.length - y) * kScale; };
-  std::ostringstream s;
-  s.precision(5);
-  s << std::fixed;
   s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << w << "\" height=\"" << h
     << "\" viewBox=\"0 0 " << w << " " << h << "\">\n";
   s << "<rect x=\"0\" y=\"0\" width=\"" << w << "\" height=\"" << h << "\" fill=\"#3b2a1a\"/>\n";
@@ -59,7 +57,53 @@ std::string ShotSvg(const physics::TableModel& table, const v1::TableState& tabl
   s << "<path d=\"M " << X(cx - r) << " " << Y(spec.baulk_line) << " A " << r * kScale << " "
     << r * kScale << " 0 0 0 " << X(cx + r) << " " << Y(spec.baulk_line)
     << "\" fill=\"none\" stroke=\"#cfe3d3\" stroke-width=\"1\"/>\n";
+}
 
+// `text` in lines of at most `width` bytes, broken at spaces where it can be.
+std::vector<std::string> Wrapped(const std::string& text, std::size_t width) {
+  std::vector<std::string> lines;
+  std::istringstream words(text);
+  std::string line;
+  for (std::string word; words >> word;) {
+    if (!line.empty() && line.size() + 1 + word.size() > width) {
+      lines.push_back(line);
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+    while (line.size() > width) {  // a word longer than a line
+      lines.push_back(line.substr(0, width));
+      line.erase(0, width);
+    }
+  }
+  if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
+}  // namespace
+
+std::string XmlText(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += static_cast<unsigned char>(c) < 0x20 ? ' ' : c;
+    }
+  }
+  return out;
+}
+
+std::string ShotSvg(const physics::TableModel& table, const v1::TableState& table_state,
+                    const v1::SimulateResponse& result, double ball_radius) {
+  const physics::TableSpec& spec = table.spec();
+  auto X = [&](double x) { return kMargin + x * kScale; };
+  auto Y = [&](double y) { return kMargin + (spec.length - y) * kScale; };
+  std::ostringstream s;
+  s.precision(5);
+  s << std::fixed;
+  DrawTable(table, 0, s);
   std::map<std::string, v1::BallKind> kind_of;
   for (const v1::Ball& b : table_state.balls()) kind_of[b.id()] = b.kind();
   for (const v1::BallPath& p : result.paths()) {
@@ -78,7 +122,35 @@ std::string ShotSvg(const physics::TableModel& table, const v1::TableState& tabl
     if (f.pocketed()) continue;
     s << "<circle cx=\"" << X(f.position().x()) << "\" cy=\"" << Y(f.position().y()) << "\" r=\""
       << ball_radius * kScale << "\" fill=\"" << Colour(f.kind())
-      << "\" stroke=\"#000\" stroke-width=\"0.8\"><title>" << f.id() << "</title></circle>\n";
+      << "\" stroke=\"#000\" stroke-width=\"0.8\"><title>" << XmlText(f.id()) << "</title></circle>\n";
+  }
+  s << "</svg>\n";
+  return s.str();
+}
+
+std::string TableSvg(const physics::TableModel& table, const v1::TableState& table_state, double ball_radius,
+                     const std::string& caption) {
+  constexpr double kLineHeight = 16;
+  const physics::TableSpec& spec = table.spec();
+  auto X = [&](double x) { return kMargin + x * kScale; };
+  auto Y = [&](double y) { return kMargin + (spec.length - y) * kScale; };
+  // About 7 px a character at 12 px: the lines fit the table's width.
+  const std::vector<std::string> lines =
+      Wrapped(caption, static_cast<std::size_t>(spec.width * kScale / 7));
+  std::ostringstream s;
+  s.precision(5);
+  s << std::fixed;
+  DrawTable(table, kLineHeight * static_cast<double>(lines.size()), s);
+  for (const v1::Ball& b : table_state.balls()) {
+    s << "<circle cx=\"" << X(b.position().x()) << "\" cy=\"" << Y(b.position().y()) << "\" r=\""
+      << ball_radius * kScale << "\" fill=\"" << Colour(b.kind())
+      << "\" stroke=\"#000\" stroke-width=\"0.8\"><title>" << XmlText(b.id()) << "</title></circle>\n";
+  }
+  double y = Y(0) + kMargin + 4;
+  for (const std::string& line : lines) {
+    s << "<text x=\"" << X(0) << "\" y=\"" << y << "\" fill=\"#f4efe6\" font-family=\"sans-serif\" "
+      << "font-size=\"12\">" << XmlText(line) << "</text>\n";
+    y += kLineHeight;
   }
   s << "</svg>\n";
   return s.str();

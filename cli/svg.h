@@ -1,5 +1,6 @@
 // Drawing a simulated shot as SVG: the table (cushion noses, jaw walls, knuckles,
-// pocket capture circles, baulk line, D, spots), each ball's path and where it ended.
+// pocket capture circles, baulk line, D, spots), each ball's path and where it ended;
+// or, with no shot, the table, its balls and a caption.
 #pragma once
 
 #include <string>
@@ -10,9 +11,18 @@
 
 namespace snooker::cli {
 
+/// `text` for an SVG text node or attribute value: &, <, > and " escaped, control
+/// bytes made spaces.
+std::string XmlText(const std::string& text);
+
 /// The SVG document for a shot from `table_state` simulated into `result` (which
 /// must carry paths for them to be drawn).
 std::string ShotSvg(const physics::TableModel& table, const v1::TableState& table_state,
                     const v1::SimulateResponse& result, double ball_radius);
+
+/// The SVG document of `table_state` with no shot: the table, each ball where it is,
+/// and `caption` (e.g. why there is no shot) in words below the table, wrapped.
+std::string TableSvg(const physics::TableModel& table, const v1::TableState& table_state, double ball_radius,
+                     const std::string& caption);
 
 }  // namespace snooker::cli
