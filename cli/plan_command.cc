@@ -4,7 +4,6 @@
 // operation (server/plan_api.h), here or on a server (--server: Plan, or PlanStream
 // with --stream), and prints the same answer either way.
 
-#include <cctype>
 #include <cstdint>
 #include <fstream>
 #include <iomanip>
@@ -12,7 +11,6 @@
 #include <map>
 #include <optional>
 #include <set>
-#include <sstream>
 #include <string_view>
 
 #include "cli/args.h"
@@ -26,7 +24,6 @@
 #include "server/api.h"
 #include "server/convert.h"
 #include "server/limits.h"
-#include "server/plan_convert.h"
 #include "snooker/v1/service.grpc.pb.h"
 
 namespace snooker::cli {
@@ -123,21 +120,6 @@ bool ReadTable(const std::string& path, v1::TableState* table, std::ostream& err
   return true;
 }
 
-// A shot in words: "red-1 into top-right (pot, direct)", "red-1 into top-right (pot,
-// plant off red-2)", "safety, red-3 first".
-std::string ShotLabel(const v1::PlannedShot& s) {
-  std::string kind = v1::ShotKind_Name(s.kind()), route = v1::PotRoute_Name(s.route());
-  for (std::string* name : {&kind, &route}) {
-    for (char& c : *name) c = c == '_' ? '-' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
-  if (s.kind() != v1::POT) {
-    return kind + ", " + (s.first_ball().empty() ? "no ball hit" : s.first_ball() + " first");
-  }
-  std::string label = s.object_ball() + " into " + s.pocket() + " (pot, " + route;
-  if (s.route() == v1::PLANT && !s.first_ball().empty()) label += " off " + s.first_ball();
-  return label + ")";
-}
-
 void PrintReadable(const v1::PlanResponse& r, std::ostream& out) {
   for (const v1::Warning& w : r.warnings()) out << "warning: " << w.message() << "\n";
   if (r.warnings_size() > 0) out << "\n";
@@ -179,63 +161,15 @@ void PrintProgress(const v1::PlanResponse& r, bool json, std::ostream& out, std:
   out << std::flush;
 }
 
-// The best shot's paths (ShotSvg, the cue ball placed from hand among the balls) and
-// each alternative's cue-ball path, dashed; with no shot, the table and the reason.
-std::string PlanSvg(const v1::TableState& table, const v1::PlanResponse& plan, std::ostream& err) {
-  const physics::TableModel& model = physics::DefaultTable();
-  const double r = physics::BallParams{}.radius;
-  if (plan.shots_size() == 0) return TableSvg(model, table, r, "no shot: " + plan.reason());
-  std::string doc;
-  std::ostringstream extra;
-  extra.precision(5);
-  extra << std::fixed;
-  for (int k = 0; k < plan.shots_size(); ++k) {
-    const v1::PlannedShot& s = plan.shots(k);
-    v1::SimulateRequest sim;
-    *sim.mutable_table() = table;
-    if (s.has_cue_ball_start()) {
-      v1::Ball* cue = sim.mutable_table()->add_balls();
-      cue->set_id(server::kPlacedCueId);
-      cue->set_kind(v1::CUE);
-      *cue->mutable_position() = s.cue_ball_start();
-    }
-    sim.mutable_shot()->set_speed(s.speed());
-    sim.mutable_shot()->set_heading_deg(s.heading_deg());
-    sim.mutable_shot()->set_topspin(s.topspin());
-    sim.mutable_shot()->set_sidespin(s.sidespin());
-    sim.mutable_options()->set_include_paths(true);
-    v1::SimulateResponse result;
-    const server::ApiStatus st = server::Simulate(sim, &result);
-    if (!st.ok()) {
-      err << "snooker plan: cannot draw shot " << k + 1 << ": " << st.message << "\n";
-      return "";
-    }
-    if (k == 0) {
-      doc = ShotSvg(model, sim.table(), result, r);
-      continue;
-    }
-    // Same mapping as ShotSvg: 250 px per metre, 30 px margin, y up the page.
-    const double scale = 250, margin = 30, length = model.spec().length;
-    const std::string& cue_id = sim.table().balls(server::CueIndex(sim.table())).id();
-    for (const v1::BallPath& p : result.paths()) {
-      if (p.id() != cue_id || p.points_size() < 2) continue;
-      extra << "<polyline fill=\"none\" stroke=\"#ffffff\" stroke-opacity=\"0.6\" stroke-width=\"1\" "
-               "stroke-dasharray=\"6 4\" points=\"";
-      for (const v1::Vec2& q : p.points()) {
-        extra << margin + q.x() * scale << "," << margin + (length - q.y()) * scale << " ";
-      }
-      extra << "\"><title>#" << k + 1 << ": " << XmlText(ShotLabel(s)) << "</title></polyline>\n";
-    }
-  }
-  const size_t end = doc.rfind("</svg>");
-  if (end != std::string::npos) doc.insert(end, extra.str());
-  return doc;
-}
-
+// The drawing of the plan (PlanSvg) in `path`.
 bool WriteSvg(const std::string& path, const v1::TableState& table, const v1::PlanResponse& plan,
               std::ostream& err) {
-  const std::string doc = PlanSvg(table, plan, err);
-  if (doc.empty()) return false;
+  std::string why;
+  const std::string doc = PlanSvg(table, plan, &why);
+  if (doc.empty()) {
+    err << "snooker plan: " << why << "\n";
+    return false;
+  }
   std::ofstream f(path);
   f << doc;
   if (!f) {

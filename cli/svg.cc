@@ -1,9 +1,14 @@
 #include "cli/svg.h"
 
+#include <cctype>
 #include <map>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "server/api.h"
+#include "server/convert.h"
+#include "server/plan_convert.h"
 
 namespace snooker::cli {
 namespace {
@@ -116,7 +121,7 @@ std::string ShotSvg(const physics::TableModel& table, const v1::TableState& tabl
   for (const v1::Ball& b : table_state.balls()) {  // starting positions, faint
     s << "<circle cx=\"" << X(b.position().x()) << "\" cy=\"" << Y(b.position().y()) << "\" r=\""
       << ball_radius * kScale << "\" fill=\"" << Colour(b.kind())
-      << "\" fill-opacity=\"0.25\" stroke=\"none\"/>\n";
+      << "\" fill-opacity=\"0.25\" stroke=\"none\"><title>" << XmlText(b.id()) << " (start)</title></circle>\n";
   }
   for (const v1::FinalBall& f : result.final_balls()) {
     if (f.pocketed()) continue;
@@ -154,6 +159,68 @@ std::string TableSvg(const physics::TableModel& table, const v1::TableState& tab
   }
   s << "</svg>\n";
   return s.str();
+}
+
+std::string ShotLabel(const v1::PlannedShot& s) {
+  std::string kind = v1::ShotKind_Name(s.kind()), route = v1::PotRoute_Name(s.route());
+  for (std::string* name : {&kind, &route}) {
+    for (char& c : *name) c = c == '_' ? '-' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  if (s.kind() != v1::POT) {
+    return kind + ", " + (s.first_ball().empty() ? "no ball hit" : s.first_ball() + " first");
+  }
+  std::string label = s.object_ball() + " into " + s.pocket() + " (pot, " + route;
+  if (s.route() == v1::PLANT && !s.first_ball().empty()) label += " off " + s.first_ball();
+  return label + ")";
+}
+
+std::string PlanSvg(const v1::TableState& table, const v1::PlanResponse& plan, std::string* error) {
+  const physics::TableModel& model = physics::DefaultTable();
+  const double r = physics::BallParams{}.radius;
+  if (plan.shots_size() == 0) return TableSvg(model, table, r, "no shot: " + plan.reason());
+  auto X = [&](double x) { return kMargin + x * kScale; };
+  auto Y = [&](double y) { return kMargin + (model.spec().length - y) * kScale; };
+  std::string doc;
+  std::ostringstream extra;
+  extra.precision(5);
+  extra << std::fixed;
+  for (int k = 0; k < plan.shots_size(); ++k) {
+    const v1::PlannedShot& s = plan.shots(k);
+    v1::SimulateRequest sim;
+    *sim.mutable_table() = table;
+    if (s.has_cue_ball_start()) {
+      v1::Ball* cue = sim.mutable_table()->add_balls();
+      cue->set_id(server::kPlacedCueId);
+      cue->set_kind(v1::CUE);
+      *cue->mutable_position() = s.cue_ball_start();
+    }
+    sim.mutable_shot()->set_speed(s.speed());
+    sim.mutable_shot()->set_heading_deg(s.heading_deg());
+    sim.mutable_shot()->set_topspin(s.topspin());
+    sim.mutable_shot()->set_sidespin(s.sidespin());
+    sim.mutable_options()->set_include_paths(true);
+    v1::SimulateResponse result;
+    const server::ApiStatus st = server::Simulate(sim, &result);
+    if (!st.ok()) {
+      *error = "cannot draw shot " + std::to_string(k + 1) + ": " + st.message;
+      return "";
+    }
+    if (k == 0) {
+      doc = ShotSvg(model, sim.table(), result, r);
+      continue;
+    }
+    const std::string& cue_id = sim.table().balls(server::CueIndex(sim.table())).id();
+    for (const v1::BallPath& p : result.paths()) {
+      if (p.id() != cue_id || p.points_size() < 2) continue;
+      extra << "<polyline fill=\"none\" stroke=\"#ffffff\" stroke-opacity=\"0.6\" stroke-width=\"1\" "
+               "stroke-dasharray=\"6 4\" points=\"";
+      for (const v1::Vec2& q : p.points()) extra << X(q.x()) << "," << Y(q.y()) << " ";
+      extra << "\"><title>#" << k + 1 << ": " << XmlText(ShotLabel(s)) << "</title></polyline>\n";
+    }
+  }
+  const size_t end = doc.rfind("</svg>");
+  if (end != std::string::npos) doc.insert(end, extra.str());
+  return doc;
 }
 
 }  // namespace snooker::cli

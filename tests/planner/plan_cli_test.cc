@@ -195,8 +195,8 @@ TEST(CliPlanTest, WithTheCueBallInHandEachShotSaysWhereToPlaceIt) {
       ASSERT_EQ(ends.values_size(), 4);
       EXPECT_EQ(ends.values(3).struct_value().fields().at("ball").string_value(), "cue");
     }
-    // The drawing has the placed cue ball and its path.
-    EXPECT_NE(doc.find("<title>cue</title>"), std::string::npos);
+    // The drawing has the placed cue ball where it starts, and its path.
+    EXPECT_NE(doc.find("<title>cue (start)</title>"), std::string::npos);
     EXPECT_NE(doc.find("<polyline"), std::string::npos);
   }
   // The readable answer says where to place it, or why there is no shot.
