@@ -11,7 +11,6 @@
 #include <map>
 #include <optional>
 #include <set>
-#include <sstream>
 #include <string_view>
 
 #include "cli/args.h"
@@ -36,7 +35,7 @@ constexpr const char* kHelp = R"(usage: snooker plan --table T.json|builtin:NAME
                     [--noise-heading-deg X] [--noise-speed X] [--noise-spin X]
                     [--noise-position-mm X] [--min-speed X] [--max-speed X]
                     [--max-topspin X] [--max-sidespin X] [--cue-clearance-m X] [--pot-only]
-                    [--max-simulations N] [--samples N]
+                    [--max-simulations N] [--samples N] [--cue-in-hand]
                     [--server HOST:PORT [--tls-ca CA.pem] [--tls-cert C --tls-key K]
                     [--tls-server-name N] [--deadline-ms MS]]
 
@@ -44,7 +43,8 @@ Plans the shots that pot a ball on and leave the cue ball in a good position for
 next one: every shot is searched with NLopt over speed, topspin, sidespin and cut
 angle, checked with the full simulator, and ranked by its probability of success
 under the robot's execution noise and the vision system's position noise (seeded
-Monte Carlo).
+Monte Carlo). Each shot is listed with its kind (pot, safety, escape, break-off),
+a pot with its route (direct, plant, double, kick).
 
   --table T.json   the balls, as for snooker simulate: {"balls": [{"id": "cue",
                    "kind": "CUE", "position": {"x": 0.9, "y": 0.6}}, ...]}; positions
@@ -59,13 +59,20 @@ Monte Carlo).
   --shots K        how many shots to list, best first (default 3; 1 to 20)
   --seed S         seed of the Monte Carlo (default 1): same table and seed, same
                    answer when the budget does not cut the work short
+  --cue-in-hand    the cue ball is in hand (the break-off, or after an in-off): the
+                   table has no CUE ball, and each shot says where in the D to place
+                   it (the placed cue ball is named "cue", so no ball may be)
   --json           print the answer as JSON: {"shots": [{"speed", "headingDeg",
                    "topspin", "sidespin", "cutDeg", "objectBall", "pocket",
-                   "potProbability", "positionValue", "nextBall", "cueBallEnd": {"x",
-                   "y"}, "events": [...]}], "reason", "simulations", "evaluations",
-                   "elapsedMs"}; a shot's first four fields are a simulate shot file
-  --svg out.svg    draw the best shot (both balls' paths, bold) and the cue ball's
-                   path of each alternative (dashed) over the table
+                   "potProbability", "pocketProbability", "positionValue", "nextBall",
+                   "cueBallEnd": {"x", "y"}, "events": [...], "kind", "route",
+                   "firstBall", "foulProbability", "cueBallStart": {"x", "y"},
+                   "ballsEnd": [{"ball", "position", "pocket"}]}], "reason",
+                   "simulations", "evaluations", "elapsedMs", "final", "warnings"};
+                   a shot's first four fields are a simulate shot file
+  --svg out.svg    draw the best shot (every ball's path, the cue ball placed from
+                   hand where it is) and the cue ball's path of each alternative
+                   (dashed) over the table; with no shot, the table and why
   --stream         print the best shot so far each time the search improves on it
                    ("progress" lines, or one JSON object per line with --json: final
                    false, potProbability the fast estimate), then the answer; with
@@ -119,10 +126,15 @@ void PrintReadable(const v1::PlanResponse& r, std::ostream& out) {
   if (r.shots_size() == 0) out << "no shot: " << r.reason() << "\n";
   int rank = 0;
   for (const v1::PlannedShot& s : r.shots()) {
-    out << std::fixed << "#" << ++rank << "  " << s.object_ball() << " into " << s.pocket()
-        << std::setprecision(3) << "   P(pot) " << s.pot_probability() << ", position "
-        << s.position_value() << (s.next_ball().empty() ? "" : " (next: " + s.next_ball() + ")")
-        << "\n    shot: speed " << std::setprecision(4) << s.speed() << " m/s, heading "
+    out << std::fixed << "#" << ++rank << "  " << ShotLabel(s) << std::setprecision(3) << "   ";
+    if (s.kind() == v1::POT) out << "P(pot) " << s.pot_probability() << ", ";
+    out << "P(foul) " << s.foul_probability() << ", position " << s.position_value()
+        << (s.next_ball().empty() ? "" : " (next: " + s.next_ball() + ")") << "\n";
+    if (s.has_cue_ball_start()) {
+      out << "    cue ball in hand: place it at (" << s.cue_ball_start().x() << ", " << s.cue_ball_start().y()
+          << ") m, in the D\n";
+    }
+    out << "    shot: speed " << std::setprecision(4) << s.speed() << " m/s, heading "
         << s.heading_deg() << " deg, topspin " << std::setprecision(2) << s.topspin()
         << " rad/s, sidespin " << s.sidespin() << " rad/s; cut " << std::setprecision(3)
         << s.cut_deg() << " deg\n    cue ball stops at (" << std::setprecision(3)
@@ -140,58 +152,24 @@ void PrintProgress(const v1::PlanResponse& r, bool json, std::ostream& out, std:
     return;
   }
   for (const v1::PlannedShot& s : r.shots()) {
-    out << std::fixed << std::setprecision(1) << "progress " << r.elapsed_ms() << " ms: "
-        << s.object_ball() << " into " << s.pocket() << std::setprecision(3)
-        << ", P(pot) estimate " << s.pot_probability() << ", position " << s.position_value()
-        << std::setprecision(4) << "; speed " << s.speed() << " m/s, heading " << s.heading_deg()
-        << " deg\n";
+    out << std::fixed << std::setprecision(1) << "progress " << r.elapsed_ms() << " ms: " << ShotLabel(s)
+        << std::setprecision(3);
+    if (s.kind() == v1::POT) out << ", P(pot) estimate " << s.pot_probability();
+    out << ", position " << s.position_value() << std::setprecision(4) << "; speed " << s.speed()
+        << " m/s, heading " << s.heading_deg() << " deg\n";
   }
   out << std::flush;
 }
 
-// The best shot's paths (ShotSvg) and each alternative's cue-ball path, dashed.
+// The drawing of the plan (PlanSvg) in `path`.
 bool WriteSvg(const std::string& path, const v1::TableState& table, const v1::PlanResponse& plan,
               std::ostream& err) {
-  const physics::TableModel& model = physics::DefaultTable();
-  const double r = physics::BallParams{}.radius;
-  std::string doc;
-  std::ostringstream extra;
-  extra.precision(5);
-  extra << std::fixed;
-  for (int k = 0; k < plan.shots_size(); ++k) {
-    const v1::PlannedShot& s = plan.shots(k);
-    v1::SimulateRequest sim;
-    *sim.mutable_table() = table;
-    sim.mutable_shot()->set_speed(s.speed());
-    sim.mutable_shot()->set_heading_deg(s.heading_deg());
-    sim.mutable_shot()->set_topspin(s.topspin());
-    sim.mutable_shot()->set_sidespin(s.sidespin());
-    sim.mutable_options()->set_include_paths(true);
-    v1::SimulateResponse result;
-    const server::ApiStatus st = server::Simulate(sim, &result);
-    if (!st.ok()) {
-      err << "snooker plan: cannot draw shot " << k + 1 << ": " << st.message << "\n";
-      return false;
-    }
-    if (k == 0) {
-      doc = ShotSvg(model, table, result, r);
-      continue;
-    }
-    // Same mapping as ShotSvg: 250 px per metre, 30 px margin, y up the page.
-    const double scale = 250, margin = 30, length = model.spec().length;
-    for (const v1::BallPath& p : result.paths()) {
-      if (p.id() != table.balls(server::CueIndex(table)).id() || p.points_size() < 2) continue;
-      extra << "<polyline fill=\"none\" stroke=\"#ffffff\" stroke-opacity=\"0.6\" stroke-width=\"1\" "
-               "stroke-dasharray=\"6 4\" points=\"";
-      for (const v1::Vec2& q : p.points()) {
-        extra << margin + q.x() * scale << "," << margin + (length - q.y()) * scale << " ";
-      }
-      extra << "\"><title>#" << k + 1 << ": " << s.object_ball() << " into " << s.pocket()
-            << "</title></polyline>\n";
-    }
+  std::string why;
+  const std::string doc = PlanSvg(table, plan, &why);
+  if (doc.empty()) {
+    err << "snooker plan: " << why << "\n";
+    return false;
   }
-  const size_t end = doc.rfind("</svg>");
-  if (end != std::string::npos) doc.insert(end, extra.str());
   std::ofstream f(path);
   f << doc;
   if (!f) {
@@ -273,6 +251,7 @@ void SetRequestFields(Args& args, v1::PlanRequest* req) {
   number("max-sidespin", [&](double x) { limits->set_max_sidespin_fraction(x); });
   number("cue-clearance-m", [&](double x) { limits->set_cue_clearance_m(x); });
   if (args.Switch("pot-only")) req->set_position_play(false);
+  if (args.Switch("cue-in-hand")) req->set_cue_in_hand(true);
 }
 
 // Reads and checks the flags, and the table, into `s`. An exit code when the command
@@ -285,7 +264,7 @@ std::optional<int> ParsePlanFlags(const std::vector<std::string>& argv, std::ost
                                   "max-sidespin", "cue-clearance-m", "max-simulations", "samples",
                                   "vision-tolerance-mm"};
   for (const std::string& flag : ClientFlags()) valued.insert(flag);
-  Args args(argv, valued, {"json", "help", "pot-only", "stream"});
+  Args args(argv, valued, {"json", "help", "pot-only", "stream", "cue-in-hand"});
   if (args.error().empty() && args.Switch("help")) {
     out << kHelp << "\n" << ClientFlagsHelp();
     return kExitOk;
@@ -372,7 +351,7 @@ int PlanHere(const PlanSettings& s, v1::PlanResponse* resp, std::ostream& out, s
 
 // The answer: drawn with --svg, and printed (JSON with --json).
 int WriteAnswer(const PlanSettings& s, const v1::PlanResponse& resp, std::ostream& out, std::ostream& err) {
-  if (!s.svg_path.empty() && resp.shots_size() > 0) {
+  if (!s.svg_path.empty()) {
     // Drawn from the table the plan started from (after any vision repair).
     v1::TableState drawn = s.request.table();
     for (const v1::Warning& w : resp.warnings()) {

@@ -32,11 +32,11 @@ void CheckCount(std::vector<FieldError>* errors, const std::string& field, std::
                      physics::Range{static_cast<double>(range.lo), static_cast<double>(range.hi)}, ""});
 }
 
-void CheckCounts(const TableState& t, std::vector<FieldError>* errors) {
+void CheckCounts(const TableState& t, bool cue_in_hand, std::vector<FieldError>* errors) {
   const int cues = t.Count(BallKind::kCue);
-  if (cues != 1) {
+  if (cues != (cue_in_hand ? 0 : 1)) {
     errors->push_back({"table.balls", -1, static_cast<double>(cues), "", Unit::kNone, std::nullopt,
-                       "cue balls: exactly one"});
+                       cue_in_hand ? "cue balls: none with cue_in_hand" : "cue balls: exactly one"});
   }
   if (t.reds() > physics::kRedCount) {
     errors->push_back({"table.balls", -1, static_cast<double>(t.reds()), "", Unit::kNone, std::nullopt,
@@ -67,8 +67,8 @@ const char* ToString(Unit u) {
   return "";
 }
 
-std::vector<FieldError> ValidateTable(const TableState& t, const std::optional<BallOn>& ball_on,
-                                      const physics::TableModel& model) {
+std::vector<FieldError> ValidateTable(const TableState& t, bool cue_in_hand,
+                                      const std::optional<BallOn>& ball_on, const physics::TableModel& model) {
   std::vector<FieldError> errors;
   const int n = static_cast<int>(t.balls.size());
   if (n > physics::limits::kMaxBalls) {
@@ -77,7 +77,7 @@ std::vector<FieldError> ValidateTable(const TableState& t, const std::optional<B
                       physics::Range{0, static_cast<double>(physics::limits::kMaxBalls)}, ""});
     return errors;
   }
-  CheckCounts(t, &errors);
+  CheckCounts(t, cue_in_hand, &errors);
   bool finite = true;
   for (int i = 0; i < n; ++i) {
     const physics::Vec2& p = t.balls[static_cast<size_t>(i)].position;
@@ -152,7 +152,7 @@ std::vector<FieldError> ValidateSettings(const PlanRequest& r) {
 }
 
 std::vector<FieldError> ValidatePlanRequest(const PlanRequest& request, const physics::TableModel& model) {
-  std::vector<FieldError> errors = ValidateTable(request.table, request.ball_on, model);
+  std::vector<FieldError> errors = ValidateTable(request.table, request.cue_in_hand, request.ball_on, model);
   std::vector<FieldError> more = ValidateSettings(request);
   errors.insert(errors.end(), more.begin(), more.end());
   return errors;

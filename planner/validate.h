@@ -47,12 +47,13 @@ struct FieldError {
   std::string rule;
 };
 
-/// The table: at most physics::limits::kMaxBalls balls, exactly one cue ball, at
-/// most 15 reds and one ball of each colour, finite centres placed legally on
-/// `model` (TableModel::ValidatePlacement), and a ball on (when given) that has a
-/// ball of its kind on the table.
-std::vector<FieldError> ValidateTable(const TableState& table, const std::optional<BallOn>& ball_on,
-                                      const physics::TableModel& model);
+/// The table: at most physics::limits::kMaxBalls balls, exactly one cue ball (none
+/// when the cue ball is in hand: PlanRequest::cue_in_hand), at most 15 reds and one
+/// ball of each colour, finite centres placed legally on `model`
+/// (TableModel::ValidatePlacement), and a ball on (when given) that has a ball of
+/// its kind on the table.
+std::vector<FieldError> ValidateTable(const TableState& table, bool cue_in_hand,
+                                      const std::optional<BallOn>& ball_on, const physics::TableModel& model);
 
 /// Everything but the table: the robot's limits, the noise (position_sigma: none, or
 /// one per ball of the table), the time budget and the counts, each in its

@@ -227,21 +227,12 @@ std::optional<FieldError> CheckPosition(const v1::Ball& b, const std::string& wh
   return std::nullopt;
 }
 
-}  // namespace
-
-TableCheck CheckTable(const v1::TableState& t, const physics::TableModel& table,
-                      double vision_tolerance_m) {
-  TableCheck check;
-  std::vector<FieldError>& errors = check.errors;
+// Each ball's id, kind and position, and the number of CUE balls (`cue`); false when
+// a position is missing or off the table (the placement cannot be checked).
+bool CheckBalls(const v1::TableState& t, const physics::TableModel& table, CueBall cue,
+                std::vector<FieldError>* out) {
+  std::vector<FieldError>& errors = *out;
   const int n = t.balls_size();
-  if (n == 0) errors.push_back({"table.balls", "[]", "must list at least the cue ball"});
-  if (n > plim::kMaxBalls) {
-    // Refused before any ball is looked at: everything below is at least linear in
-    // the balls, the placement check and repair quadratic.
-    errors.push_back({"table.balls", std::to_string(n) + " balls",
-                      "at most " + std::to_string(plim::kMaxBalls)});
-    return check;
-  }
   std::set<std::string_view> ids;
   std::vector<std::string> cue_ids;
   bool placeable = n > 0;
@@ -266,13 +257,37 @@ TableCheck CheckTable(const v1::TableState& t, const physics::TableModel& table,
       placeable = false;
     }
   }
-  if (n > 0 && cue_ids.size() != 1) {
-    std::string value = std::to_string(cue_ids.size()) + " CUE balls";
+  const std::size_t cues = cue == CueBall::kInHand ? 0 : 1;
+  if (n > 0 && cue_ids.size() != cues) {
+    std::string value = std::to_string(cue_ids.size()) + (cue_ids.size() == 1 ? " CUE ball" : " CUE balls");
     for (std::size_t i = 0; i < cue_ids.size(); ++i) value += (i == 0 ? " (" : ", ") + cue_ids[i];
     if (!cue_ids.empty()) value += ")";
-    errors.push_back({"table.balls", value, "must have exactly one"});
+    errors.push_back({"table.balls", value,
+                      cues == 1 ? "must have exactly one"
+                                : "must have none: the cue ball is in hand (cue_in_hand), the planner places it"});
   }
-  if (!placeable) return check;
+  return placeable;
+}
+
+}  // namespace
+
+TableCheck CheckTable(const v1::TableState& t, const physics::TableModel& table,
+                      double vision_tolerance_m, CueBall cue) {
+  TableCheck check;
+  std::vector<FieldError>& errors = check.errors;
+  const int n = t.balls_size();
+  if (n == 0) {
+    errors.push_back({"table.balls", "[]",
+                      cue == CueBall::kInHand ? "must list at least one ball" : "must list at least the cue ball"});
+  }
+  if (n > plim::kMaxBalls) {
+    // Refused before any ball is looked at: everything below is at least linear in
+    // the balls, the placement check and repair quadratic.
+    errors.push_back({"table.balls", std::to_string(n) + " balls",
+                      "at most " + std::to_string(plim::kMaxBalls)});
+    return check;
+  }
+  if (!CheckBalls(t, table, cue, &errors)) return check;
   std::vector<physics::BallPlacement> placed;
   placed.reserve(static_cast<std::size_t>(n));
   for (const v1::Ball& b : t.balls()) {

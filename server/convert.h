@@ -3,6 +3,7 @@
 // each bad value by its API field name, with the rule it breaks.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -65,14 +66,20 @@ struct TableCheck {
   std::vector<v1::Warning> warnings;
 };
 
+/// Where the cue ball of a table state is: on the table (exactly one CUE ball:
+/// Simulate, and Plan), or in hand (no CUE ball: Plan with cue_in_hand, where the
+/// planner places it).
+enum class CueBall : std::uint8_t { kOnTable, kInHand };
+
 /// Checks a table state: the ball count first, before anything that grows with it;
-/// ids not empty, unique and at most limits::kMaxIdBytes; kinds; one cue ball;
-/// finite positions; then the placement on `table`. With vision_tolerance_m > 0,
-/// overlaps and cushion overshoots up to it are repaired (physics::RepairPlacement:
-/// the least displacement) and reported as warnings, larger ones are errors naming
-/// the balls; with 0, every overlap and overshoot is an error (ValidatePlacement).
+/// ids not empty, unique and at most limits::kMaxIdBytes; kinds; one cue ball (none
+/// when it is in hand); finite positions; then the placement on `table`. With
+/// vision_tolerance_m > 0, overlaps and cushion overshoots up to it are repaired
+/// (physics::RepairPlacement: the least displacement) and reported as warnings,
+/// larger ones are errors naming the balls; with 0, every overlap and overshoot is
+/// an error (ValidatePlacement).
 TableCheck CheckTable(const v1::TableState& state, const physics::TableModel& table,
-                      double vision_tolerance_m);
+                      double vision_tolerance_m, CueBall cue = CueBall::kOnTable);
 
 /// The vision tolerance a request asks for (`requested_mm`, unset: the server's), m;
 /// an error naming `field` when it is outside [0, server_mm].

@@ -103,6 +103,17 @@ void CheckApiFields(const v1::PlanRequest& r, const PlanBounds& bounds, std::vec
                          "names no ball of the table"});
     }
   }
+  if (r.cue_in_hand()) {
+    // The answer names the placed cue ball "cue": no ball of the table may.
+    for (int i = 0; i < r.table().balls_size(); ++i) {
+      const v1::Ball& b = r.table().balls(i);
+      if (b.id() != kPlacedCueId) continue;
+      errors->push_back({"table.balls[" + std::to_string(i) + "].id",
+                         QuoteId(b.id()) + " (a " + v1::BallKind_Name(b.kind()) + " ball)",
+                         "is taken with cue_in_hand: the answer names the cue ball placed from hand \"" +
+                             std::string(kPlacedCueId) + "\""});
+    }
+  }
   if (r.has_time_budget_ms()) {
     const physics::Range allowed{limits::kPlanBudgetMs.lo, bounds.max_budget_ms};
     if (!allowed.Contains(r.time_budget_ms())) {
@@ -165,13 +176,14 @@ PlanCheck CheckPlanRequest(const v1::PlanRequest& r, const physics::TableModel& 
                            const PlanBounds& bounds) {
   PlanCheck result;
   // The table as Simulate checks it (ids, kinds, one cue ball, placement), with the
-  // same vision repair. A bad tolerance is reported alone: the table is then
-  // checked with the server's.
+  // same vision repair; with the cue ball in hand, no cue ball. A bad tolerance is
+  // reported alone: the table is then checked with the server's.
   std::vector<FieldError> tolerance_errors;
   const std::optional<double> tolerance = VisionTolerance(
       r.has_vision_tolerance_mm() ? std::optional<double>(r.vision_tolerance_mm()) : std::nullopt,
       bounds.vision_tolerance_mm, "vision_tolerance_mm", &tolerance_errors);
-  TableCheck check = CheckTable(r.table(), table, tolerance.value_or(bounds.vision_tolerance_mm * 1e-3));
+  TableCheck check = CheckTable(r.table(), table, tolerance.value_or(bounds.vision_tolerance_mm * 1e-3),
+                                r.cue_in_hand() ? CueBall::kInHand : CueBall::kOnTable);
   std::vector<FieldError>& errors = result.errors;
   errors = std::move(check.errors);
   const bool table_ok = errors.empty();
@@ -191,7 +203,7 @@ PlanCheck CheckPlanRequest(const v1::PlanRequest& r, const physics::TableModel& 
   const planner::PlanRequest p = PlanRequestFrom(*checked);
   std::vector<planner::FieldError> rules = planner::ValidateSettings(p);
   if (table_ok) {
-    std::vector<planner::FieldError> more = planner::ValidateTable(p.table, p.ball_on, table);
+    std::vector<planner::FieldError> more = planner::ValidateTable(p.table, p.cue_in_hand, p.ball_on, table);
     rules.insert(rules.begin(), more.begin(), more.end());
   }
   const auto api_end = static_cast<std::ptrdiff_t>(errors.size());
@@ -210,6 +222,7 @@ planner::PlanRequest PlanRequestFrom(const v1::PlanRequest& r, std::optional<dou
   for (const v1::Ball& b : r.table().balls()) {
     p.table.balls.push_back({BallKindFrom(b.kind()), physics::Vec2(b.position().x(), b.position().y())});
   }
+  p.cue_in_hand = r.cue_in_hand();
   p.ball_on = BallOnFrom(r.ball_on());
   const v1::RobotLimits& l = r.limits();
   if (l.has_min_speed()) p.limits.min_speed = l.min_speed();
@@ -244,22 +257,82 @@ planner::PlanRequest PlanRequestFrom(const v1::PlanRequest& r, std::optional<dou
   return p;
 }
 
+v1::ShotKind ToProto(planner::ShotKind kind) {
+  switch (kind) {
+    case planner::ShotKind::kPot: return v1::POT;
+    case planner::ShotKind::kSafety: return v1::SAFETY;
+    case planner::ShotKind::kEscape: return v1::ESCAPE;
+    case planner::ShotKind::kBreakOff: return v1::BREAK_OFF;
+  }
+  return v1::SHOT_KIND_UNSPECIFIED;
+}
+
+v1::PotRoute ToProto(planner::PotRoute route) {
+  switch (route) {
+    case planner::PotRoute::kDirect: return v1::DIRECT;
+    case planner::PotRoute::kPlant: return v1::PLANT;
+    case planner::PotRoute::kDouble: return v1::DOUBLE;
+    case planner::PotRoute::kKick: return v1::KICK;
+  }
+  return v1::POT_ROUTE_UNSPECIFIED;
+}
+
+namespace {
+
+// The balls a shot's indices name: `table`'s, or, when the shot placed the cue ball
+// from hand (or names a ball past the table's), `table` with the placed cue ball
+// "cue" after its balls (at cue_start), kept in `with_cue`. Every index past the
+// table's balls names the placed cue ball.
+const v1::TableState& BallsOf(const planner::PlannedShot& s, const v1::TableState& table,
+                              v1::TableState* with_cue) {
+  int last = std::max({s.object_ball, s.first_ball, s.next_ball, static_cast<int>(s.balls_end.size()) - 1});
+  for (const physics::SimEvent& e : s.events) {
+    last = std::max({last, static_cast<int>(e.ball), static_cast<int>(e.other)});
+  }
+  if (!s.cue_start && last < table.balls_size()) return table;
+  *with_cue = table;
+  do {
+    v1::Ball* cue = with_cue->add_balls();
+    cue->set_id(kPlacedCueId);
+    cue->set_kind(v1::CUE);
+    ToProto(s.cue_start.value_or(physics::Vec2::Zero()), cue->mutable_position());
+  } while (with_cue->balls_size() <= last);
+  return *with_cue;
+}
+
+}  // namespace
+
 void ToProto(const planner::PlannedShot& s, const v1::TableState& table,
              const physics::TableModel& model, v1::PlannedShot* out) {
-  auto id = [&](int i) -> const std::string& { return table.balls(i).id(); };
+  v1::TableState with_cue;
+  const v1::TableState& balls = BallsOf(s, table, &with_cue);
+  auto id = [&](int i) -> std::string { return i >= 0 ? balls.balls(i).id() : std::string(); };
   out->set_speed(s.shot.speed);
   out->set_heading_deg(physics::RadToDeg(s.shot.heading));
   out->set_topspin(s.shot.topspin);
   out->set_sidespin(s.shot.sidespin);
   out->set_cut_deg(physics::RadToDeg(s.cut));
   out->set_object_ball(id(s.object_ball));
-  out->set_pocket(physics::ToString(s.pocket));
+  const bool pot = s.kind == planner::ShotKind::kPot;
+  if (pot) out->set_pocket(physics::ToString(s.pocket));
   out->set_pot_probability(s.pot_probability);
   out->set_pocket_probability(s.pocket_probability);
   out->set_position_value(s.position_value);
-  if (s.next_ball >= 0) out->set_next_ball(id(s.next_ball));
+  out->set_next_ball(id(s.next_ball));
   ToProto(s.cue_ball_end, out->mutable_cue_ball_end());
-  for (const physics::SimEvent& e : s.events) ToProto(e, table, model, out->add_events());
+  for (const physics::SimEvent& e : s.events) ToProto(e, balls, model, out->add_events());
+  out->set_kind(ToProto(s.kind));
+  if (pot) out->set_route(ToProto(s.route));
+  out->set_first_ball(id(s.first_ball));
+  out->set_foul_probability(s.foul_probability);
+  if (s.cue_start) ToProto(*s.cue_start, out->mutable_cue_ball_start());
+  for (std::size_t i = 0; i < s.balls_end.size(); ++i) {
+    const planner::BallEnd& end = s.balls_end[i];
+    v1::BallEnd* b = out->add_balls_end();
+    b->set_ball(id(static_cast<int>(i)));
+    ToProto(end.position, b->mutable_position());
+    if (end.pocket) b->set_pocket(physics::ToString(*end.pocket));
+  }
 }
 
 void ToProto(const planner::PlanAnswer& a, const v1::TableState& table,

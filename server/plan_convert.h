@@ -14,6 +14,10 @@
 
 namespace snooker::server {
 
+/// The id the answer gives the cue ball placed from hand (PlanRequest.cue_in_hand),
+/// in its events and balls_end; no ball of such a request's table may have it.
+inline constexpr const char* kPlacedCueId = "cue";
+
 /// What a server allows a plan request (snooker serve's flags).
 struct PlanBounds {
   /// The vision repair's tolerance, mm: the default of a request that sets none and
@@ -53,7 +57,13 @@ planner::BallKind BallKindFrom(v1::BallKind kind);
 v1::BallKind ToProto(planner::BallKind kind);
 std::optional<planner::BallOn> BallOnFrom(v1::BallOn on);
 
-/// One planned shot in API form; ball indices become the table's ids.
+v1::ShotKind ToProto(planner::ShotKind kind);
+v1::PotRoute ToProto(planner::PotRoute route);
+
+/// One planned shot in API form: ball indices become the ids of `table` (the
+/// request's), and an index past its balls the placed cue ball's, kPlacedCueId;
+/// the pocket and the route for pots only; cue_ball_start only when the cue ball
+/// was in hand.
 void ToProto(const planner::PlannedShot& shot, const v1::TableState& table,
              const physics::TableModel& model, v1::PlannedShot* out);
 

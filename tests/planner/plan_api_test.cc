@@ -1,15 +1,20 @@
 // Tests of Plan at the API edge (server/plan_api.h, server/plan_convert.h):
 // validation names each bad field and value, units are converted at the edge, and
-// the answer carries the table's ids, every planner outcome has one API status,
-// and the proto's comments quote the planner's ranges.
+// the answer carries the table's ids (the cue ball placed from hand named "cue"),
+// each shot's kind, route, first ball, foul probability, placement and balls' ends
+// in their JSON names, every planner outcome has one API status, and the proto's
+// comments quote the planner's ranges.
 #include "server/plan_api.h"
 
+#include <google/protobuf/struct.pb.h>
+#include <google/protobuf/util/json_util.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -38,6 +43,23 @@ v1::PlanRequest ObviousPot() {
   r.set_time_budget_ms(30000);
   r.set_monte_carlo_samples(16);
   return r;
+}
+
+// ObviousPot with the cue ball in hand: the table without its CUE ball.
+v1::PlanRequest ObviousPotInHand() {
+  v1::PlanRequest r = ObviousPot();
+  r.mutable_table()->mutable_balls()->DeleteSubrange(0, 1);
+  r.set_cue_in_hand(true);
+  return r;
+}
+
+// Whether p (m, table frame) is in the D: on or behind the baulk line, within the D's
+// radius of its middle (a micrometre of slack for rounding).
+bool InTheD(const v1::Vec2& p) {
+  const physics::TableSpec& spec = physics::DefaultTable().spec();
+  const double slack = 1e-6;
+  return p.y() <= spec.baulk_line + slack &&
+         std::hypot(p.x() - spec.width / 2, p.y() - spec.baulk_line) <= spec.d_radius + slack;
 }
 
 std::vector<std::string> Fields(const std::vector<FieldError>& errors) {
@@ -106,6 +128,40 @@ TEST(ValidatePlanRequestTest, TheTableIsCheckedAsSimulateChecksIt) {
   EXPECT_NE(d.find("r7"), std::string::npos) << d;
 }
 
+TEST(ValidatePlanRequestTest, WithTheCueBallInHandTheTableHasNone) {
+  EXPECT_TRUE(ValidatePlanRequest(ObviousPotInHand(), physics::DefaultTable()).empty())
+      << Describe(ValidatePlanRequest(ObviousPotInHand(), physics::DefaultTable()));
+  // Without cue_in_hand the same table lacks its cue ball.
+  v1::PlanRequest r = ObviousPotInHand();
+  r.clear_cue_in_hand();
+  std::string d = Describe(ValidatePlanRequest(r, physics::DefaultTable()));
+  EXPECT_NE(d.find("table.balls = 0 CUE balls (must have exactly one)"), std::string::npos) << d;
+  // With it, a CUE ball on the table is refused, naming the count and the ball.
+  r = ObviousPot();
+  r.set_cue_in_hand(true);
+  const std::vector<FieldError> errors = ValidatePlanRequest(r, physics::DefaultTable());
+  ASSERT_EQ(errors.size(), 1u) << Describe(errors);
+  EXPECT_EQ(errors[0].field, "table.balls");
+  EXPECT_EQ(errors[0].value, "1 CUE ball (\"white\")");
+  EXPECT_NE(errors[0].rule.find("must have none"), std::string::npos) << errors[0].rule;
+  EXPECT_NE(errors[0].rule.find("cue_in_hand"), std::string::npos) << errors[0].rule;
+}
+
+TEST(ValidatePlanRequestTest, WithTheCueBallInHandNoBallMayBeNamedCue) {
+  v1::PlanRequest r = ObviousPotInHand();
+  r.mutable_table()->mutable_balls(1)->set_id("cue");  // the black
+  std::vector<FieldError> errors = ValidatePlanRequest(r, physics::DefaultTable());
+  ASSERT_EQ(errors.size(), 1u) << Describe(errors);
+  EXPECT_EQ(errors[0].field, "table.balls[1].id");
+  EXPECT_EQ(errors[0].value, "\"cue\" (a BLACK ball)");
+  EXPECT_NE(errors[0].rule.find("cue_in_hand"), std::string::npos) << errors[0].rule;
+  // The id is free when the cue ball is on the table (ObviousPot's is "white").
+  r.clear_cue_in_hand();
+  AddBall(&r, "white", v1::CUE, 0.889, 0.6);
+  errors = ValidatePlanRequest(r, physics::DefaultTable());
+  EXPECT_TRUE(errors.empty()) << Describe(errors);
+}
+
 TEST(PlanRequestFromTest, ConvertsUnitsAtTheEdge) {
   v1::PlanRequest r = ObviousPot();
   r.mutable_noise()->set_heading_sigma_deg(0.05);
@@ -127,6 +183,11 @@ TEST(PlanRequestFromTest, ConvertsUnitsAtTheEdge) {
   EXPECT_EQ(d.time_budget, planner::PlanRequest{}.time_budget);
   EXPECT_EQ(d.limits.max_speed, planner::RobotLimits{}.max_speed);
   EXPECT_FALSE(d.ball_on.has_value());
+  EXPECT_FALSE(d.cue_in_hand);
+  EXPECT_FALSE(p.cue_in_hand);
+  const planner::PlanRequest in_hand = PlanRequestFrom(ObviousPotInHand());
+  EXPECT_TRUE(in_hand.cue_in_hand);
+  EXPECT_EQ(in_hand.table.balls.size(), 2u);
 }
 
 TEST(PlanTest, AnswersWithTheTablesIds) {
@@ -154,6 +215,46 @@ TEST(PlanTest, AnswersWithTheTablesIds) {
   EXPECT_GT(resp.simulations(), 0);
   EXPECT_GT(resp.elapsed_ms(), 0);
   EXPECT_GT(progress, 0);
+  // The cue ball was on the table: a pot by a route, and no placement.
+  EXPECT_EQ(s.kind(), v1::POT);
+  EXPECT_NE(s.route(), v1::POT_ROUTE_UNSPECIFIED);
+  EXPECT_FALSE(s.has_cue_ball_start());
+  EXPECT_GE(s.foul_probability(), 0);
+  EXPECT_LE(s.foul_probability(), 1);
+}
+
+// The planner's answer with the cue ball in hand; until the planner places it, a
+// table without a cue ball may be answered with no shot, so the shots' assertions
+// hold for whatever shots there are.
+TEST(PlanTest, WithTheCueBallInHandEachShotPlacesItInTheD) {
+  const v1::PlanRequest request = ObviousPotInHand();
+  v1::PlanResponse resp;
+  const ApiStatus st = Plan(request, &resp);
+  ASSERT_TRUE(st.ok()) << st.message;
+  EXPECT_TRUE(resp.final());
+  if (resp.shots_size() == 0) {
+    EXPECT_NE(resp.reason(), "");
+  }
+  for (const v1::PlannedShot& s : resp.shots()) {
+    ASSERT_TRUE(s.has_cue_ball_start());
+    EXPECT_TRUE(InTheD(s.cue_ball_start())) << s.cue_ball_start().ShortDebugString();
+    EXPECT_NE(s.kind(), v1::SHOT_KIND_UNSPECIFIED);
+    EXPECT_NE(s.first_ball(), "cue");
+    ASSERT_GT(s.events_size(), 0);
+    bool cue_moved = false;
+    for (const v1::Event& e : s.events()) {
+      for (const std::string& ball : e.balls()) {
+        EXPECT_TRUE(ball == "cue" || ball == "r7" || ball == "the-black") << ball;
+        cue_moved = cue_moved || ball == "cue";
+      }
+    }
+    EXPECT_TRUE(cue_moved);
+    if (s.balls_end_size() > 0) {
+      ASSERT_EQ(s.balls_end_size(), 3);
+      EXPECT_EQ(s.balls_end(0).ball(), "r7");
+      EXPECT_EQ(s.balls_end(2).ball(), "cue");
+    }
+  }
 }
 
 TEST(PlanTest, BadRequestIsInvalidArgument) {
@@ -163,6 +264,195 @@ TEST(PlanTest, BadRequestIsInvalidArgument) {
   const ApiStatus st = Plan(r, &resp);
   EXPECT_EQ(st.code, ApiStatus::Code::kInvalidArgument);
   EXPECT_NE(st.message.find("max_shots = 99"), std::string::npos) << st.message;
+}
+
+// Index of `id`'s pocket in the default table's pockets (a kPocket event's `where`).
+std::int16_t PocketIndex(physics::PocketId id) {
+  const auto& pockets = physics::DefaultTable().pockets();
+  for (std::size_t i = 0; i < pockets.size(); ++i) {
+    if (pockets[i].id == id) return static_cast<std::int16_t>(i);
+  }
+  return -1;
+}
+
+physics::SimEvent Event(physics::EventKind kind, int ball, int other, int where) {
+  physics::SimEvent e;
+  e.kind = kind;
+  e.ball = static_cast<std::int16_t>(ball);
+  e.other = static_cast<std::int16_t>(other);
+  e.where = static_cast<std::int16_t>(where);
+  return e;
+}
+
+// A response in Protobuf's JSON form (as `snooker plan --json` prints it), parsed.
+google::protobuf::Struct Json(const v1::PlanResponse& response) {
+  google::protobuf::util::JsonPrintOptions options;
+  options.always_print_primitive_fields = true;
+  std::string text;
+  EXPECT_TRUE(google::protobuf::util::MessageToJsonString(response, &text, options).ok());
+  google::protobuf::Struct json;
+  EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(text, &json).ok()) << text;
+  return json;
+}
+
+std::set<std::string> Keys(const google::protobuf::Struct& s) {
+  std::set<std::string> keys;
+  for (const auto& [name, value] : s.fields()) keys.insert(name);
+  return keys;
+}
+
+const google::protobuf::Struct& ShotOf(const google::protobuf::Struct& json, int k) {
+  return json.fields().at("shots").list_value().values(k).struct_value();
+}
+
+std::string Text(const google::protobuf::Struct& s, const char* key) { return s.fields().at(key).string_value(); }
+
+TEST(PlanConvertTest, EachKindOfShotInTheApisNames) {
+  v1::TableState table;
+  testing_requests::AddBall(&table, "white", v1::CUE, 0.9, 0.6);
+  testing_requests::AddBall(&table, "r7", v1::RED, 1.4, 3.2);
+  testing_requests::AddBall(&table, "r8", v1::RED, 1.3, 3.0);
+  testing_requests::AddBall(&table, "the-black", v1::BLACK, 0.889, 3.24);
+  planner::PlanAnswer answer;
+  planner::PlannedShot plant;  // r8 pots r7 into the top-left pocket
+  plant.kind = planner::ShotKind::kPot;
+  plant.route = planner::PotRoute::kPlant;
+  plant.object_ball = 1;
+  plant.first_ball = 2;
+  plant.pocket = physics::PocketId::kTopLeft;
+  plant.foul_probability = 0.125;
+  plant.next_ball = 3;
+  plant.balls_end = {{physics::Vec2(1.0, 1.0), std::nullopt},
+                     {physics::Vec2(0.05, 3.52), physics::PocketId::kTopLeft},
+                     {physics::Vec2(1.2, 2.9), std::nullopt},
+                     {physics::Vec2(0.889, 3.24), std::nullopt}};
+  planner::PlannedShot safety;  // a route and a pocket that a safety does not have
+  safety.kind = planner::ShotKind::kSafety;
+  safety.route = planner::PotRoute::kDouble;
+  safety.object_ball = 2;
+  safety.first_ball = 2;
+  safety.pocket = physics::PocketId::kMiddleLeft;
+  safety.foul_probability = 0.25;
+  planner::PlannedShot escape;  // the cue ball hits nothing
+  escape.kind = planner::ShotKind::kEscape;
+  escape.object_ball = 1;
+  escape.first_ball = -1;
+  escape.foul_probability = 1;
+  answer.shots = {plant, safety, escape};
+  v1::PlanResponse response;
+  ToProto(answer, table, physics::DefaultTable(), &response);
+  ASSERT_EQ(response.shots_size(), 3);
+
+  const v1::PlannedShot& p = response.shots(0);
+  EXPECT_EQ(p.kind(), v1::POT);
+  EXPECT_EQ(p.route(), v1::PLANT);
+  EXPECT_EQ(p.object_ball(), "r7");
+  EXPECT_EQ(p.first_ball(), "r8");
+  EXPECT_EQ(p.pocket(), "top-left");
+  EXPECT_EQ(p.next_ball(), "the-black");
+  EXPECT_DOUBLE_EQ(p.foul_probability(), 0.125);
+  EXPECT_FALSE(p.has_cue_ball_start());
+  ASSERT_EQ(p.balls_end_size(), 4);
+  EXPECT_EQ(p.balls_end(0).ball(), "white");
+  EXPECT_EQ(p.balls_end(1).ball(), "r7");
+  EXPECT_EQ(p.balls_end(1).pocket(), "top-left");
+  EXPECT_DOUBLE_EQ(p.balls_end(1).position().y(), 3.52);
+  EXPECT_EQ(p.balls_end(2).pocket(), "");
+  EXPECT_DOUBLE_EQ(p.balls_end(2).position().x(), 1.2);
+
+  const v1::PlannedShot& s = response.shots(1);
+  EXPECT_EQ(s.kind(), v1::SAFETY);
+  EXPECT_EQ(s.route(), v1::POT_ROUTE_UNSPECIFIED);  // for pots only
+  EXPECT_EQ(s.pocket(), "");
+  EXPECT_EQ(s.object_ball(), "r8");
+  EXPECT_EQ(s.first_ball(), "r8");
+  EXPECT_DOUBLE_EQ(s.foul_probability(), 0.25);
+  EXPECT_EQ(response.shots(2).kind(), v1::ESCAPE);
+  EXPECT_EQ(response.shots(2).first_ball(), "");
+
+  // The JSON names: the contract for tools outside the project.
+  const google::protobuf::Struct json = Json(response);
+  EXPECT_EQ(Keys(ShotOf(json, 0)),
+            (std::set<std::string>{"speed", "headingDeg", "topspin", "sidespin", "cutDeg", "objectBall", "pocket",
+                                   "potProbability", "pocketProbability", "positionValue", "nextBall",
+                                   "cueBallEnd", "events", "kind", "route", "firstBall", "foulProbability",
+                                   "ballsEnd"}));
+  EXPECT_EQ(Text(ShotOf(json, 0), "kind"), "POT");
+  EXPECT_EQ(Text(ShotOf(json, 0), "route"), "PLANT");
+  EXPECT_EQ(Text(ShotOf(json, 0), "firstBall"), "r8");
+  EXPECT_EQ(ShotOf(json, 0).fields().at("foulProbability").number_value(), 0.125);
+  const google::protobuf::Struct& end = ShotOf(json, 0).fields().at("ballsEnd").list_value().values(1).struct_value();
+  EXPECT_EQ(Keys(end), (std::set<std::string>{"ball", "position", "pocket"}));
+  EXPECT_EQ(Text(end, "ball"), "r7");
+  EXPECT_EQ(Text(end, "pocket"), "top-left");
+  EXPECT_EQ(Keys(end.fields().at("position").struct_value()), (std::set<std::string>{"x", "y"}));
+  EXPECT_EQ(Text(ShotOf(json, 1), "kind"), "SAFETY");
+  EXPECT_EQ(Text(ShotOf(json, 1), "route"), "POT_ROUTE_UNSPECIFIED");
+  EXPECT_EQ(Text(ShotOf(json, 2), "kind"), "ESCAPE");
+}
+
+TEST(PlanConvertTest, TheCueBallPlacedFromHandIsNamedCue) {
+  v1::TableState table;  // no cue ball: it is in hand
+  testing_requests::AddBall(&table, "red-1", v1::RED, 0.889, 2.0);
+  testing_requests::AddBall(&table, "red-2", v1::RED, 0.95, 2.1);
+  planner::PlannedShot s;
+  s.kind = planner::ShotKind::kBreakOff;
+  s.cue_start = physics::Vec2(0.8, 0.6);
+  s.object_ball = 0;
+  s.first_ball = 0;
+  s.cue_ball_end = physics::Vec2(0.5, 1.5);
+  // The cue ball (index 2, after the table's balls) hits red-1, which drops top-right.
+  s.events = {Event(physics::EventKind::kBallBall, 0, 2, -1),
+              Event(physics::EventKind::kTransition, 2, -1, -1),
+              Event(physics::EventKind::kPocket, 0, -1, PocketIndex(physics::PocketId::kTopRight))};
+  s.balls_end = {{physics::Vec2(1.75, 3.54), physics::PocketId::kTopRight},
+                 {physics::Vec2(0.95, 2.1), std::nullopt},
+                 {physics::Vec2(0.5, 1.5), std::nullopt}};
+  planner::PlannedShot kick = s;
+  kick.kind = planner::ShotKind::kPot;
+  kick.route = planner::PotRoute::kKick;
+  kick.cue_start = physics::Vec2(1.0, 0.5);
+  kick.pocket = physics::PocketId::kTopRight;
+  planner::PlanAnswer answer;
+  answer.shots = {s, kick};
+  v1::PlanResponse response;
+  ToProto(answer, table, physics::DefaultTable(), &response);
+  ASSERT_EQ(response.shots_size(), 2);
+  const v1::PlannedShot& b = response.shots(0);
+  EXPECT_EQ(b.kind(), v1::BREAK_OFF);
+  EXPECT_EQ(b.route(), v1::POT_ROUTE_UNSPECIFIED);
+  ASSERT_TRUE(b.has_cue_ball_start());
+  EXPECT_DOUBLE_EQ(b.cue_ball_start().x(), 0.8);
+  EXPECT_DOUBLE_EQ(b.cue_ball_start().y(), 0.6);
+  EXPECT_EQ(b.first_ball(), "red-1");
+  ASSERT_EQ(b.events_size(), 3);
+  ASSERT_EQ(b.events(0).balls_size(), 2);
+  EXPECT_EQ(b.events(0).balls(0), "red-1");
+  EXPECT_EQ(b.events(0).balls(1), "cue");
+  EXPECT_EQ(b.events(1).balls(0), "cue");
+  EXPECT_EQ(b.events(2).balls(0), "red-1");
+  EXPECT_EQ(b.events(2).pocket(), "top-right");
+  ASSERT_EQ(b.balls_end_size(), 3);
+  EXPECT_EQ(b.balls_end(0).ball(), "red-1");
+  EXPECT_EQ(b.balls_end(0).pocket(), "top-right");
+  EXPECT_EQ(b.balls_end(2).ball(), "cue");
+  EXPECT_DOUBLE_EQ(b.balls_end(2).position().y(), 1.5);
+  const v1::PlannedShot& k = response.shots(1);
+  EXPECT_EQ(k.kind(), v1::POT);
+  EXPECT_EQ(k.route(), v1::KICK);
+  EXPECT_EQ(k.pocket(), "top-right");
+  EXPECT_DOUBLE_EQ(k.cue_ball_start().x(), 1.0);
+  // The table itself is left as it was.
+  EXPECT_EQ(table.balls_size(), 2);
+
+  const google::protobuf::Struct json = Json(response);
+  const google::protobuf::Struct& start = ShotOf(json, 0).fields().at("cueBallStart").struct_value();
+  EXPECT_EQ(Keys(start), (std::set<std::string>{"x", "y"}));
+  EXPECT_EQ(start.fields().at("x").number_value(), 0.8);
+  EXPECT_EQ(Text(ShotOf(json, 0), "kind"), "BREAK_OFF");
+  EXPECT_EQ(Text(ShotOf(json, 1), "route"), "KICK");
+  const auto& ends = ShotOf(json, 0).fields().at("ballsEnd").list_value();
+  EXPECT_EQ(Text(ends.values(2).struct_value(), "ball"), "cue");
 }
 
 TEST(PlanStatusTest, EveryPlannerOutcomeHasOneApiStatus) {

@@ -1,19 +1,23 @@
 // `snooker plan` and `snooker selfplay` as a user (or a tool outside the project)
 // runs them: the JSON field names are a contract, a planned shot can be
-// fed straight back to `snooker simulate`, and bad input names the value.
+// fed straight back to `snooker simulate`, the cue ball in hand is placed in the D,
+// the drawing is written with or without a shot, and bad input names the value.
 #include <google/protobuf/struct.pb.h>
 #include <google/protobuf/util/json_util.h>
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <ostream>
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 
+#include "physics/table/table.h"
 #include "tests/support/cli_support.h"
 
 namespace snooker {
@@ -56,12 +60,17 @@ TEST(CliPlanTest, JsonHasExactlyTheContractedNames) {
   const auto& shots = json.fields().at("shots").list_value();
   ASSERT_GT(shots.values_size(), 0);
   const Struct& s = shots.values(0).struct_value();
+  // No "cueBallStart": the cue ball is on the table.
   EXPECT_EQ(Keys(s), (std::set<std::string>{"speed", "headingDeg", "topspin", "sidespin", "cutDeg",
                                             "objectBall", "pocket", "potProbability", "pocketProbability",
-                                            "positionValue", "nextBall", "cueBallEnd", "events"}));
+                                            "positionValue", "nextBall", "cueBallEnd", "events", "kind",
+                                            "route", "firstBall", "foulProbability", "ballsEnd"}));
   EXPECT_EQ(Keys(s.fields().at("cueBallEnd").struct_value()), (std::set<std::string>{"x", "y"}));
   EXPECT_EQ(s.fields().at("objectBall").string_value(), "red-1");
   EXPECT_EQ(s.fields().at("pocket").string_value(), "top-right");
+  EXPECT_EQ(s.fields().at("kind").string_value(), "POT");
+  const std::set<std::string> routes = {"DIRECT", "PLANT", "DOUBLE", "KICK"};
+  EXPECT_EQ(routes.count(s.fields().at("route").string_value()), 1u) << r.out;
   EXPECT_GT(json.fields().at("simulations").number_value(), 0);
 
   // The shot fed straight back to `snooker simulate` pots the red.
@@ -100,6 +109,104 @@ TEST(CliPlanTest, ReadableAnswerAndSvg) {
   ss << f.rdbuf();
   EXPECT_NE(ss.str().find("<svg"), std::string::npos);
   EXPECT_NE(ss.str().find("<polyline"), std::string::npos);
+  std::remove(table.c_str());
+  std::remove(svg.c_str());
+}
+
+// The text of an SVG document's <text> elements, joined by spaces, unescaped.
+std::string SvgText(const std::string& svg) {
+  std::string text;
+  for (size_t at = svg.find("<text"); at != std::string::npos; at = svg.find("<text", at + 1)) {
+    const size_t begin = svg.find('>', at) + 1, end = svg.find("</text>", begin);
+    if (end == std::string::npos) break;
+    text += (text.empty() ? "" : " ") + svg.substr(begin, end - begin);
+  }
+  for (const auto& [entity, c] : {std::pair{"&lt;", "<"}, std::pair{"&gt;", ">"}, std::pair{"&quot;", "\""},
+                                   std::pair{"&amp;", "&"}}) {
+    for (size_t at = text.find(entity); at != std::string::npos; at = text.find(entity, at + 1)) {
+      text.replace(at, std::string(entity).size(), c);
+    }
+  }
+  return text;
+}
+
+std::string ReadAll(const std::string& path) {
+  std::ifstream f(path);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+TEST(CliPlanTest, WithNoShotTheSvgShowsTheTableAndWhy) {
+  // The cue ball alone: no ball on, so no shot.
+  const std::string table = WriteFile("plan_alone", R"({"balls": [
+    {"id": "cue", "kind": "CUE", "position": {"x": 0.9, "y": 0.6}}]})");
+  const std::string svg = testing::TempDir() + "plan_none_" + std::to_string(getpid()) + ".svg";
+  const RunResult r = RunCli("plan --table " + table + " --json --svg " + svg + " --max-simulations 300");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  Struct json;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &json).ok()) << r.out;
+  EXPECT_EQ(json.fields().at("shots").list_value().values_size(), 0);
+  const std::string reason = json.fields().at("reason").string_value();
+  ASSERT_NE(reason, "");
+  const std::string doc = ReadAll(svg);
+  EXPECT_NE(doc.find("<svg"), std::string::npos) << doc;
+  EXPECT_NE(doc.find("</svg>"), std::string::npos) << doc;
+  EXPECT_EQ(doc.find("<polyline"), std::string::npos) << doc;      // no shot drawn
+  EXPECT_NE(doc.find("<title>cue</title>"), std::string::npos) << doc;  // the ball, where it is
+  EXPECT_EQ(SvgText(doc), "no shot: " + reason) << doc;
+  std::remove(table.c_str());
+  std::remove(svg.c_str());
+}
+
+// The kTable without its cue ball.
+constexpr const char* kTableInHand = R"({"balls": [
+  {"id": "red-1", "kind": "RED", "position": {"x": 1.4648, "y": 3.2558}},
+  {"id": "black", "kind": "BLACK", "position": {"x": 0.889, "y": 3.245}},
+  {"id": "red-2", "kind": "RED", "position": {"x": 0.4, "y": 1.5}}]})";
+
+// Until the planner places the cue ball, a table without one may have no shot: the
+// assertions on shots hold for whatever shots there are.
+TEST(CliPlanTest, WithTheCueBallInHandEachShotSaysWhereToPlaceIt) {
+  const std::string table = WriteFile("plan_in_hand", kTableInHand);
+  const std::string svg = testing::TempDir() + "plan_in_hand_" + std::to_string(getpid()) + ".svg";
+  const std::string flags = " --cue-in-hand --max-simulations 300 --budget-ms 30000 --shots 2";
+  const RunResult r = RunCli("plan --table " + table + flags + " --json --svg " + svg);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  Struct json;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &json).ok()) << r.out;
+  const auto& shots = json.fields().at("shots").list_value();
+  const std::string doc = ReadAll(svg);
+  EXPECT_NE(doc.find("</svg>"), std::string::npos) << doc;
+  if (shots.values_size() == 0) {
+    EXPECT_EQ(SvgText(doc), "no shot: " + json.fields().at("reason").string_value()) << doc;
+  }
+  const physics::TableSpec& spec = physics::DefaultTable().spec();
+  for (const Value& v : shots.values()) {
+    const Struct& s = v.struct_value();
+    ASSERT_EQ(s.fields().count("cueBallStart"), 1u) << r.out;
+    const Struct& at = s.fields().at("cueBallStart").struct_value();
+    const double x = at.fields().at("x").number_value(), y = at.fields().at("y").number_value();
+    EXPECT_LE(y, spec.baulk_line + 1e-6) << r.out;
+    EXPECT_LE(std::hypot(x - spec.width / 2, y - spec.baulk_line), spec.d_radius + 1e-6) << r.out;
+    EXPECT_NE(s.fields().at("kind").string_value(), "SHOT_KIND_UNSPECIFIED");
+    const auto& ends = s.fields().at("ballsEnd").list_value();
+    if (ends.values_size() > 0) {
+      ASSERT_EQ(ends.values_size(), 4);
+      EXPECT_EQ(ends.values(3).struct_value().fields().at("ball").string_value(), "cue");
+    }
+    // The drawing has the placed cue ball where it starts, and its path.
+    EXPECT_NE(doc.find("<title>cue (start)</title>"), std::string::npos);
+    EXPECT_NE(doc.find("<polyline"), std::string::npos);
+  }
+  // The readable answer says where to place it, or why there is no shot.
+  const RunResult readable = RunCli("plan --table " + table + flags);
+  ASSERT_EQ(readable.exit_code, 0) << readable.err;
+  if (shots.values_size() > 0) {
+    EXPECT_NE(readable.out.find("cue ball in hand: place it at ("), std::string::npos) << readable.out;
+  } else {
+    EXPECT_NE(readable.out.find("no shot: "), std::string::npos) << readable.out;
+  }
   std::remove(table.c_str());
   std::remove(svg.c_str());
 }
@@ -147,6 +254,9 @@ INSTANTIATE_TEST_SUITE_P(
                              "--vision-tolerance-mm 11 is outside [0, 10]"},
                     BadInput{"plan --table TABLE --noise-spin -2", "noise.topspin_sigma = -2"},
                     BadInput{"plan --table TABLE --max-speed 0.1 --min-speed 0.5", "limits.max_speed = 0.1"},
+                    // The table has a cue ball, and it is named "cue".
+                    BadInput{"plan --table TABLE --cue-in-hand", "table.balls = 1 CUE ball (\"cue\") (must have none"},
+                    BadInput{"plan --table TABLE --cue-in-hand --json", "table.balls[0].id = \"cue\" (a CUE ball)"},
                     BadInput{"selfplay --seed 1", "--frames is required"},
                     BadInput{"selfplay --frames 0 --seed 1", "--frames 0 is out of range"},
                     BadInput{"selfplay --frames 1 --seed 1 --noise-position-mm -1", "--noise-position-mm -1"}),

@@ -181,11 +181,31 @@ TEST(ValidateTest, SnookersCountsAndTheBallOn) {
   r.table.balls.push_back({BallKind::kCue, Vec2(1.5, 0.3)});
   for (int i = 0; i < 15; ++i) r.table.balls.push_back({BallKind::kRed, Vec2(0.2 + 0.1 * i, 1.0)});
   r.ball_on = BallOn::kPink;
-  const std::string d = Describe(ValidateTable(r.table, r.ball_on, Table()));
+  const std::string d = Describe(ValidateTable(r.table, r.cue_in_hand, r.ball_on, Table()));
   EXPECT_NE(d.find("table.balls = 2 (cue balls: exactly one)"), std::string::npos) << d;
   EXPECT_NE(d.find("table.balls = 16 (reds: at most 15)"), std::string::npos) << d;
   EXPECT_NE(d.find("table.balls = 2 (black balls: at most one)"), std::string::npos) << d;
   EXPECT_NE(d.find("ball_on = pink (no such ball on the table)"), std::string::npos) << d;
+}
+
+TEST(ValidateTest, WithTheCueBallInHandTheTableHasNoCueBall) {
+  PlanRequest r = Valid();
+  r.table.balls.erase(r.table.balls.begin());  // the cue ball
+  r.cue_in_hand = true;
+  EXPECT_TRUE(ValidatePlanRequest(r, Table()).empty()) << Describe(ValidatePlanRequest(r, Table()));
+  // The same table without the cue ball in hand lacks one.
+  r.cue_in_hand = false;
+  std::vector<FieldError> errors = ErrorsOf(r, "table.balls");
+  ASSERT_EQ(errors.size(), 1u) << Describe(errors);
+  EXPECT_EQ(errors[0].value, std::optional<double>(0));
+  EXPECT_EQ(errors[0].rule, "cue balls: exactly one");
+  // A cue ball on the table while it is in hand is one too many.
+  r = Valid();
+  r.cue_in_hand = true;
+  errors = ErrorsOf(r, "table.balls");
+  ASSERT_EQ(errors.size(), 1u) << Describe(errors);
+  EXPECT_EQ(errors[0].value, std::optional<double>(1));
+  EXPECT_EQ(Describe(errors), "table.balls = 1 (cue balls: none with cue_in_hand)");
 }
 
 TEST(ValidateTest, PlacementAndFinitePositions) {
@@ -212,7 +232,7 @@ TEST(ValidateTest, OneSigmaPerBallOrNone) {
 TEST(ValidateTest, TooManyBallsAreRefusedBeforeAnythingElse) {
   PlanRequest r = Valid();
   for (int i = 0; i < physics::limits::kMaxBalls; ++i) r.table.balls.push_back({BallKind::kRed, Vec2(0.1, 0.1)});
-  const std::vector<FieldError> errors = ValidateTable(r.table, r.ball_on, Table());
+  const std::vector<FieldError> errors = ValidateTable(r.table, r.cue_in_hand, r.ball_on, Table());
   ASSERT_EQ(errors.size(), 1u) << Describe(errors);
   EXPECT_EQ(errors[0].value, std::optional<double>(static_cast<double>(r.table.balls.size())));
 }

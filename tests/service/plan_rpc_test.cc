@@ -98,6 +98,11 @@ void ExpectWithinLimits(const v1::PlanRequest& request, const v1::PlanResponse& 
     EXPECT_LE(std::abs(s.sidespin()), side * rolling * (1 + 1e-9) + 1e-9);
     EXPECT_GE(s.pot_probability(), 0);
     EXPECT_LE(s.pot_probability(), 1);
+    EXPECT_GE(s.foul_probability(), 0);
+    EXPECT_LE(s.foul_probability(), 1);
+    EXPECT_NE(s.kind(), v1::SHOT_KIND_UNSPECIFIED);
+    EXPECT_EQ(s.route() != v1::POT_ROUTE_UNSPECIFIED, s.kind() == v1::POT);
+    EXPECT_EQ(s.has_cue_ball_start(), request.cue_in_hand());
     EXPECT_TRUE(std::isfinite(s.heading_deg()));
     bool known = false;
     for (const v1::Ball& b : request.table().balls()) known = known || b.id() == s.object_ball();
@@ -263,6 +268,17 @@ const BadPlan kBadPlans[] = {
        r->mutable_table()->mutable_balls(2)->mutable_position()->set_y(red.y());
      },
      "beyond the vision tolerance of 1 mm"},
+    {"CueInHandWithACueBall", [](v1::PlanRequest* r) { r->set_cue_in_hand(true); },
+     "table.balls = 1 CUE ball (\"cue\") (must have none: the cue ball is in hand (cue_in_hand)"},
+    {"CueInHandWithABallNamedCue",
+     [](v1::PlanRequest* r) {
+       r->set_cue_in_hand(true);
+       r->mutable_table()->mutable_balls()->DeleteSubrange(0, 1);
+       r->mutable_table()->mutable_balls(1)->set_id("cue");  // the black
+     },
+     "table.balls[1].id = \"cue\" (a BLACK ball) (is taken with cue_in_hand"},
+    {"NoCueBallNotInHand", [](v1::PlanRequest* r) { r->mutable_table()->mutable_balls()->DeleteSubrange(0, 1); },
+     "table.balls = 0 CUE balls (must have exactly one)"},
 };
 
 void PrintTo(const BadPlan& p, std::ostream* os) { *os << p.name; }
@@ -289,6 +305,29 @@ TEST_P(PlanBadInputTest, IsInvalidArgumentNamingTheFieldAndValue) {
 
 INSTANTIATE_TEST_SUITE_P(Cases, PlanBadInputTest, testing::ValuesIn(kBadPlans),
                          [](const testing::TestParamInfo<BadPlan>& p) { return std::string(p.param.name); });
+
+// With the cue ball in hand the table has none; every shot (until the planner
+// places the cue ball there may be none) says where in the D to place it.
+TEST_F(PlanRpcTest, WithTheCueBallInHandATableWithoutOneIsPlanned) {
+  StartServer();
+  v1::PlanRequest request = ObviousPot();
+  request.mutable_table()->mutable_balls()->DeleteSubrange(0, 1);
+  request.set_cue_in_hand(true);
+  v1::PlanResponse response;
+  const grpc::Status st = Plan(request, &response);
+  ASSERT_TRUE(st.ok()) << st.error_message();
+  EXPECT_TRUE(response.final());
+  if (response.shots_size() == 0) {
+    EXPECT_NE(response.reason(), "");
+  }
+  ExpectWithinLimits(request, response);
+  const physics::TableSpec& spec = physics::DefaultTable().spec();
+  for (const v1::PlannedShot& s : response.shots()) {
+    const v1::Vec2& at = s.cue_ball_start();
+    EXPECT_LE(at.y(), spec.baulk_line + 1e-6);
+    EXPECT_LE(std::hypot(at.x() - spec.width / 2, at.y() - spec.baulk_line), spec.d_radius + 1e-6);
+  }
+}
 
 TEST_F(PlanRpcTest, SmallVisionErrorsAreRepairedWithAWarning) {
   StartServer();

@@ -10,6 +10,7 @@
 
 #include "physics/table/table.h"
 #include "server/api.h"
+#include "server/plan_convert.h"
 #include "tests/support/cli_support.h"
 #include "tests/service/requests.h"
 #include "tests/service/server_support.h"
@@ -86,6 +87,33 @@ TEST(VisionRepairTest, AValidTableIsLeftExactlyAsItIs) {
   ASSERT_TRUE(Simulate(r, &resp).ok());
   EXPECT_EQ(resp.warnings_size(), 0);
   EXPECT_EQ(resp.final_balls(2).position().x(), r.table().balls(2).position().x());
+}
+
+// A plan with the cue ball in hand: its table (no CUE ball) is repaired as
+// Simulate's is; Simulate itself still needs its cue ball.
+TEST(VisionRepairTest, ATableWithTheCueBallInHandIsRepairedTheSame) {
+  v1::PlanRequest plan;
+  *plan.mutable_table() = Table(-0.0004).table();
+  plan.mutable_table()->mutable_balls()->DeleteSubrange(0, 1);  // the cue ball
+  plan.set_cue_in_hand(true);
+  PlanBounds bounds;
+  bounds.vision_tolerance_mm = 1;
+  const PlanCheck check = CheckPlanRequest(plan, physics::DefaultTable(), bounds);
+  EXPECT_TRUE(check.errors.empty()) << Describe(check.errors);
+  ASSERT_EQ(check.warnings.size(), 2u);
+  EXPECT_EQ(check.warnings[0].ball_id(), "red-1");
+  EXPECT_EQ(check.warnings[1].ball_id(), "red-2");
+  EXPECT_NEAR(check.warnings[0].moved_mm() + check.warnings[1].moved_mm(), 0.4, 1e-6);
+  ASSERT_TRUE(check.repaired.has_value());
+  EXPECT_EQ(check.repaired->balls_size(), 2);
+  // The same table, checked as Simulate checks one, lacks its cue ball.
+  const TableCheck simulate = CheckTable(plan.table(), physics::DefaultTable(), 1e-3);
+  ASSERT_EQ(simulate.errors.size(), 1u) << Describe(simulate.errors);
+  EXPECT_EQ(simulate.errors[0].value, "0 CUE balls");
+  // Beyond the tolerance, the balls are named as ever.
+  plan.mutable_table()->mutable_balls(1)->mutable_position()->set_x(0.8 + 2 * kR - 0.0015);
+  const std::string refused = Describe(CheckPlanRequest(plan, physics::DefaultTable(), bounds).errors);
+  EXPECT_TRUE(Mentions(refused, "red-1 and red-2 overlap by 0.0015 m")) << refused;
 }
 
 TEST(VisionRepairTest, BeyondTheToleranceIsInvalidArgumentNamingTheBalls) {
