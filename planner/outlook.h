@@ -74,10 +74,6 @@
 
 namespace snooker::planner {
 
-/// A ball whose surface is this close to the cue ball's (m) touches it: centres
-/// within 2R + kTouchingGap.
-inline constexpr double kTouchingGap = 1e-4;
-
 /// Whether the cue ball can hit the balls on directly (see the header's comment).
 struct SnookerCheck {
   /// Balls on the table that are on (IsLegalTarget).
