@@ -20,6 +20,8 @@
 
 namespace snooker::planner {
 
+struct LayoutSummary;  // layout.h
+
 /// Everything the geometric judgements need; shared, read-only during a plan.
 struct PotContext {
   const physics::TableModel* table = nullptr;
@@ -35,6 +37,9 @@ struct PotContext {
   /// Room beyond 2R a path must leave to every other ball, m (vision's error and
   /// the throw's curvature).
   double path_clearance = 0.5e-3;
+  /// The plan's table as layout.h summarises it, for the layout term of what a
+  /// pot leaves (nullptr: no layout term).
+  const LayoutSummary* layout = nullptr;
 
   /// Vision's sigma of ball `ball`; noise.position for balls past position_sigma's
   /// end (a cue ball placed in hand, whose place the robot sets).

@@ -7,10 +7,14 @@
 #include <mutex>
 #include <sstream>
 
+#include "planner/break_off.h"
+#include "planner/layout.h"
+#include "planner/outlook.h"
 #include "planner/parallel.h"
 #include "planner/placement.h"
 #include "planner/random.h"
 #include "planner/robustness.h"
+#include "planner/routes.h"
 #include "planner/safety.h"
 #include "planner/validate.h"
 
@@ -67,6 +71,56 @@ Schedule MakeSchedule(const PlannerConfig& config, const PlanRequest& request, C
   return s;
 }
 
+// A route's candidate (routes.h) as the search takes it: plants and doubles aim by
+// the cut on their first ball within its bracket, kicks and escapes by the heading
+// within its bracket; speeds wide enough for the route's travel.
+Candidate FromRoute(const RouteCandidate& r) {
+  Candidate c;
+  c.kind = KindOf(r.route);
+  c.route = PotRouteOf(r.route).value_or(PotRoute::kDirect);
+  c.object = c.kind == ShotKind::kPot ? r.potted_ball : r.first_ball;
+  c.first = c.kind == ShotKind::kPot ? r.first_ball : -1;
+  if (r.pocket) c.pocket = *r.pocket;
+  c.estimate.probability = r.probability;
+  c.estimate.sigma = r.sigma;
+  c.estimate.window = r.window;
+  c.estimate.distance = r.distance;
+  c.estimate.object_direction = r.object_direction;
+  c.cue_margin = r.cue_margin;
+  c.aim_ball = r.first_ball;
+  if (r.aim == AimBy::kCut) {
+    c.aim = AimMode::kCut;
+    c.aim_base = r.cut + 0.5 * (r.cut_bracket.lo + r.cut_bracket.hi);
+    c.aim_range = std::max(0.5 * r.cut_bracket.width(), 1e-3);
+  } else {
+    c.aim = AimMode::kHeading;
+    c.aim_base = r.heading + 0.5 * (r.heading_bracket.lo + r.heading_bracket.hi);
+    c.aim_range = std::max(0.5 * r.heading_bracket.width(), 1e-3);
+  }
+  c.speed_lo = c.kind == ShotKind::kPot ? 1.0 : 0.8;
+  c.speed_hi = c.kind == ShotKind::kPot ? 5.0 : 4.0;
+  return c;
+}
+
+// A break-off (break_off.h) as the search takes it: the cut on the end red within
+// its clear range (at most 6 deg either side of the nominal), firm.
+Candidate FromBreakOff(const BreakOffCandidate& b, int table) {
+  Candidate c;
+  c.kind = ShotKind::kBreakOff;
+  c.object = b.target;
+  c.aim = AimMode::kCut;
+  const double range = 6 * physics::kPi / 180;
+  const double lo = std::max(b.cut_lo, b.cut - range), hi = std::min(b.cut_hi, b.cut + range);
+  c.aim_base = 0.5 * (lo + hi);
+  c.aim_range = std::max(0.5 * (hi - lo), 1e-3);
+  c.speed_lo = b.speed - 1.0;
+  c.speed_hi = b.speed + 1.0;
+  c.table = table;
+  c.cue_start = b.placement;
+  c.estimate.probability = 1;
+  return c;
+}
+
 // The route a pot took, from its run: a plant when the cue ball hit another ball
 // first, a kick when the cue ball met a cushion first, a double when the object ball
 // met one before dropping, else direct.
@@ -100,7 +154,9 @@ class PlanRun {
  private:
   bool Prepare();
   void AddPots();
+  void AddRoutes();
   void AddOthers();
+  bool AddBreakOff();
   int TableWithCue();
   void Allocate();
   void SearchAndVerify();
@@ -133,6 +189,7 @@ class PlanRun {
   std::vector<Candidate> candidates_;
   CandidateSet pots_;  // the direct pots' pruning counts, for the reason
   double best_pot_ = 0;  // the best pot estimate
+  LayoutSummary layout_;  // the request's table, for the layout term
   // Allocate: the candidates searched (pots by prior, then the others) and their
   // evaluations.
   std::vector<const Candidate*> chosen_;
@@ -160,6 +217,10 @@ bool PlanRun::Prepare() {
   }
   on_ = *on;
   ctx_ = planner_.ContextFor(request_);
+  LayoutOptions layout;
+  layout.pockets = ctx_.pockets;
+  layout_ = SummarizeLayout(table_, *config_.table, layout);
+  ctx_.layout = &layout_;
   after_ctx_ = ctx_;
   after_ctx_.position_sigma.clear();
   settings_ = config_.search_settings;
@@ -167,8 +228,11 @@ bool PlanRun::Prepare() {
   settings_.position_play = request_.position_play;
   schedule_ = MakeSchedule(config_, request_, start_);
   tables_.push_back(table_);
-  AddPots();
-  AddOthers();
+  if (!AddBreakOff()) {
+    AddPots();
+    AddRoutes();
+    AddOthers();
+  }
   answer_.candidate_pairs = pots_.pairs;
   answer_.candidates = static_cast<int>(candidates_.size());
   if (candidates_.empty()) {
@@ -208,6 +272,40 @@ void PlanRun::AddPots() {
   for (const Candidate& c : candidates_) best_pot_ = std::max(best_pot_, c.estimate.probability);
 }
 
+// The frame's first shot: with the cue ball in hand and the reds racked, the
+// break-off's candidates only (nothing can be potted from the D into the pack).
+bool PlanRun::AddBreakOff() {
+  if (!request_.kinds.Has(ShotKind::kBreakOff) || !IsBreakOffTable(table_, request_.cue_in_hand, *config_.table)) {
+    return false;
+  }
+  for (const BreakOffCandidate& b : BreakOffCandidates(table_, *config_.table)) {
+    tables_.push_back(WithCueBall(table_, b.placement));
+    candidates_.push_back(FromBreakOff(b, static_cast<int>(tables_.size()) - 1));
+  }
+  return true;
+}
+
+// Pots by other routes (plants, doubles, kicks) from where the cue ball lies: the
+// likeliest few of each.
+void PlanRun::AddRoutes() {
+  if (!request_.kinds.Has(ShotKind::kPot) || request_.cue_in_hand) return;
+  const int cue = table_.cue_index();
+  const struct {
+    PotRoute route;
+    std::vector<RouteCandidate> (*enumerate)(const TableState&, int, BallOn, const PotContext&, const RouteOptions&,
+                                             RouteStats*);
+  } routes[] = {{PotRoute::kPlant, &EnumeratePlants},
+                {PotRoute::kDouble, &EnumerateDoubles},
+                {PotRoute::kKick, &EnumerateKicks}};
+  for (const auto& r : routes) {
+    if (!request_.routes.Has(r.route)) continue;
+    const std::vector<RouteCandidate> found = r.enumerate(table_, cue, on_, ctx_, RouteOptions{}, nullptr);
+    for (size_t i = 0; i < found.size() && static_cast<int>(i) < config_.routes_each; ++i) {
+      candidates_.push_back(FromRoute(found[i]));
+    }
+  }
+}
+
 // The table the shots that need only a legal place for the cue ball play on: the
 // request's, or with the cue ball in hand one with it placed centrally in the D.
 // -1 when the D has no room.
@@ -219,20 +317,31 @@ int PlanRun::TableWithCue() {
   return static_cast<int>(tables_.size()) - 1;
 }
 
-// Shots of other kinds: safeties when no pot is near certain.
+// Shots of other kinds when no pot is near certain: safeties, and escapes when the
+// cue ball is snookered.
 void PlanRun::AddOthers() {
-  if (!request_.kinds.Has(ShotKind::kSafety) || best_pot_ >= config_.safety_below) return;
+  const bool safeties = request_.kinds.Has(ShotKind::kSafety), escapes = request_.kinds.Has(ShotKind::kEscape);
+  if ((!safeties && !escapes) || best_pot_ >= config_.safety_below) return;
   const int t = TableWithCue();
   if (t < 0) return;
   const TableState& table = tables_[static_cast<size_t>(t)];
   const int cue = table.cue_index();
   const int touching = TouchingBallOn(table, on_, *config_.table);
-  std::vector<Candidate> safeties = SafetyCandidates(table, cue, on_, ctx_, touching, t, SafetyOptions{});
-  for (Candidate& c : safeties) {
+  std::vector<Candidate> others;
+  if (safeties) others = SafetyCandidates(table, cue, on_, ctx_, touching, t, SafetyOptions{});
+  if (escapes && CheckSnooker(table, cue, on_, ctx_, OutlookOptions{}.contacts).snookered) {
+    const std::vector<RouteCandidate> found = EnumerateEscapes(table, cue, on_, ctx_, RouteOptions{}, nullptr);
+    for (size_t i = 0; i < found.size() && static_cast<int>(i) < config_.routes_each; ++i) {
+      Candidate c = FromRoute(found[i]);
+      c.table = t;
+      others.push_back(c);
+    }
+  }
+  for (Candidate& c : others) {
     if (t > 0) c.cue_start = table.balls[static_cast<size_t>(cue)].position;
   }
-  if (static_cast<int>(safeties.size()) > config_.max_others) safeties.resize(static_cast<size_t>(config_.max_others));
-  candidates_.insert(candidates_.end(), safeties.begin(), safeties.end());
+  if (static_cast<int>(others.size()) > config_.max_others) others.resize(static_cast<size_t>(config_.max_others));
+  candidates_.insert(candidates_.end(), others.begin(), others.end());
 }
 
 // How much search each candidate gets. Pots by their prior, the estimated points p
@@ -418,8 +527,7 @@ void PlanRun::RankByMonteCarlo() {
                               static_cast<std::uint64_t>(ps.pocket);
     tallies[static_cast<size_t>(task)] =
         RunSamples(SetupFor(cand), ps.shot, ctx_, settings_, workers_[static_cast<size_t>(worker)]->full,
-                   schedule_.monte_carlo, DeriveSeed(request_.seed, key, static_cast<std::uint64_t>(b)), kBlock,
-                   config_.in_hand_points);
+                   schedule_.monte_carlo, DeriveSeed(request_.seed, key, static_cast<std::uint64_t>(b)), kBlock);
   });
   for (int s = 0; s < n; ++s) {
     MonteCarloTally t;
@@ -437,9 +545,10 @@ void PlanRun::RankByMonteCarlo() {
     ps.score = t.mean_score();
   }
   // Shots without samples keep their nominal score, below any sampled competitor in
-  // practice.
+  // practice. Shots not ranked are not answered: their scores are not comparable.
   std::stable_sort(shots_.begin(), shots_.begin() + n,
                    [](const PlannedShot& a, const PlannedShot& b) { return a.score > b.score; });
+  shots_.resize(static_cast<size_t>(n));
 }
 
 // The answer's shots, status and reason.

@@ -257,10 +257,9 @@ struct PlannerConfig {
   /// Carlo at most (beside the pots).
   int max_others = 6;
   int ranked_others = 2;
-  /// What an opponent can expect from the cue ball in hand, in ShotScore's points
-  /// (a foul that pots the cue ball gives them this besides the penalty): about a
-  /// likely pot from a chosen place, 0.7 x (1 + continuation 30), rounded.
-  double in_hand_points = 20;
+  /// Candidates of each route other than the direct (plants, doubles, kicks) and of
+  /// escapes, the likeliest first: their searches are dearer and their pots rarer.
+  int routes_each = 3;
 };
 
 class Planner {

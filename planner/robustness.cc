@@ -64,7 +64,7 @@ void MonteCarloTally::Add(const MonteCarloTally& o) {
 }
 
 double MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span<const Vec2> finals,
-                       const PotContext& after_ctx, const SearchSettings& settings, double in_hand_points) {
+                       const PotContext& after_ctx, const SearchSettings& settings) {
   const TableState& table = *setup.table;
   if (out.success && setup.kind == ShotKind::kPot) {
     return ScoreLeave(table, setup.on, setup.object, finals, out.potted, 1.0, after_ctx, settings).score;
@@ -76,18 +76,19 @@ double MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span
   const std::optional<BallKind> nominated =
       named >= 0 ? std::optional<BallKind>(table.balls[static_cast<size_t>(named)].kind) : std::nullopt;
   const int penalty = FoulPenalty(table, setup.on, nominated, out.first_hit, out.potted);
+  // The opponent plays the table left, from the D when the cue ball went down.
   const TableState after = ApplyShot(table, setup.on, finals, out.potted, true, *after_ctx.table);
-  double opponent = in_hand_points;
-  if (after.cue_index() >= 0) {
-    const auto opponent_on = OpeningBallOn(after);
-    opponent = opponent_on ? EvaluatePosition(after, *opponent_on, after_ctx, settings.position).expected_points : 0;
+  double opponent = 0;
+  if (const auto opponent_on = OpeningBallOn(after)) {
+    const Outlook o = OpponentOutlook(after, *opponent_on, after_ctx, settings);
+    opponent = o.expected_points - o.expected_penalty;
   }
   return -(penalty + opponent);
 }
 
 MonteCarloTally RunSamples(const ShotSetup& setup, const physics::Shot& shot, const PotContext& ctx,
                            const SearchSettings& settings, ShotSimulator& sim, const StopControl& stop,
-                           std::uint64_t seed, int count, double in_hand_points) {
+                           std::uint64_t seed, int count) {
   MonteCarloTally tally;
   Rng rng(seed);
   const physics::Interrupt interrupt = stop.AsInterrupt();
@@ -110,7 +111,7 @@ MonteCarloTally RunSamples(const ShotSetup& setup, const physics::Shot& shot, co
     ++tally.samples;
     finals.clear();
     for (const physics::BallState& b : sim.final_balls()) finals.push_back(b.r);
-    tally.score_sum += MonteCarloScore(setup, out, finals, after_ctx, settings, in_hand_points);
+    tally.score_sum += MonteCarloScore(setup, out, finals, after_ctx, settings);
     if (out.foul != Foul::kNone) ++tally.fouls;
     if (!out.success) continue;
     ++tally.successes;

@@ -66,15 +66,14 @@ struct MonteCarloTally {
 /// (ScoreLeave); any other legal stroke, what ScoreSafety makes of the table left
 /// (a ball on dropping after all continues the visit; otherwise the opponent's
 /// expected points, negated); a foul, minus the penalty and the opponent's
-/// expected points (`in_hand_points` when the cue ball went down: the opponent
-/// then plays from the D).
+/// expected points (OpponentOutlook: from the D when the cue ball went down).
 double MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span<const physics::Vec2> finals,
-                       const PotContext& after_ctx, const SearchSettings& settings, double in_hand_points);
+                       const PotContext& after_ctx, const SearchSettings& settings);
 
 /// Runs `count` samples of block stream `seed` for `shot` played as `setup` says
 /// (its table as vision saw it). `sim` should run at full fidelity.
 MonteCarloTally RunSamples(const ShotSetup& setup, const physics::Shot& shot, const PotContext& ctx,
                            const SearchSettings& settings, ShotSimulator& sim, const StopControl& stop,
-                           std::uint64_t seed, int count, double in_hand_points);
+                           std::uint64_t seed, int count);
 
 }  // namespace snooker::planner

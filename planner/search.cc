@@ -11,6 +11,7 @@
 #include "physics/motion/motion.h"
 #include "physics/sim/resolve.h"
 #include "planner/geometry.h"
+#include "planner/layout.h"
 
 namespace snooker::planner {
 namespace {
@@ -290,15 +291,20 @@ class Search {
     const Vec2 object = table_.balls[static_cast<size_t>(cand_.object)].position;
     const PocketWindow w =
         ctx_.pockets->Window(cand_.pocket, out.line.direction, out.line.arrival_speed);
+    if (cand_.route != PotRoute::kDirect) {
+      // Another route's estimate (routes.h) carries its own spread at the mouth; the
+      // simulated line says how well centred this aim is.
+      const double sigma = std::max(cand_.estimate.sigma, 1e-4);
+      const double centred = WindowProbability(w.centre(), sigma, w);
+      return centred > 0 ? cand_.estimate.probability * WindowProbability(out.line.offset, sigma, w) / centred : 0;
+    }
     const Vec2 u(std::cos(out.line.direction), std::sin(out.line.direction));
     const double distance =
         std::max(0.0, (ctx_.table->pocket(cand_.pocket).mouth_centre - object).dot(u));
     const double sigma = LateralSigma(cue, object, heading, cut, distance, out.line.contact_speed,
                                       ctx_.sigma_of(cue_), ctx_.sigma_of(cand_.object), ctx_.noise,
                                       *ctx_.throws, ctx_.table->ball_radius());
-    // Routes other than the direct one carry their own reliability in the prior.
-    const double route = cand_.route == PotRoute::kDirect ? 1.0 : cand_.estimate.probability;
-    return route * WindowProbability(out.line.offset, sigma, w);
+    return WindowProbability(out.line.offset, sigma, w);
   }
 
   double Keep(const std::array<double, 4>& u, double f) {
@@ -434,7 +440,21 @@ Leave ScoreLeave(const TableState& table, BallOn on, int object, std::span<const
   }
   if (leave.position.next_ball >= 0) leave.next_ball = origin[static_cast<size_t>(leave.position.next_ball)];
   leave.score = ShotScore(pot_probability, Value(object_kind), leave.position, settings.position_play);
+  if (settings.position_play && after_ctx.layout != nullptr) {
+    // What the shot did to the rest of the table: colours' places, reds tied up.
+    LayoutOptions layout;
+    layout.pockets = after_ctx.pockets;
+    leave.layout = LayoutChange(table, *after_ctx.layout, after, *after_ctx.table, layout);
+    leave.score += pot_probability * leave.layout;
+  }
   return leave;
+}
+
+Outlook OpponentOutlook(const TableState& after, BallOn on, const PotContext& after_ctx,
+                        const SearchSettings& settings) {
+  OutlookOptions options;
+  options.position = settings.position;
+  return EvaluateOutlook(after, on, after_ctx, options);
 }
 
 Leave ScoreSafety(const TableState& table, BallOn on, int first_hit, std::span<const Vec2> finals,
@@ -452,9 +472,14 @@ Leave ScoreSafety(const TableState& table, BallOn on, int first_hit, std::span<c
     }
     leave.score = j.points + (settings.position_play ? leave.position.expected_points : 0.0);
   } else if (const auto opponent_on = OpeningBallOn(after)) {
-    // The opponent plays the table left: what they can expect, in the same points.
-    leave.position = EvaluatePosition(after, *opponent_on, after_ctx, settings.position);
-    leave.score = -leave.position.expected_points;
+    // The opponent plays the table left: what they can expect, in the same points,
+    // less what a snooker makes them give away.
+    const Outlook outlook = OpponentOutlook(after, *opponent_on, after_ctx, settings);
+    leave.position.value = outlook.position_value;
+    leave.position.expected_points = outlook.expected_points;
+    leave.position.next_ball = outlook.pot_ball;
+    leave.opponent = outlook;
+    leave.score = -(outlook.expected_points - outlook.expected_penalty);
   }
   if (leave.position.next_ball >= 0) leave.next_ball = origin[static_cast<size_t>(leave.position.next_ball)];
   return leave;

@@ -53,6 +53,7 @@
 
 #include "physics/core/shot.h"
 #include "planner/candidates.h"
+#include "planner/outlook.h"
 #include "planner/position.h"
 #include "planner/shot_sim.h"
 
@@ -162,6 +163,10 @@ double ShotScore(double pot_probability, int value, const PositionValue& positio
 /// What a succeeding shot leaves, scored.
 struct Leave {
   PositionValue position;
+  /// LayoutChange of the shot (pots, with a layout summary), points.
+  double layout = 0;
+  /// ScoreSafety without a pot: the opponent's outlook of the table left.
+  std::optional<Outlook> opponent;
   /// ShotScore of the shot with the given pot probability.
   double score = 0;
   /// The ball the position sets up, as an index of the table before the shot (-1:
@@ -172,11 +177,17 @@ struct Leave {
 /// Scores what a legal safety, escape or break-off leaves, for the striker, in
 /// ShotScore's points: when a ball on dropped after all, the points and the
 /// striker's position (the visit goes on); otherwise minus the opponent's expected
-/// points from the table left (EvaluatePosition for the side to play, the ball on
-/// theirs: a red while reds remain). `first_hit` is the first ball the cue ball hit.
-/// Leave::next_ball is then the opponent's best ball.
+/// points from the table left less the penalty a snooker makes them expect to give
+/// away (OpponentOutlook; the ball on theirs: a red while reds remain). `first_hit`
+/// is the first ball the cue ball hit. Leave::next_ball is then the opponent's best
+/// ball.
 Leave ScoreSafety(const TableState& table, BallOn on, int first_hit, std::span<const physics::Vec2> finals,
                   std::span<const int> potted, const PotContext& after_ctx, const SearchSettings& settings);
+
+/// The outlook (outlook.h) of the table `after` for the opponent, to play with `on`
+/// (the cue ball in hand when `after` has none).
+Outlook OpponentOutlook(const TableState& after, BallOn on, const PotContext& after_ctx,
+                        const SearchSettings& settings);
 
 /// Scores what a succeeding shot of `object` with `on` leaves, the one sequence the
 /// search, the verification and the Monte Carlo share: the table after the rules

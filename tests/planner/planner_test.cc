@@ -54,7 +54,8 @@ TableState ObviousPot() {
 // fidelity, a fresh simulator): the planner's promise.
 ShotOutcome Replay(const TableState& t, BallOn on, const PlannedShot& s, std::vector<Vec2>* finals = nullptr) {
   ShotSimulator sim(Table(), physics::SimParams{});
-  const ShotSetup setup{&t, t.cue_index(), s.object_ball, s.pocket, on};
+  const ShotSetup setup{&t, t.cue_index(), s.object_ball, s.pocket, on, s.kind,
+                        s.route == PotRoute::kPlant ? s.first_ball : -1};
   ShotOutcome out = sim.Run(setup, s.shot, {}, ShotSimulator::Mode::kFull, {});
   if (finals != nullptr) {
     finals->clear();
