@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "physics/sim/fidelity.h"
+#include "physics/table/placement_repair.h"
 #include "planner/geometry.h"
 #include "planner/robustness.h"
 #include "planner/selfplay.h"
@@ -198,6 +199,9 @@ std::optional<BallKind> NominationFor(const FrameState& f, int ball) {
   return IsColour(k) ? std::optional<BallKind>(k) : std::nullopt;
 }
 
+// The vision repair's tolerance, m: the service's default (1 mm).
+constexpr double kVisionTolerance = 1e-3;
+
 class MatchRunner {
  public:
   MatchRunner(const Planner& planner, const MatchOptions& o)
@@ -230,6 +234,13 @@ TurnChoice MatchRunner::Choose(const FrameState& f, int frame, Rng& rng) const {
   req.table = f.table;
   std::vector<Vec2> seen;
   SampleTruePositions(f.table, vision_, rng, &seen);
+  // What the service does with vision's positions: balls that overlap by a hair
+  // (a rack seen through the noise) moved apart by the least distance.
+  std::vector<physics::BallPlacement> placed;
+  for (const Vec2& p : seen) placed.push_back({"", p});
+  if (physics::RepairPlacement(model_, placed, kVisionTolerance).error.empty()) {
+    for (size_t i = 0; i < seen.size(); ++i) seen[i] = placed[i].r;
+  }
   for (size_t i = 0; i < seen.size(); ++i) req.table.balls[i].position = seen[i];
   req.cue_in_hand = f.cue_in_hand;
   req.ball_on = f.ball_on;

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "planner/break_off.h"
+#include "planner/fallback.h"
 #include "planner/layout.h"
 #include "planner/outlook.h"
 #include "planner/parallel.h"
@@ -144,6 +145,7 @@ class PlanRun {
     if (Prepare()) {
       Allocate();
       SearchAndVerify();
+      Fallback();
       RankByMonteCarlo();
       Conclude();
     }
@@ -162,6 +164,7 @@ class PlanRun {
   void SearchAndVerify();
   ShotSetup SetupFor(const Candidate& cand) const;
   std::optional<PlannedShot> Verify(Worker& w, const Candidate& cand, const ShotCandidate& sc, size_t task);
+  void Fallback();
   void RankByMonteCarlo();
   void Conclude();
   void AddWorkers(int count) {
@@ -186,6 +189,8 @@ class PlanRun {
   // The tables candidates play on: the request's first, then one per placement of
   // the cue ball in hand (the cue ball last).
   std::vector<TableState> tables_;
+  static constexpr int kNotPlaced = -2;
+  int cue_table_ = kNotPlaced;  // TableWithCue's table, once made
   std::vector<Candidate> candidates_;
   CandidateSet pots_;  // the direct pots' pruning counts, for the reason
   double best_pot_ = 0;  // the best pot estimate
@@ -311,10 +316,14 @@ void PlanRun::AddRoutes() {
 // -1 when the D has no room.
 int PlanRun::TableWithCue() {
   if (!request_.cue_in_hand) return 0;
+  if (cue_table_ != kNotPlaced) return cue_table_;
   const auto place = FreePlaceInTheD(table_, *config_.table);
-  if (!place) return -1;
-  tables_.push_back(WithCueBall(table_, *place));
-  return static_cast<int>(tables_.size()) - 1;
+  cue_table_ = -1;
+  if (place) {
+    tables_.push_back(WithCueBall(table_, *place));
+    cue_table_ = static_cast<int>(tables_.size()) - 1;
+  }
+  return cue_table_;
 }
 
 // Shots of other kinds when no pot is near certain: safeties, and escapes when the
@@ -492,6 +501,41 @@ void PlanRun::SearchAndVerify() {
     if (pa != pb) return pa;
     return a.search_score > b.search_score;
   });
+}
+
+// With no verified shot, a legal stroke by a deterministic scan (fallback.h), when
+// the request allows a shot that does not pot: a robot must strike every turn.
+void PlanRun::Fallback() {
+  const bool cancelled = request_.cancel != nullptr && request_.cancel->load();
+  if (!shots_.empty() || cancelled || Clock::now() >= request_.deadline ||
+      !(request_.kinds.Has(ShotKind::kSafety) || request_.kinds.Has(ShotKind::kEscape))) {
+    return;
+  }
+  const int t = TableWithCue();
+  if (t < 0) return;
+  const TableState& table = tables_[static_cast<size_t>(t)];
+  AddWorkers(1);
+  Worker& w = *workers_.front();
+  physics::Interrupt interrupt;
+  interrupt.deadline = request_.deadline;
+  interrupt.cancelled = request_.cancel;
+  const auto found = FindLegalStroke(table, table.cue_index(), on_, ctx_, settings_, w.full, interrupt,
+                                     FallbackOptions{});
+  if (!found) return;
+  answer_.simulations += found->simulations;
+  Candidate c;
+  c.kind = found->kind;
+  c.object = found->object;
+  c.table = t;
+  if (t > 0) c.cue_start = table.balls.back().position;
+  candidates_.push_back(c);
+  failed_verification_.push_back(0);
+  ShotCandidate sc;
+  sc.shot = found->shot;
+  sc.score = found->score;
+  ++answer_.simulations;
+  if (auto ps = Verify(w, candidates_.back(), sc, failed_verification_.size() - 1)) shots_.push_back(std::move(*ps));
+  answer_.verified = static_cast<int>(shots_.size());
 }
 
 // Monte Carlo of the best few pots and the best others, blocks across the workers;

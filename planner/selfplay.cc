@@ -104,8 +104,14 @@ SelfPlayReport RunSelfPlay(const Planner& planner, const SelfPlayOptions& o,
         break;
       }
       const PlannedShot& plan = answer.shots.front();
+      if (plan.kind != ShotKind::kPot) {
+        // A break alone has no opponent to play safe against: the visit ends there.
+        rec.end = ToString(plan.kind);
+        break;
+      }
       const physics::Shot played = SampleExecution(plan.shot, o.noise, rng);
-      const ShotSetup setup{&truth, truth.cue_index(), plan.object_ball, plan.pocket, *on};
+      const ShotSetup setup{&truth, truth.cue_index(), plan.object_ball, plan.pocket, *on, plan.kind,
+                            plan.route == PotRoute::kPlant ? plan.first_ball : -1};
       const ShotOutcome& out = truth_sim.Run(setup, played, {}, ShotSimulator::Mode::kFull, no_interrupt);
       ++rec.attempts;
       if (out.status != physics::SimStatus::kAtRest) {

@@ -7,7 +7,8 @@
 // played on the true table with the execution noise added, simulated at full
 // fidelity and judged by the rules (rules.h). The break goes on until a miss, a
 // foul (cue ball potted, wrong ball first, a ball not on potted), a plan with no
-// shot, or a cleared table. Potted colours are re-spotted by the rules while reds
+// shot or whose best shot is not a pot (a safety: the break ends there, and is not
+// counted as an attempted pot), or a cleared table. Potted colours are re-spotted by the rules while reds
 // remain.
 //
 // A pot attempt is a shot played; it drops when its object ball drops with no foul.
@@ -46,7 +47,7 @@ struct FrameRecord {
   int points = 0;         ///< the break
   int attempts = 0;       ///< shots played
   int pots = 0;           ///< attempts whose object ball dropped without a foul
-  std::string end;        ///< "miss", "foul: ...", "no pot", "cleared", "shot cap"
+  std::string end;        ///< "miss", "foul: ...", "no pot", "SAFETY", "ESCAPE", "cleared", "shot cap"
 };
 
 struct SelfPlayReport {

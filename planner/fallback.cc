@@ -1,0 +1,99 @@
+#include "planner/fallback.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "planner/cushion_paths.h"
+#include "planner/geometry.h"
+
+namespace snooker::planner {
+namespace {
+
+using physics::Vec2;
+
+// One aim to try: a heading, and whether it reaches its ball off a cushion.
+struct Aim {
+  double heading;
+  bool cushion;
+};
+
+// Headings at `ball` from the cue ball: across its visible width, then along the
+// cushion paths' brackets.
+std::vector<Aim> AimsAt(const TableState& table, int cue, int ball, const PotContext& ctx,
+                        const FallbackOptions& options) {
+  std::vector<Aim> aims;
+  const Vec2 c = table.balls[static_cast<size_t>(cue)].position;
+  const Vec2 o = table.balls[static_cast<size_t>(ball)].position;
+  const double r = ctx.table->ball_radius();
+  const double d = (o - c).norm();
+  const double half = d > 2 * r ? std::asin(std::min(1.0, 2 * r / d)) * 0.9 : 0.0;
+  const double direct = Direction(o - c);
+  const int n = std::max(1, options.headings);
+  for (int k = 0; k < n; ++k) {
+    const double f = n == 1 ? 0.0 : -1.0 + 2.0 * k / (n - 1);
+    aims.push_back({WrapAngle(direct + f * half), false});
+  }
+  std::vector<CushionPath> paths;
+  AppendCushionPaths(*ctx.table, table, c, o, 2, 2 * r + ctx.path_clearance, cue, ball, ball, CushionPathOptions{},
+                     paths);
+  for (const CushionPath& p : paths) {
+    for (int k = 0; k < n; ++k) {
+      const double f = n == 1 ? 0.5 : static_cast<double>(k) / (n - 1);
+      aims.push_back({WrapAngle(p.heading + p.bracket.lo + f * p.bracket.width()), true});
+    }
+  }
+  return aims;
+}
+
+}  // namespace
+
+std::optional<FallbackShot> FindLegalStroke(const TableState& table, int cue, BallOn on, const PotContext& ctx,
+                                            const SearchSettings& settings, ShotSimulator& sim,
+                                            const physics::Interrupt& interrupt, const FallbackOptions& options) {
+  if (cue < 0) return std::nullopt;
+  const Vec2 c = table.balls[static_cast<size_t>(cue)].position;
+  std::vector<std::pair<double, int>> balls;
+  for (size_t i = 0; i < table.balls.size(); ++i) {
+    if (static_cast<int>(i) != cue && IsLegalTarget(on, table.balls[i].kind)) {
+      balls.emplace_back((table.balls[i].position - c).norm(), static_cast<int>(i));
+    }
+  }
+  std::sort(balls.begin(), balls.end());
+  if (static_cast<int>(balls.size()) > options.max_balls) balls.resize(static_cast<size_t>(options.max_balls));
+  PotContext after_ctx = ctx;
+  after_ctx.position_sigma.clear();
+  const RobotLimits& lim = settings.limits;
+  std::optional<FallbackShot> best;
+  int simulations = 0;
+  std::vector<Vec2> finals;
+  for (const auto& [distance, ball] : balls) {
+    for (const Aim& aim : AimsAt(table, cue, ball, ctx, options)) {
+      if (CueMargin(table, cue, aim.heading, lim.cue, *ctx.table) < 0) continue;
+      for (const double v : {options.soft, options.firm}) {
+        if (simulations >= options.max_simulations || interrupt.Due()) {
+          if (best) best->simulations = simulations;
+          return best;
+        }
+        const physics::Shot shot{std::clamp(v, lim.min_speed, lim.max_speed), aim.heading, 0, 0};
+        const ShotSetup setup{&table, cue, ball, physics::PocketId::kBaulkLeft, on, ShotKind::kSafety, -1,
+                              TouchingBallOn(table, on, *ctx.table)};
+        ++simulations;
+        const ShotOutcome& out = sim.Run(setup, shot, {}, ShotSimulator::Mode::kToRest, interrupt);
+        if (!out.success) continue;
+        finals.clear();
+        for (const physics::BallState& b : sim.final_balls()) finals.push_back(b.r);
+        const double score = ScoreSafety(table, on, out.first_hit, finals, out.potted, after_ctx, settings).score;
+        if (!best || score > best->score) {
+          best = FallbackShot{out.cue_cushions_first > 0 ? ShotKind::kEscape : ShotKind::kSafety, out.first_hit, shot,
+                              score, 0};
+        }
+      }
+    }
+    if (best) break;  // a legal stroke on the nearest reachable ball will do
+  }
+  if (best) best->simulations = simulations;
+  return best;
+}
+
+}  // namespace snooker::planner
