@@ -10,7 +10,9 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "planner/limits.h"
 #include "planner/match.h"
+#include "planner/outlook.h"
 
 namespace snooker::cli {
 namespace {
@@ -50,7 +52,9 @@ Players:
                    "framesUndecided" (of those, level), "blackRespots",
                    "simulationFailures", and per player (suffix A or B) highestBreak,
                    centuries, penaltyPoints (from the opponent's fouls), shots, stalls,
-                   planMsP50, planMsP99, safetyOutlook (null: not measured)
+                   planMsP50, planMsP99, safetyOutlook and safetyOutlookP50 (the
+                   opponent's best pot probability after each safety of the player's,
+                   mean and median; null: none played)
 Noise (standard deviations; the same options as snooker selfplay):
   --noise-heading-deg X   cue heading, degrees (default 0.02)
   --noise-speed X         cue speed, fraction of the speed (default 0.01)
@@ -103,10 +107,13 @@ std::string Parse(Args& args, Parsed* p) {
     s << "--" << flag << " " << x << " is out of range [" << lo << ", " << hi << "]";
     return s.str();
   };
+  namespace lim = planner::limits;
   for (const std::string& e :
-       {range("budget-ms", *budget, 1, 60'000), range("noise-heading-deg", *heading, 0, 10),
-        range("noise-speed", *speed, 0, 0.5), range("noise-spin", *spin, 0, 100),
-        range("noise-position-mm", *position, 0, 50), range("cue-clearance-m", *clearance, 0, 2)}) {
+       {range("budget-ms", *budget, lim::kTimeBudget.lo * 1e3, lim::kTimeBudget.hi * 1e3),
+        range("noise-heading-deg", *heading, 0, physics::RadToDeg(lim::kHeadingSigma.hi)),
+        range("noise-speed", *speed, 0, lim::kSpeedSigmaFraction.hi), range("noise-spin", *spin, 0, lim::kSpinSigma.hi),
+        range("noise-position-mm", *position, 0, lim::kPositionSigma.hi * 1e3),
+        range("cue-clearance-m", *clearance, 0, lim::kCueClearance.hi)}) {
     if (!e.empty()) return e;
   }
   o.frames = static_cast<int>(*frames);
@@ -162,7 +169,8 @@ void PrintJson(const Parsed& p, const planner::MatchReport& r, std::ostream& out
       << ", \"penaltyPoints" << x << "\": " << s.penalty_points << ", \"shots" << x << "\": " << s.shots
       << ", \"stalls" << x << "\": " << s.stalls << ", \"planMsP50" << x << "\": " << Number(s.plan_ms_p50)
       << ", \"planMsP99" << x << "\": " << Number(s.plan_ms_p99) << ", \"safetyOutlook" << x
-      << "\": " << Number(s.mean_safety_outlook);
+      << "\": " << Number(s.mean_safety_outlook) << ", \"safetyOutlookP50" << x
+      << "\": " << Number(s.median_safety_outlook);
   }
   j << "}\n";
   out << j.str();
@@ -227,7 +235,17 @@ int RunMatch(const std::vector<std::string>& argv, std::ostream& out, std::ostre
           << s.stalls << " stalls, " << s.fouls << " fouls, " << planner::ToString(s.end) << "\n";
     };
   }
-  const planner::MatchReport r = planner::RunMatch(planner::Planner::Default(), p.options, progress);
+  // After each safety: the opponent's best pot probability, by the planner's own
+  // fast estimate (outlook.h; from the D when the cue ball is in hand).
+  const planner::Planner& planner = planner::Planner::Default();
+  planner::PlanRequest seen;
+  seen.noise = p.options.noise;
+  seen.limits = p.options.limits;
+  const planner::PotContext ctx = planner.ContextFor(seen);
+  p.options.outlook = [&ctx](const planner::TableState& table, bool /*cue_in_hand*/, planner::BallOn on) {
+    return planner::EvaluateOutlook(table, on, ctx, planner::OutlookOptions{}).pot_probability;
+  };
+  const planner::MatchReport r = planner::RunMatch(planner, p.options, progress);
   if (args.Switch("json")) {
     PrintJson(p, r, out);
   } else {

@@ -355,6 +355,8 @@ MatchReport MatchRunner::Finish() {
     }
     p.plan_ms_p50 = Percentile(p.plan_ms, 0.5);
     p.plan_ms_p99 = Percentile(p.plan_ms, 0.99);
+    p.median_safety_outlook = p.safety_outlook.empty() ? std::numeric_limits<double>::quiet_NaN()
+                                                       : Percentile(p.safety_outlook, 0.5);
     p.mean_safety_outlook =
         p.safety_outlook.empty()
             ? std::numeric_limits<double>::quiet_NaN()

@@ -119,9 +119,11 @@ struct PlayerStats {
   double plan_ms_p50 = 0;
   double plan_ms_p99 = 0;
   /// After each of its safeties that handed the table over: the opponent's outlook
-  /// (MatchOptions::outlook; empty when unset), and its mean (NaN when empty).
+  /// (MatchOptions::outlook; empty when unset), and its mean and median (NaN when
+  /// empty).
   std::vector<double> safety_outlook;
   double mean_safety_outlook = 0;
+  double median_safety_outlook = 0;
 };
 
 struct FrameSummary {

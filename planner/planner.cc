@@ -165,6 +165,9 @@ class PlanRun {
   ShotSetup SetupFor(const Candidate& cand) const;
   std::optional<PlannedShot> Verify(Worker& w, const Candidate& cand, const ShotCandidate& sc, size_t task);
   void Fallback();
+  bool FallbackAllowed() const {
+    return request_.kinds.Has(ShotKind::kSafety) || request_.kinds.Has(ShotKind::kEscape);
+  }
   void RankByMonteCarlo();
   void Conclude();
   void AddWorkers(int count) {
@@ -192,6 +195,7 @@ class PlanRun {
   static constexpr int kNotPlaced = -2;
   int cue_table_ = kNotPlaced;  // TableWithCue's table, once made
   std::vector<Candidate> candidates_;
+  std::string no_candidates_;  // why there were none to search, when so
   CandidateSet pots_;  // the direct pots' pruning counts, for the reason
   double best_pot_ = 0;  // the best pot estimate
   LayoutSummary layout_;  // the request's table, for the layout term
@@ -241,7 +245,6 @@ bool PlanRun::Prepare() {
   answer_.candidate_pairs = pots_.pairs;
   answer_.candidates = static_cast<int>(candidates_.size());
   if (candidates_.empty()) {
-    answer_.status = PlanStatus::kNoPot;
     std::ostringstream why;
     why << "no pot: none of the " << pots_.pairs << " ball-pocket pairs for the ball on (" << ToString(on_)
         << ") survives pruning";
@@ -250,8 +253,11 @@ bool PlanRun::Prepare() {
         why << "; " << ToString(static_cast<PruneReason>(k)) << ": " << pots_.pruned[static_cast<size_t>(k)];
       }
     }
-    answer_.reason = why.str();
-    return false;
+    no_candidates_ = why.str();
+    // Nothing to search; the fallback's scan may still find a legal stroke.
+    answer_.status = PlanStatus::kNoPot;
+    answer_.reason = no_candidates_;
+    return FallbackAllowed();
   }
   return true;
 }
@@ -507,10 +513,7 @@ void PlanRun::SearchAndVerify() {
 // the request allows a shot that does not pot: a robot must strike every turn.
 void PlanRun::Fallback() {
   const bool cancelled = request_.cancel != nullptr && request_.cancel->load();
-  if (!shots_.empty() || cancelled || Clock::now() >= request_.deadline ||
-      !(request_.kinds.Has(ShotKind::kSafety) || request_.kinds.Has(ShotKind::kEscape))) {
-    return;
-  }
+  if (!shots_.empty() || cancelled || Clock::now() >= request_.deadline || !FallbackAllowed()) return;
   const int t = TableWithCue();
   if (t < 0) return;
   const TableState& table = tables_[static_cast<size_t>(t)];
@@ -612,6 +615,9 @@ void PlanRun::Conclude() {
     answer_.reason = std::string(deadline ? "the caller's deadline" : "the time budget") +
                      " ran out before any shot was verified (" + std::to_string(answer_.searched) +
                      " candidates started)";
+  } else if (!no_candidates_.empty()) {
+    answer_.status = PlanStatus::kNoPot;
+    answer_.reason = no_candidates_ + ", and no legal stroke was found";
   } else {
     answer_.status = PlanStatus::kNoPot;
     answer_.reason = "no shot found: the search of " + std::to_string(answer_.searched) + " of " +

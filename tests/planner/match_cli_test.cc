@@ -43,7 +43,8 @@ TEST(CliMatchTest, JsonHasTheContractedNames) {
       "framesCapped", "framesUndecided", "blackRespots", "simulationFailures", "highestBreakA",
       "highestBreakB", "centuriesA",   "centuriesB",     "penaltyPointsA",    "penaltyPointsB",
       "shotsA",       "shotsB",        "stallsA",        "stallsB",           "planMsP50A",
-      "planMsP50B",   "planMsP99A",    "planMsP99B",     "safetyOutlookA",    "safetyOutlookB"};
+      "planMsP50B",   "planMsP99A",    "planMsP99B",     "safetyOutlookA",    "safetyOutlookB",
+      "safetyOutlookP50A", "safetyOutlookP50B"};
   std::set<std::string> all = contract;
   all.insert(more.begin(), more.end());
   EXPECT_EQ(Keys(json), all);
@@ -57,8 +58,17 @@ TEST(CliMatchTest, JsonHasTheContractedNames) {
   EXPECT_EQ(f.at("shotsA").number_value() + f.at("shotsB").number_value(), f.at("shots").number_value());
   EXPECT_EQ(f.at("stallsA").number_value() + f.at("stallsB").number_value(), f.at("stalls").number_value());
   EXPECT_LE(f.at("planMsP50").number_value(), f.at("planMsP99").number_value());
-  // No outlook is measured from the command line yet.
-  EXPECT_TRUE(f.at("safetyOutlookA").has_null_value());
+  // The opponent's pot chance after a safety: a probability, or null when the
+  // player played none.
+  for (const char* key : {"safetyOutlookA", "safetyOutlookB", "safetyOutlookP50A", "safetyOutlookP50B"}) {
+    const auto& v = f.at(key);
+    if (v.has_null_value()) continue;
+    EXPECT_GE(v.number_value(), 0) << key;
+    EXPECT_LE(v.number_value(), 1) << key;
+  }
+  if (f.at("safetiesA").number_value() == 0) {
+    EXPECT_TRUE(f.at("safetyOutlookA").has_null_value());
+  }
 }
 
 TEST(CliMatchTest, TheSameSeedPlaysTheSameMatch) {
