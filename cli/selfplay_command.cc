@@ -16,7 +16,7 @@ namespace {
 
 constexpr const char* kHelp = R"(usage: snooker selfplay --frames N --seed S [--budget-ms N] [--json]
                         [--noise-heading-deg X] [--noise-speed X] [--noise-spin X]
-                        [--noise-position-mm X] [--cue-clearance-m X] [--pot-only] [--max-simulations N]
+                        [--noise-position-mm X] [--cue-clearance-m X] [--pot-only] [--one-ply] [--max-simulations N]
                         [--samples N] [--threads N] [--progress] [--records out.jsonl]
 
 The planner plays snooker alone. Each frame starts from a seeded random mid-frame
@@ -42,6 +42,7 @@ Robot:
   --cue-clearance-m X     clear bed the level cue needs behind the cue ball, m (0.10)
 Planner:
   --pot-only             ignore the position left
+  --one-ply              estimate the next shot only (no lookahead search)
   --max-simulations N    per-plan cap on simulations (default: from the budget)
   --samples N            Monte Carlo samples per ranked shot (default 48)
   --threads N            planner threads (default 2)
@@ -59,7 +60,7 @@ int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::os
             {"frames", "seed", "budget-ms", "noise-heading-deg", "noise-speed", "noise-spin",
              "noise-position-mm", "cue-clearance-m", "max-simulations", "samples", "threads",
              "records"},
-            {"json", "help", "pot-only", "progress"});
+            {"json", "help", "pot-only", "one-ply", "progress"});
   if (args.error().empty() && args.Switch("help")) {
     out << kHelp;
     return kExitOk;
@@ -100,6 +101,7 @@ int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::os
   o.noise.position = *position * 1e-3;
   o.limits.cue.length = *clearance;
   o.position_play = !args.Switch("pot-only");
+  o.lookahead = !args.Switch("one-ply");
   o.max_simulations = *sims;
   o.monte_carlo_samples = static_cast<int>(*samples);
   o.threads = static_cast<int>(*threads);

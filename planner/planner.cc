@@ -40,9 +40,11 @@ struct Worker {
 // When each stage of a plan must end, and the simulations it may run.
 struct Schedule {
   StopControl search;
+  StopControl lookahead;
   StopControl monte_carlo;
   StopControl final;
   double search_simulations = 0;
+  double lookahead_simulations = 0;
   double monte_carlo_simulations = 0;
   // The caller's deadline, not the budget, is what ends the work.
   bool deadline_binds = false;
@@ -59,15 +61,20 @@ Schedule MakeSchedule(const PlannerConfig& config, const PlanRequest& request, C
   auto at = [&](double share) {
     return std::min(end, start + std::chrono::duration_cast<Clock::duration>(budget * share));
   };
+  // Lookahead takes its share out of the search's: one-ply and two-ply plans spend
+  // the same time.
+  const double lookahead = request.lookahead && request.position_play ? config.lookahead_share : 0.0;
   Schedule s;
-  s.search = {at(config.search_share), request.cancel};
+  s.search = {at(config.search_share - lookahead), request.cancel};
+  s.lookahead = {at(config.search_share), request.cancel};
   s.monte_carlo = {at(config.search_share + config.monte_carlo_share), request.cancel};
   s.final = {end, request.cancel};
   s.deadline_binds = request.deadline < budget_end;
   const double total = request.max_simulations > 0
                            ? static_cast<double>(request.max_simulations)
                            : config.simulations_per_ms * request.time_budget * 1e3 * request.threads;
-  s.search_simulations = total * config.search_share;
+  s.search_simulations = total * (config.search_share - lookahead);
+  s.lookahead_simulations = total * lookahead;
   s.monte_carlo_simulations = total * config.monte_carlo_share;
   return s;
 }
@@ -146,6 +153,7 @@ class PlanRun {
       Allocate();
       SearchAndVerify();
       Fallback();
+      LookAhead();
       RankByMonteCarlo();
       Conclude();
     }
@@ -164,7 +172,10 @@ class PlanRun {
   void SearchAndVerify();
   ShotSetup SetupFor(const Candidate& cand) const;
   std::optional<PlannedShot> Verify(Worker& w, const Candidate& cand, const ShotCandidate& sc, size_t task);
+  std::vector<const ShotCandidate*> Alternatives(const Candidate& cand, const SearchResult& r) const;
   void Fallback();
+  void LookAhead();
+  double NextShotValue(Worker& w, const PlannedShot& ps, int evaluations, int* simulations) const;
   bool FallbackAllowed() const {
     return request_.kinds.Has(ShotKind::kSafety) || request_.kinds.Has(ShotKind::kEscape);
   }
@@ -205,7 +216,7 @@ class PlanRun {
   std::vector<int> evaluations_;
   // SearchAndVerify, one slot per chosen candidate.
   std::vector<std::unique_ptr<Worker>> workers_;
-  std::vector<std::optional<PlannedShot>> found_;
+  std::vector<std::vector<PlannedShot>> found_;
   std::vector<int> failed_verification_;
   // Verified shots, best first.
   std::vector<PlannedShot> shots_;
@@ -453,6 +464,7 @@ std::optional<PlannedShot> PlanRun::Verify(Worker& w, const Candidate& cand, con
   const Leave leave = pot ? ScoreLeave(table, on_, cand.object, finals, out.potted, sc.pot_estimate, after_ctx_, settings_)
                           : ScoreSafety(table, on_, out.first_hit, finals, out.potted, after_ctx_, settings_);
   ps.position_value = leave.position.value;
+  ps.position_points = leave.position.expected_points;
   ps.next_ball = leave.next_ball;
   ps.search_score = leave.score;
   ps.score = leave.score;
@@ -460,14 +472,28 @@ std::optional<PlannedShot> PlanRun::Verify(Worker& w, const Candidate& cand, con
   return ps;
 }
 
+// The shots of a search worth verifying: its best, and for a pot the best of each
+// other spin class (stun, follow, screw) that scores at least alternative_share of
+// it: the same pot played differently, for the caller to choose from.
+std::vector<const ShotCandidate*> PlanRun::Alternatives(const Candidate& cand, const SearchResult& r) const {
+  std::vector<const ShotCandidate*> out = {&*r.best};
+  if (cand.kind != ShotKind::kPot || r.best->score <= 0) return out;
+  for (const auto& alt : r.by_spin) {
+    if (alt && alt->shot.topspin != r.best->shot.topspin && alt->score >= config_.alternative_share * r.best->score) {
+      out.push_back(&*alt);
+    }
+  }
+  return out;
+}
+
 // Search and verify, candidates across the workers; reports each verified shot that
 // beats the best so far.
 void PlanRun::SearchAndVerify() {
   const size_t n = chosen_.size();
   AddWorkers(std::min(request_.threads, static_cast<int>(n)));
-  found_.assign(n, std::nullopt);
+  found_.assign(n, {});
   failed_verification_.assign(n, 0);
-  std::vector<int> search_simulations(n, 0);
+  std::vector<int> search_simulations(n, 0), verifications(n, 0);
   std::vector<char> interrupted(n, 0);
   std::mutex progress_mutex;
   double best_reported = -std::numeric_limits<double>::infinity();
@@ -484,19 +510,22 @@ void PlanRun::SearchAndVerify() {
     search_simulations[t] = r.simulations;
     interrupted[t] = r.status == SearchStatus::kInterrupted;
     if (!r.best || schedule_.final.Due()) return;
-    found_[t] = Verify(w, cand, *r.best, t);
-    if (!found_[t] || request_.progress == nullptr) return;
+    for (const ShotCandidate* sc : Alternatives(cand, r)) {
+      ++verifications[t];
+      if (auto ps = Verify(w, cand, *sc, t)) found_[t].push_back(std::move(*ps));
+    }
+    if (found_[t].empty() || request_.progress == nullptr) return;
     std::lock_guard<std::mutex> lock(progress_mutex);
-    if (found_[t]->score > best_reported) {
-      best_reported = found_[t]->score;
-      request_.progress(*found_[t], request_.progress_context);
+    if (found_[t].front().score > best_reported) {
+      best_reported = found_[t].front().score;
+      request_.progress(found_[t].front(), request_.progress_context);
     }
   });
   for (size_t i = 0; i < n; ++i) {
-    answer_.simulations += search_simulations[i] + (found_[i] || failed_verification_[i] ? 1 : 0);
+    answer_.simulations += search_simulations[i] + verifications[i];
     answer_.verification_failures += failed_verification_[i];
     answer_.deadline_hit = answer_.deadline_hit || interrupted[i] != 0;
-    if (found_[i]) shots_.push_back(std::move(*found_[i]));
+    for (PlannedShot& ps : found_[i]) shots_.push_back(std::move(ps));
   }
   for (const auto& w : workers_) answer_.evaluations += w->evaluations;
   answer_.verified = static_cast<int>(shots_.size());
@@ -539,6 +568,72 @@ void PlanRun::Fallback() {
   ++answer_.simulations;
   if (auto ps = Verify(w, candidates_.back(), sc, failed_verification_.size() - 1)) shots_.push_back(std::move(*ps));
   answer_.verified = static_cast<int>(shots_.size());
+}
+
+// What the next shot is worth from where a pot leaves the table, searched rather
+// than estimated: the best score (p (value + position)) of a short search of each
+// of the next ball's likeliest candidates; 0 when none pots.
+double PlanRun::NextShotValue(Worker& w, const PlannedShot& ps, int evaluations, int* simulations) const {
+  const Candidate& cand = candidates_[static_cast<size_t>(ps.source)];
+  const TableState& table = tables_[static_cast<size_t>(cand.table)];
+  std::vector<Vec2> finals;
+  std::vector<int> potted;
+  for (size_t i = 0; i < ps.balls_end.size(); ++i) {
+    finals.push_back(ps.balls_end[i].position);
+    if (ps.balls_end[i].pocket) potted.push_back(static_cast<int>(i));
+  }
+  const TableState after = ApplyShot(table, on_, finals, potted, false, *config_.table);
+  const auto next_on = NextBallOn(on_, table.balls[static_cast<size_t>(cand.object)].kind, after);
+  if (!next_on || after.cue_index() < 0) return ps.position_points;
+  const CandidateSet next = EnumerateCandidates(after, *next_on, after_ctx_);
+  SearchSettings s = settings_;
+  s.global_evaluations = static_cast<int>(std::lround(evaluations * config_.global_share));
+  s.local_evaluations = evaluations - s.global_evaluations;
+  // A short search that finds no pot says little against the estimate: the
+  // estimate stands then.
+  double best = -1;
+  for (size_t k = 0; k < next.candidates.size() && static_cast<int>(k) < config_.lookahead_candidates; ++k) {
+    const SearchResult r = SearchCandidate(after, *next_on, next.candidates[k], after_ctx_, s, w.search,
+                                           schedule_.lookahead);
+    *simulations += r.simulations;
+    if (r.best) best = std::max(best, r.best->score);
+  }
+  return best >= 0 ? best : ps.position_points;
+}
+
+// Two-ply: for the best few pots, the next shot searched from the table each leaves
+// (NextShotValue) replaces the position's estimate in their scores; the Monte Carlo
+// then ranks with that correction.
+void PlanRun::LookAhead() {
+  if (!request_.lookahead || !request_.position_play || schedule_.lookahead.Due()) return;
+  std::vector<PlannedShot*> pots;
+  for (PlannedShot& ps : shots_) {
+    if (ps.kind == ShotKind::kPot && static_cast<int>(pots.size()) < config_.lookahead_shots) pots.push_back(&ps);
+  }
+  if (pots.empty()) return;
+  const int tasks = static_cast<int>(pots.size());
+  const int evaluations = std::max(
+      config_.min_evaluations,
+      static_cast<int>(schedule_.lookahead_simulations / (tasks * std::max(1, config_.lookahead_candidates))));
+  AddWorkers(std::min(request_.threads, tasks));
+  std::vector<double> value(pots.size(), 0);
+  std::vector<int> simulations(pots.size(), 0);
+  ParallelFor(request_.threads, tasks, [&](int task, int worker) {
+    const size_t t = static_cast<size_t>(task);
+    value[t] = NextShotValue(*workers_[static_cast<size_t>(worker)], *pots[t], evaluations, &simulations[t]);
+  });
+  for (size_t i = 0; i < pots.size(); ++i) {
+    answer_.simulations += simulations[i];
+    PlannedShot& ps = *pots[i];
+    ps.lookahead = value[i] - ps.position_points;
+    ps.search_score += ps.pot_probability * ps.lookahead;
+    ps.score = ps.search_score;
+  }
+  std::stable_sort(shots_.begin(), shots_.end(), [](const PlannedShot& a, const PlannedShot& b) {
+    const bool pa = a.kind == ShotKind::kPot, pb = b.kind == ShotKind::kPot;
+    if (pa != pb) return pa;
+    return a.search_score > b.search_score;
+  });
 }
 
 // Monte Carlo of the best few pots and the best others, blocks across the workers;
@@ -589,7 +684,8 @@ void PlanRun::RankByMonteCarlo() {
       ps.pocket_probability = t.pocket_rate();
     }
     ps.foul_probability = t.foul_rate();
-    ps.score = t.mean_score();
+    // Lookahead's correction of the position's estimate, for the pots that succeed.
+    ps.score = t.mean_score() + t.success_rate() * ps.lookahead;
   }
   // Shots without samples keep their nominal score, below any sampled competitor in
   // practice. Shots not ranked are not answered: their scores are not comparable.

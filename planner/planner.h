@@ -166,6 +166,8 @@ struct PlannedShot {
   double pot_estimate = 0;       ///< fast estimate from the nominal object-ball line
   int monte_carlo_samples = 0;
   int source = -1;               ///< the plan's candidate it came from
+  double position_points = 0;    ///< the leave's estimated expected points (position.h)
+  double lookahead = 0;          ///< the next shot searched less position_points (two-ply)
 };
 
 enum class PlanStatus : std::uint8_t {
@@ -222,9 +224,12 @@ struct PlannerConfig {
     return p;
   }();
   SearchSettings search_settings;
-  /// Simulations per millisecond per thread that the budget buys (calibrated on
-  /// the 2-core development machine, RelWithDebInfo, with margin).
-  double simulations_per_ms = 12.0;
+  /// Simulations per millisecond per thread that the budget buys: measured on the
+  /// 2-core development machine (Release, the impact tables on) at about 80 a
+  /// millisecond per thread for a mid-frame table's search and Monte Carlo, so that
+  /// with margin the default budget's plan ends by its simulations (deterministic
+  /// for a seed) in about half its time; slower builds end by the time instead.
+  double simulations_per_ms = 30.0;
   /// Shares of the budget (time and simulations): the search ends at
   /// search_share, the Monte Carlo at search_share + monte_carlo_share.
   double search_share = 0.65;
@@ -260,6 +265,14 @@ struct PlannerConfig {
   /// Candidates of each route other than the direct (plants, doubles, kicks) and of
   /// escapes, the likeliest first: their searches are dearer and their pots rarer.
   int routes_each = 3;
+  /// A pot's alternatives (the best of its other spin classes) are verified, and
+  /// offered, when they score at least this share of its best shot.
+  double alternative_share = 0.6;
+  /// Two-ply: the budget's share moved from the search to searching the next shot,
+  /// for this many of the best pots, over this many of the next ball's candidates.
+  double lookahead_share = 0.15;
+  int lookahead_shots = 2;
+  int lookahead_candidates = 1;
 };
 
 class Planner {

@@ -233,7 +233,9 @@ class Search {
                             : ScoreSafety(table_, on_, out.first_hit, final_positions_, out.potted, after_ctx_,
                                           settings_);
     const double score = leave.score - SpeedCost(shot.speed);
-    if (!result_.best || score > result_.best->score) {
+    std::optional<ShotCandidate>& best_of_class =
+        result_.by_spin[static_cast<size_t>(SpinClassOf(shot, ctx_.table->ball_radius()))];
+    if (!result_.best || score > result_.best->score || !best_of_class || score > best_of_class->score) {
       ShotCandidate c;
       c.shot = shot;
       c.cut = aim.cut;
@@ -241,7 +243,8 @@ class Search {
       c.pot_estimate = p;
       c.position = leave.position;
       c.cue_end = final_positions_[static_cast<size_t>(cue_)];
-      result_.best = c;
+      if (!best_of_class || score > best_of_class->score) best_of_class = c;
+      if (!result_.best || score > result_.best->score) result_.best = std::move(c);
     }
     return Keep(u, score);
   }
@@ -348,6 +351,12 @@ const char* ToString(LocalAlgorithm a) {
     case LocalAlgorithm::kNone: return "none";
   }
   return "unknown";
+}
+
+SpinClass SpinClassOf(const physics::Shot& shot, double radius) {
+  const double rolling = shot.speed / radius;
+  const double f = rolling > 0 ? shot.topspin / rolling : 0.0;
+  return f < -kSpinClass ? SpinClass::kScrew : f > kSpinClass ? SpinClass::kFollow : SpinClass::kStun;
 }
 
 bool StopControl::Due() const {

@@ -45,6 +45,7 @@
 // Both have bounds, tolerances, an evaluation cap and a time limit.
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <optional>
@@ -115,8 +116,19 @@ enum class SearchStatus : std::uint8_t {
   kFailed,       ///< NLopt reported an error (the best shot found is still valid)
 };
 
+/// How a shot's cue ball plays through the object ball: by its topspin at the
+/// strike as a fraction of the rolling spin, below -kSpinClass screw, above
+/// +kSpinClass follow, stun between.
+enum class SpinClass : std::uint8_t { kScrew, kStun, kFollow };
+inline constexpr double kSpinClass = 0.25;
+inline constexpr int kSpinClassCount = 3;
+SpinClass SpinClassOf(const physics::Shot& shot, double radius);
+
 struct SearchResult {
   std::optional<ShotCandidate> best;  ///< the best succeeding shot, if any
+  /// The best succeeding shot of each spin class (a pot's alternatives: the same
+  /// ball and pocket played with stun, follow or screw), best included.
+  std::array<std::optional<ShotCandidate>, kSpinClassCount> by_spin;
   int evaluations = 0;
   int simulations = 0;
   SearchStatus status = SearchStatus::kConverged;

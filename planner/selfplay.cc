@@ -94,6 +94,7 @@ SelfPlayReport RunSelfPlay(const Planner& planner, const SelfPlayOptions& o,
       req.max_shots = 1;
       req.seed = DeriveSeed(o.seed, static_cast<std::uint64_t>(f), static_cast<std::uint64_t>(k) + 1);
       req.position_play = o.position_play;
+      req.lookahead = o.lookahead;
       req.threads = o.threads;
       req.max_simulations = o.max_simulations;
       req.monte_carlo_samples = o.monte_carlo_samples;

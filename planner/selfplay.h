@@ -32,6 +32,8 @@ struct SelfPlayOptions {
   NoiseModel noise;
   RobotLimits limits;
   bool position_play = true;
+  /// Search the next shot of the best pots (two-ply); false: estimate it only.
+  bool lookahead = true;
   int threads = 2;
   /// Per-plan simulation cap (0: from the budget).
   std::int64_t max_simulations = 0;

@@ -1,0 +1,237 @@
+// Each kind of shot the planner offers, on a table built for it, re-simulated
+// exactly as planned to do what its label says: a pot by each route drops the named
+// ball in the named pocket with the named first ball; a safety, an escape and a
+// break-off hit a ball on first and foul nothing; with the cue ball in hand the
+// placement lies in the D; a cue ball touching a ball plays away from it in every
+// direction.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "planner/frame.h"
+#include "planner/planner.h"
+#include "planner/placement.h"
+#include "planner/shot_sim.h"
+
+namespace snooker::planner {
+namespace {
+
+using physics::PocketId;
+using physics::Vec2;
+
+const physics::TableModel& Table() { return physics::DefaultTable(); }
+constexpr double kR = 0.02625;
+
+Vec2 Turn(const Vec2& u, double deg) {
+  const double a = deg * physics::kPi / 180;
+  return Vec2(std::cos(a) * u.x() - std::sin(a) * u.y(), std::sin(a) * u.x() + std::cos(a) * u.y());
+}
+
+// Deterministic plans: a simulation cap far below the generous budget.
+PlanRequest Request(const TableState& t, std::int64_t sims = 2500) {
+  PlanRequest r;
+  r.table = t;
+  r.time_budget = 30;
+  r.max_simulations = sims;
+  r.monte_carlo_samples = 16;
+  r.max_shots = 5;
+  return r;
+}
+
+// What a planned shot does when played exactly as planned on its table (the cue
+// ball placed where the shot says when it was in hand).
+struct Replayed {
+  ShotOutcome out;
+  TableState table;
+  int cue = -1;
+};
+
+Replayed Replay(const PlanRequest& r, const PlannedShot& s) {
+  Replayed p;
+  p.table = s.cue_start ? WithCueBall(r.table, *s.cue_start) : r.table;
+  p.cue = p.table.cue_index();
+  const BallOn on = r.ball_on.value_or(*OpeningBallOn(r.table));
+  ShotSimulator sim(Table(), physics::SimParams{});
+  const ShotSetup setup{&p.table, p.cue, s.object_ball, s.pocket, on, s.kind,
+                        s.route == PotRoute::kPlant ? s.first_ball : -1, TouchingBallOn(p.table, on, Table())};
+  p.out = sim.Run(setup, s.shot, {}, ShotSimulator::Mode::kFull, {});
+  return p;
+}
+
+// A pot's claim: the first ball, the object ball in the named pocket, no foul.
+void ExpectPotAsLabelled(const PlanRequest& r, const PlannedShot& s, PotRoute route) {
+  ASSERT_EQ(s.kind, ShotKind::kPot);
+  EXPECT_EQ(s.route, route) << ToString(s.route);
+  const Replayed p = Replay(r, s);
+  EXPECT_TRUE(p.out.success) << ToString(p.out.foul);
+  EXPECT_EQ(p.out.foul, Foul::kNone) << ToString(p.out.foul);
+  EXPECT_EQ(p.out.first_hit, s.first_ball);
+  EXPECT_EQ(p.out.object_pocket, static_cast<int>(s.pocket));
+  if (route == PotRoute::kPlant) {
+    EXPECT_NE(s.first_ball, s.object_ball);
+  } else if (route == PotRoute::kKick) {
+    EXPECT_GT(p.out.cue_cushions_first, 0);
+  } else if (route == PotRoute::kDouble) {
+    EXPECT_GT(p.out.object_cushions, 0);
+  }
+}
+
+// A stroke that does not pot: a ball on first (or the touching ball on), no foul.
+void ExpectLegal(const PlanRequest& r, const PlannedShot& s) {
+  const Replayed p = Replay(r, s);
+  const BallOn on = r.ball_on.value_or(*OpeningBallOn(r.table));
+  EXPECT_EQ(p.out.foul, Foul::kNone) << ToString(p.out.foul);
+  ASSERT_GE(p.out.first_hit, 0);
+  EXPECT_TRUE(IsLegalTarget(on, p.table.balls[static_cast<size_t>(p.out.first_hit)].kind));
+  EXPECT_EQ(s.first_ball, p.out.first_hit);
+  for (const int i : p.out.potted) EXPECT_NE(i, p.cue) << "in-off";
+}
+
+PlanRequest OnlyRoute(const TableState& t, PotRoute route) {
+  PlanRequest r = Request(t);
+  r.kinds = ShotKinds::Of(ShotKind::kPot);
+  r.routes = PotRoutes::Of(route);
+  return r;
+}
+
+TEST(ShotKindsTest, APlantPotsTheSecondRed) {
+  // B 0.4 m out of the top-right pocket, A sending it in at a 15 deg cut from
+  // 0.3 m, the cue ball cutting A at 20 deg from 0.4 m.
+  const physics::Pocket& p = Table().pocket(PocketId::kTopRight);
+  const Vec2 b = p.mouth_centre - 0.4 * p.axis;
+  const Vec2 dir_a = Turn(p.axis, 15);
+  const Vec2 a = b - 2 * kR * p.axis - 0.3 * dir_a;
+  const Vec2 c = a - 2 * kR * dir_a - 0.4 * Turn(dir_a, -20);
+  TableState t;
+  t.balls = {{BallKind::kCue, c}, {BallKind::kRed, a}, {BallKind::kRed, b},
+             {BallKind::kBlack, Table().spot(physics::Colour::kBlack)}};
+  const PlanRequest r = OnlyRoute(t, PotRoute::kPlant);
+  const PlanAnswer answer = Planner::Default().Plan(r);
+  ASSERT_FALSE(answer.shots.empty()) << answer.reason;
+  for (const PlannedShot& s : answer.shots) ExpectPotAsLabelled(r, s, PotRoute::kPlant);
+}
+
+TEST(ShotKindsTest, ADoubleReachesThePocketOffACushion) {
+  TableState t;
+  t.balls = {{BallKind::kCue, Vec2(1.0, 1.25)}, {BallKind::kRed, Vec2(1.45, 1.50)},
+             {BallKind::kBlack, Table().spot(physics::Colour::kBlack)}};
+  const PlanRequest r = OnlyRoute(t, PotRoute::kDouble);
+  const PlanAnswer answer = Planner::Default().Plan(r);
+  ASSERT_FALSE(answer.shots.empty()) << answer.reason;
+  for (const PlannedShot& s : answer.shots) ExpectPotAsLabelled(r, s, PotRoute::kDouble);
+}
+
+TEST(ShotKindsTest, AKickReachesTheRedOffACushion) {
+  // The cue ball behind the blue from a red near the top-right pocket.
+  const Vec2 red(1.35, 3.15), cue(0.5, 2.15);
+  TableState t;
+  t.balls = {{BallKind::kCue, cue}, {BallKind::kRed, red}, {BallKind::kBlue, 0.5 * (cue + red)}};
+  const PlanRequest r = OnlyRoute(t, PotRoute::kKick);
+  const PlanAnswer answer = Planner::Default().Plan(r);
+  ASSERT_FALSE(answer.shots.empty()) << answer.reason;
+  for (const PlannedShot& s : answer.shots) ExpectPotAsLabelled(r, s, PotRoute::kKick);
+}
+
+TEST(ShotKindsTest, ASnookeredCueBallEscapes) {
+  // The only red hidden behind the blue, the pink beside it.
+  TableState t;
+  t.balls = {{BallKind::kCue, Vec2(0.9, 1.0)}, {BallKind::kRed, Vec2(0.9, 2.2)},
+             {BallKind::kBlue, Vec2(0.9, 1.6)}, {BallKind::kPink, Vec2(1.3, 1.6)}};
+  PlanRequest r = Request(t);
+  r.kinds = ShotKinds::Of(ShotKind::kEscape);
+  const PlanAnswer answer = Planner::Default().Plan(r);
+  ASSERT_FALSE(answer.shots.empty()) << answer.reason;
+  for (const PlannedShot& s : answer.shots) {
+    EXPECT_EQ(s.kind, ShotKind::kEscape);
+    ExpectLegal(r, s);
+    EXPECT_GT(Replay(r, s).out.cue_cushions_first, 0);
+    EXPECT_GE(s.foul_probability, 0);
+    EXPECT_LE(s.foul_probability, 1);
+  }
+}
+
+TEST(ShotKindsTest, ASafetyPlaysABallOnAndFoulsNothing) {
+  // A red on the top cushion, nothing to pot: the planner plays safe.
+  TableState t;
+  t.balls = {{BallKind::kCue, Vec2(0.9, 1.2)},
+             {BallKind::kRed, Vec2(0.5, Table().spec().length - Table().cushion_contact_distance())},
+             {BallKind::kBlack, Table().spot(physics::Colour::kBlack)}};
+  PlanRequest r = Request(t);
+  r.kinds = ShotKinds::Of(ShotKind::kSafety);
+  const PlanAnswer answer = Planner::Default().Plan(r);
+  ASSERT_FALSE(answer.shots.empty()) << answer.reason;
+  for (const PlannedShot& s : answer.shots) {
+    EXPECT_EQ(s.kind, ShotKind::kSafety);
+    ExpectLegal(r, s);
+    EXPECT_EQ(s.balls_end.size(), t.balls.size());
+  }
+}
+
+TEST(ShotKindsTest, TheBreakOffHitsARedAndKeepsTheCueBall) {
+  const FrameState frame = StartFrame(1, 0);
+  ASSERT_TRUE(frame.cue_in_hand);
+  PlanRequest r = Request(frame.table, 1500);
+  r.cue_in_hand = true;
+  const PlanAnswer answer = Planner::Default().Plan(r);
+  ASSERT_FALSE(answer.shots.empty()) << answer.reason;
+  for (const PlannedShot& s : answer.shots) {
+    EXPECT_EQ(s.kind, ShotKind::kBreakOff);
+    ASSERT_TRUE(s.cue_start.has_value());
+    EXPECT_TRUE(InTheD(*s.cue_start, Table()));
+    ExpectLegal(r, s);
+    EXPECT_EQ(r.table.balls[static_cast<size_t>(s.first_ball)].kind, BallKind::kRed);
+    // Every ball's end: the rack's balls, then the placed cue ball.
+    EXPECT_EQ(s.balls_end.size(), r.table.balls.size() + 1);
+  }
+}
+
+TEST(ShotKindsTest, WithTheCueBallInHandAPotIsPlayedFromTheD) {
+  // After an in-off mid-frame: a red a metre up the table from the D.
+  TableState t;
+  t.balls = {{BallKind::kRed, Vec2(0.7, 1.6)}, {BallKind::kRed, Vec2(1.3, 2.9)},
+             {BallKind::kBlack, Table().spot(physics::Colour::kBlack)},
+             {BallKind::kPink, Table().spot(physics::Colour::kPink)}};
+  PlanRequest r = Request(t);
+  r.cue_in_hand = true;
+  const PlanAnswer answer = Planner::Default().Plan(r);
+  ASSERT_FALSE(answer.shots.empty()) << answer.reason;
+  const PlannedShot& best = answer.shots.front();
+  ASSERT_TRUE(best.cue_start.has_value());
+  EXPECT_TRUE(InTheD(*best.cue_start, Table()));
+  ASSERT_EQ(best.kind, ShotKind::kPot);
+  ExpectPotAsLabelled(r, best, best.route);
+}
+
+// A red touching the cue ball on each of eight sides, another red far off: every
+// plan plays away from the touching red (never into it: that would be a push) and
+// does what its label says.
+class TouchingBallTest : public testing::TestWithParam<int> {};
+
+TEST_P(TouchingBallTest, PlaysAwayFromIt) {
+  const Vec2 cue(0.9, 1.5);
+  const Vec2 side = Turn(Vec2(1, 0), 45.0 * GetParam());
+  TableState t;
+  t.balls = {{BallKind::kCue, cue}, {BallKind::kRed, cue + 2 * kR * side}, {BallKind::kRed, Vec2(0.4, 2.8)},
+             {BallKind::kBlack, Table().spot(physics::Colour::kBlack)}};
+  PlanRequest r = Request(t, 1200);
+  const PlanAnswer answer = Planner::Default().Plan(r);
+  ASSERT_FALSE(answer.shots.empty()) << answer.reason;
+  for (const PlannedShot& s : answer.shots) {
+    const Vec2 u(std::cos(s.shot.heading), std::sin(s.shot.heading));
+    EXPECT_LE(u.dot(side), 1e-9) << "plays into the touching ball";
+    if (s.kind == ShotKind::kPot) {
+      ExpectPotAsLabelled(r, s, s.route);
+    } else {
+      const Replayed p = Replay(r, s);
+      EXPECT_EQ(p.out.foul, Foul::kNone) << ToString(p.out.foul);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(EightSides, TouchingBallTest, testing::Range(0, 8),
+                         [](const testing::TestParamInfo<int>& p) { return "deg" + std::to_string(45 * p.param); });
+
+}  // namespace
+}  // namespace snooker::planner
