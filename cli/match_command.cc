@@ -171,8 +171,22 @@ void PrintJson(const Parsed& p, const planner::MatchReport& r, std::ostream& out
       << ", \"planMsP99" << x << "\": " << Number(s.plan_ms_p99) << ", \"safetyOutlook" << x
       << "\": " << Number(s.mean_safety_outlook) << ", \"safetyOutlookP50" << x
       << "\": " << Number(s.median_safety_outlook);
+    j << ", \"kinds" << x << "\": {";
+    for (int k = 0; k < planner::kShotKindCount; ++k) {
+      j << (k ? ", " : "") << "\"" << planner::ToString(static_cast<planner::ShotKind>(k)) << "\": " << s.kinds[static_cast<size_t>(k)];
+    }
+    j << "}, \"routes" << x << "\": {";
+    for (int k = 0; k < planner::kPotRouteCount; ++k) {
+      j << (k ? ", " : "") << "\"" << planner::ToString(static_cast<planner::PotRoute>(k)) << "\": " << s.routes[static_cast<size_t>(k)];
+    }
+    j << "}";
   }
-  j << "}\n";
+  j << ", \"planMsByTurn\": {";
+  for (size_t t = 0; t < r.plan_ms_p50_by_turn.size(); ++t) {
+    j << (t ? ", " : "") << "\"" << planner::ToString(static_cast<planner::TurnType>(t)) << "\": {\"p50\": "
+      << Number(r.plan_ms_p50_by_turn[t]) << ", \"p99\": " << Number(r.plan_ms_p99_by_turn[t]) << "}";
+  }
+  j << "}}\n";
   out << j.str();
 }
 

@@ -186,6 +186,7 @@ struct TurnChoice {
   physics::Shot shot;
   std::optional<BallKind> nominated;
   ShotKind kind = ShotKind::kPot;
+  PotRoute route = PotRoute::kDirect;
   bool stall = false;
   double plan_ms = 0;
 };
@@ -227,6 +228,7 @@ class MatchRunner {
   PotContext vision_;
   MatchReport report_;
   std::vector<double> plan_ms_;
+  std::array<std::vector<double>, 3> plan_ms_by_turn_;
 };
 
 TurnChoice MatchRunner::Choose(const FrameState& f, int frame, Rng& rng) const {
@@ -264,6 +266,7 @@ TurnChoice MatchRunner::Choose(const FrameState& f, int frame, Rng& rng) const {
       c.cue_start = start;
       c.shot = p.shot;
       c.kind = p.kind;
+      c.route = p.route;
       c.nominated = NominationFor(f, p.first_ball >= 0 ? p.first_ball : p.object_ball);
       return c;
     }
@@ -291,14 +294,19 @@ void MatchRunner::Play(FrameState& f, const TurnChoice& c, Rng& rng, FrameSummar
     s.simulation_failed = true;
     ++report_.simulation_failures;
   }
+  const TurnType turn = !f.cue_in_hand ? TurnType::kOnTable : f.shots == 0 ? TurnType::kBreakOff : TurnType::kInHand;
   const StrokeResult r = ApplyStroke(f, s, model_);
   PlayerStats& p = report_.players[static_cast<size_t>(r.striker)];
   ++p.shots;
   p.plan_ms.push_back(c.plan_ms);
   plan_ms_.push_back(c.plan_ms);
+  plan_ms_by_turn_[static_cast<size_t>(turn)].push_back(c.plan_ms);
   if (c.stall) {
     ++p.stalls;
     ++summary.stalls;
+  } else {
+    ++p.kinds[static_cast<size_t>(c.kind)];
+    if (c.kind == ShotKind::kPot) ++p.routes[static_cast<size_t>(c.route)];
   }
   if (r.judgement.foul != Foul::kNone) {
     ++p.fouls;
@@ -367,6 +375,11 @@ MatchReport MatchRunner::Finish() {
   }
   report_.plan_ms_p50 = Percentile(plan_ms_, 0.5);
   report_.plan_ms_p99 = Percentile(plan_ms_, 0.99);
+  for (size_t t = 0; t < plan_ms_by_turn_.size(); ++t) {
+    const bool none = plan_ms_by_turn_[t].empty();  // NaN: no such turn was played
+    report_.plan_ms_p50_by_turn[t] = none ? std::numeric_limits<double>::quiet_NaN() : Percentile(plan_ms_by_turn_[t], 0.5);
+    report_.plan_ms_p99_by_turn[t] = none ? std::numeric_limits<double>::quiet_NaN() : Percentile(plan_ms_by_turn_[t], 0.99);
+  }
   return report_;
 }
 
@@ -468,6 +481,15 @@ FallbackShot NearestBallOnShot(const TableState& table, bool cue_in_hand, BallOn
     out.shot.heading = physics::kPi / 2;  // no ball on at all: up the table
   }
   return out;
+}
+
+const char* ToString(TurnType t) {
+  switch (t) {
+    case TurnType::kOnTable: return "on table";
+    case TurnType::kInHand: return "in hand";
+    case TurnType::kBreakOff: return "break-off";
+  }
+  return "unknown";
 }
 
 MatchReport RunMatch(const Planner& planner, const MatchOptions& options,

@@ -112,6 +112,9 @@ struct PlayerStats {
   int fouls = 0;
   /// Strokes of kind kSafety played.
   int safeties = 0;
+  /// Shots played by kind (stalls not counted), and pots by route.
+  std::array<int, kShotKindCount> kinds{};
+  std::array<int, kPotRouteCount> routes{};
   int shots = 0;
   int stalls = 0;
   /// Planning time of every turn, ms, and its median and 99th percentile.
@@ -138,6 +141,11 @@ struct FrameSummary {
   bool black_respotted = false;
 };
 
+/// The kinds of turn whose planning times a match reports apart.
+enum class TurnType : std::uint8_t { kOnTable, kInHand, kBreakOff };
+/// "on table", "in hand", "break-off".
+const char* ToString(TurnType t);
+
 struct MatchReport {
   int frames = 0;
   std::array<PlayerStats, 2> players;
@@ -155,6 +163,10 @@ struct MatchReport {
   /// Both players' planning times, ms.
   double plan_ms_p50 = 0;
   double plan_ms_p99 = 0;
+  /// The same by kind of turn: the cue ball on the table, in hand after a foul,
+  /// and the break-off (TurnType); NaN for a kind no turn was of.
+  std::array<double, 3> plan_ms_p50_by_turn{};
+  std::array<double, 3> plan_ms_p99_by_turn{};
   std::vector<FrameSummary> records;
 };
 

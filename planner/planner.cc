@@ -570,9 +570,12 @@ void PlanRun::Fallback() {
   answer_.verified = static_cast<int>(shots_.size());
 }
 
-// What the next shot is worth from where a pot leaves the table, searched rather
-// than estimated: the best score (p (value + position)) of a short search of each
-// of the next ball's likeliest candidates; 0 when none pots.
+// How the next shot's probability, searched rather than estimated, changes what a
+// pot's leave is worth: for the next ball's likeliest pot, a short search finds the
+// probability the simulated shot really has; the position's value
+// (position.h) moves by the first weight times the change in probability times the
+// ball's points (value + continuation), so the currency stays the estimate's. A
+// search that finds no pot says little against the estimate: no change then.
 double PlanRun::NextShotValue(Worker& w, const PlannedShot& ps, int evaluations, int* simulations) const {
   const Candidate& cand = candidates_[static_cast<size_t>(ps.source)];
   const TableState& table = tables_[static_cast<size_t>(cand.table)];
@@ -584,21 +587,18 @@ double PlanRun::NextShotValue(Worker& w, const PlannedShot& ps, int evaluations,
   }
   const TableState after = ApplyShot(table, on_, finals, potted, false, *config_.table);
   const auto next_on = NextBallOn(on_, table.balls[static_cast<size_t>(cand.object)].kind, after);
-  if (!next_on || after.cue_index() < 0) return ps.position_points;
+  if (!next_on || after.cue_index() < 0) return 0;
   const CandidateSet next = EnumerateCandidates(after, *next_on, after_ctx_);
   SearchSettings s = settings_;
   s.global_evaluations = static_cast<int>(std::lround(evaluations * config_.global_share));
   s.local_evaluations = evaluations - s.global_evaluations;
-  // A short search that finds no pot says little against the estimate: the
-  // estimate stands then.
-  double best = -1;
-  for (size_t k = 0; k < next.candidates.size() && static_cast<int>(k) < config_.lookahead_candidates; ++k) {
-    const SearchResult r = SearchCandidate(after, *next_on, next.candidates[k], after_ctx_, s, w.search,
-                                           schedule_.lookahead);
-    *simulations += r.simulations;
-    if (r.best) best = std::max(best, r.best->score);
-  }
-  return best >= 0 ? best : ps.position_points;
+  if (next.candidates.empty()) return 0;
+  const Candidate& c = next.candidates.front();  // the likeliest next pot
+  const SearchResult r = SearchCandidate(after, *next_on, c, after_ctx_, s, w.search, schedule_.lookahead);
+  *simulations += r.simulations;
+  if (!r.best) return 0;
+  const double points = Value(after.balls[static_cast<size_t>(c.object)].kind) + settings_.position.continuation;
+  return settings_.position.weights[0] * (r.best->pot_estimate - c.estimate.probability) * points;
 }
 
 // Two-ply: for the best few pots, the next shot searched from the table each leaves
@@ -612,9 +612,8 @@ void PlanRun::LookAhead() {
   }
   if (pots.empty()) return;
   const int tasks = static_cast<int>(pots.size());
-  const int evaluations = std::max(
-      config_.min_evaluations,
-      static_cast<int>(schedule_.lookahead_simulations / (tasks * std::max(1, config_.lookahead_candidates))));
+  const int evaluations =
+      std::max(config_.min_evaluations, static_cast<int>(schedule_.lookahead_simulations / tasks));
   AddWorkers(std::min(request_.threads, tasks));
   std::vector<double> value(pots.size(), 0);
   std::vector<int> simulations(pots.size(), 0);
@@ -625,7 +624,7 @@ void PlanRun::LookAhead() {
   for (size_t i = 0; i < pots.size(); ++i) {
     answer_.simulations += simulations[i];
     PlannedShot& ps = *pots[i];
-    ps.lookahead = value[i] - ps.position_points;
+    ps.lookahead = value[i];
     ps.search_score += ps.pot_probability * ps.lookahead;
     ps.score = ps.search_score;
   }

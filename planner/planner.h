@@ -167,7 +167,7 @@ struct PlannedShot {
   int monte_carlo_samples = 0;
   int source = -1;               ///< the plan's candidate it came from
   double position_points = 0;    ///< the leave's estimated expected points (position.h)
-  double lookahead = 0;          ///< the next shot searched less position_points (two-ply)
+  double lookahead = 0;          ///< two-ply's change of the leave's value (NextShotValue)
 };
 
 enum class PlanStatus : std::uint8_t {
@@ -268,11 +268,10 @@ struct PlannerConfig {
   /// A pot's alternatives (the best of its other spin classes) are verified, and
   /// offered, when they score at least this share of its best shot.
   double alternative_share = 0.6;
-  /// Two-ply: the budget's share moved from the search to searching the next shot,
-  /// for this many of the best pots, over this many of the next ball's candidates.
+  /// Two-ply: the budget's share moved from the search to searching the next shot
+  /// (the likeliest next pot) for this many of the best pots.
   double lookahead_share = 0.15;
   int lookahead_shots = 2;
-  int lookahead_candidates = 1;
 };
 
 class Planner {

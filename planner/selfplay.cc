@@ -95,6 +95,9 @@ SelfPlayReport RunSelfPlay(const Planner& planner, const SelfPlayOptions& o,
       req.seed = DeriveSeed(o.seed, static_cast<std::uint64_t>(f), static_cast<std::uint64_t>(k) + 1);
       req.position_play = o.position_play;
       req.lookahead = o.lookahead;
+      // Alone at the table there is no one to play safe against: pots only (by any
+      // route), the fallback's legal stroke when there is none.
+      req.kinds = ShotKinds::Of(ShotKind::kPot);
       req.threads = o.threads;
       req.max_simulations = o.max_simulations;
       req.monte_carlo_samples = o.monte_carlo_samples;

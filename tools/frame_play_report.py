@@ -102,7 +102,8 @@ def player_table(d):
         ("stalls", "stalls", 0),
         ("planning ms, median", "planMsP50", 1),
         ("planning ms, 99th percentile", "planMsP99", 1),
-        ("opponent's best pot after a safety", "safetyOutlook", 2),
+        ("opponent's best pot after a safety, mean", "safetyOutlook", 2),
+        ("opponent's best pot after a safety, median", "safetyOutlookP50", 2),
     ]
     out = f"| | A: {d['playerA']} | B: {d['playerB']} |\n|---|---:|---:|\n"
     for label, key, digits in rows:
@@ -114,7 +115,115 @@ def player_table(d):
     return out
 
 
-def document(runs, command, revision):
+def kinds_table(runs):
+    """How often each kind of shot and each pot route was played, per player and match."""
+    kinds = ("POT", "SAFETY", "ESCAPE", "BREAK_OFF")
+    routes = ("DIRECT", "PLANT", "DOUBLE", "KICK")
+    out = ("| match | player | " + " | ".join(k.lower().replace("_", "-") for k in kinds) + " | "
+           + " | ".join(r.lower() for r in routes) + " | stalls | fouls per stroke |\n"
+           + "|---|---|" + "---:|" * (len(kinds) + len(routes) + 2) + "\n")
+    for opponent, vision, d, wall in runs:
+        for side in "AB":
+            k = d.get("kinds" + side) or {}
+            r = d.get("routes" + side) or {}
+            strokes = d.get("shots" + side) or 0
+            fouls = d.get("fouls" + side) or 0
+            rate = f"{100 * fouls / strokes:.1f} %" if strokes else "-"
+            out += (f"| {d['playerA']} v {d['playerB']}, {vision} mm | {d['player' + side]} | "
+                    + " | ".join(str(k.get(x, 0)) for x in kinds) + " | "
+                    + " | ".join(str(r.get(x, 0)) for x in routes)
+                    + f" | {d['stalls' + side]} | {rate} |\n")
+    return out
+
+
+def timing_table(runs):
+    """Planning time by kind of turn, both players of each match."""
+    turns = ("on table", "in hand", "break-off")
+    out = ("| match | " + " | ".join(f"{t}: p50 / p99 ms" for t in turns) + " |\n|---|"
+           + "---:|" * len(turns) + "\n")
+    for opponent, vision, d, wall in runs:
+        by = d.get("planMsByTurn") or {}
+        cells = []
+        for t in turns:
+            x = by.get(t) or {}
+            cells.append(f"{number(x.get('p50'))} / {number(x.get('p99'))}")
+        out += f"| {d['playerA']} v {d['playerB']}, {vision} mm | " + " | ".join(cells) + " |\n"
+    return out
+
+
+def targets_table(runs, selfplay):
+    """The targets the planner is held to, each with what was measured."""
+    rows = []
+    def match(opponent, vision):
+        for o, v, d, w in runs:
+            if o == opponent and v == vision:
+                return d
+        return None
+    stall_runs = [d for o, v, d, w in runs if o == "direct-pots" and v == "0.2"]
+    if stall_runs:
+        d = stall_runs[0]
+        rows.append(("the default player stalls on no turn over at least 200 frames",
+                     f"{d['stallsA']} stalls in {d['frames']} frames", d["stallsA"] == 0 and d["frames"] >= 200))
+    fouls = sum(d["foulsA"] for o, v, d, w in runs if v == "0.2")
+    strokes = sum(d["shotsA"] for o, v, d, w in runs if v == "0.2")
+    if strokes:
+        rows.append(("the default player fouls on at most 2 % of its strokes (reference noise)",
+                     f"{100 * fouls / strokes:.1f} % ({fouls} of {strokes})", fouls <= 0.02 * strokes))
+    for opponent, goal in (("direct-pots", 0.80), ("one-ply", 0.55)):
+        d = match(opponent, "0.2")
+        if d:
+            decided = d["framesWonA"] + d["framesWonB"]
+            won = d["framesWonA"] / decided if decided else 0
+            rows.append((f"the default wins at least {100 * goal:.0f} % of frames against {opponent}",
+                         f"{100 * won:.0f} % ({share(d)})", won >= goal))
+    medians = [d["safetyOutlookP50A"] for o, v, d, w in runs
+               if v == "0.2" and d.get("safetyOutlookP50A") is not None]
+    if medians:
+        worst = max(medians)
+        rows.append(("after the default's safeties the opponent's best pot has a median of at most 0.3",
+                     ", ".join(f"{m:.2f}" for m in medians), worst <= 0.3))
+    for label, d in selfplay:
+        if label.startswith("default"):
+            rows.append(("self-play: mean break at least 55, at least 96 % of attempted pots drop",
+                         f"{d['meanBreak']:.1f}, {100 * d['potRate']:.1f} %",
+                         d["meanBreak"] >= 55 and d["potRate"] >= 0.96))
+    worst50 = worst99 = 0.0
+    for o, v, d, w in runs:
+        for x in (d.get("planMsByTurn") or {}).values():
+            if x.get("p50") is not None:
+                worst50 = max(worst50, x["p50"])
+                worst99 = max(worst99, x["p99"])
+    if runs:
+        rows.append(("planning time p50 below 100 ms and p99 below 500 ms on every kind of turn",
+                     f"worst p50 {worst50:.1f} ms, worst p99 {worst99:.1f} ms", worst50 < 100 and worst99 < 500))
+    out = "| target | measured | |\n|---|---|---|\n"
+    for what, measured, met in rows:
+        out += f"| {what} | {measured} | {'met' if met else '**missed**'} |\n"
+    return out
+
+
+def load_selfplay(data_dir):
+    """Self-play runs saved beside the matches: (label, json) for each found."""
+    runs = []
+    for name, label in (("frame-play-selfplay", "default (lookahead)"),
+                        ("frame-play-selfplay-one-ply", "one-ply")):
+        path = os.path.join(data_dir, name + ".json")
+        if os.path.exists(path):
+            with open(path) as f:
+                runs.append((label, json.load(f)))
+    return runs
+
+
+def selfplay_table(runs):
+    out = ("| planner | frames | mean break | highest | attempted pots that dropped | plan ms p50 | p99 |\n"
+           "|---|---:|---:|---:|---:|---:|---:|\n")
+    for label, d in runs:
+        out += (f"| {label} | {d['frames']} | {d['meanBreak']:.1f} | {d['maxBreak']} | "
+                f"{100 * d['potRate']:.1f} % | {d['planMsP50']:.1f} | {d['planMsP99']:.1f} |\n")
+    return out
+
+
+def document(runs, command, revision, selfplay=()):
     first = runs[0][2]
     frames = first["frames"]
     budget = first["budgetMs"]
@@ -153,6 +262,11 @@ over those. The share of decided frames comes with its 95 % Wilson interval: ove
 hundred frames it is about ten points either way. Without a cap on simulations the
 plans end on the clock, so a rerun on a loaded machine differs in its details.
 
+## Targets
+
+"""
+    out += targets_table(runs, selfplay)
+    out += """
 ## All matches
 
 """
@@ -163,6 +277,18 @@ plans end on the clock, so a rerun on a loaded machine differs in its details.
         out += (f"\nHighest break of the match {d['highestBreak']}, centuries {d['centuries']}; "
                 f"frames ended level and sent to a re-spotted black {d['blackRespots']}; strokes the "
                 f"simulator could not carry to rest (scored as fouls) {d['simulationFailures']}.\n")
+    out += "\n## Planning time by kind of turn\n\n"
+    out += timing_table(runs)
+    out += "\n## Shot kinds and pot routes played\n\n"
+    out += ("Strokes each player chose (stalls apart), by the kind its plan labelled them with, "
+            "and its pots by route; fouls per stroke played.\n\n")
+    out += kinds_table(runs)
+    if selfplay:
+        out += "\n## Self-play\n\n"
+        out += ("`snooker selfplay` (`planner/selfplay.h`): the planner plays breaks alone from seeded "
+                "mid-frame tables (6 to 10 reds), asked for pots only (alone at the table there is no one "
+                "to play safe against), at the same noise and budget.\n\n")
+        out += selfplay_table(selfplay)
     out += f"\nMachine: {machine()}.\n"
     return out
 
@@ -178,7 +304,7 @@ def main(argv):
         print(f"frame_play_report.py: no frame-play-*.json in {data_dir}", file=sys.stderr)
         return 1
     with open(output, "w") as f:
-        f.write(document(runs, command, revision))
+        f.write(document(runs, command, revision, load_selfplay(data_dir)))
     return 0
 
 

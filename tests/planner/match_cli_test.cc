@@ -44,7 +44,7 @@ TEST(CliMatchTest, JsonHasTheContractedNames) {
       "highestBreakB", "centuriesA",   "centuriesB",     "penaltyPointsA",    "penaltyPointsB",
       "shotsA",       "shotsB",        "stallsA",        "stallsB",           "planMsP50A",
       "planMsP50B",   "planMsP99A",    "planMsP99B",     "safetyOutlookA",    "safetyOutlookB",
-      "safetyOutlookP50A", "safetyOutlookP50B"};
+      "safetyOutlookP50A", "safetyOutlookP50B", "kindsA", "kindsB", "routesA", "routesB", "planMsByTurn"};
   std::set<std::string> all = contract;
   all.insert(more.begin(), more.end());
   EXPECT_EQ(Keys(json), all);
@@ -81,7 +81,8 @@ TEST(CliMatchTest, TheSameSeedPlaysTheSameMatch) {
   ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(b.out, &jb).ok()) << b.out;
   // Everything but the planning times (the clock's) is equal.
   for (Struct* j : {&ja, &jb}) {
-    for (const char* timing : {"planMsP50", "planMsP99", "planMsP50A", "planMsP50B", "planMsP99A", "planMsP99B"}) {
+    for (const char* timing :
+         {"planMsP50", "planMsP99", "planMsP50A", "planMsP50B", "planMsP99A", "planMsP99B", "planMsByTurn"}) {
       j->mutable_fields()->erase(timing);
     }
   }
