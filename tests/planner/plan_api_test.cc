@@ -267,6 +267,29 @@ TEST(PlanTest, WithTheCueBallInHandEachShotPlacesItInTheD) {
   }
 }
 
+TEST(PlanTest, ACueBallVisionSawOverlappingARedIsRepairedToTouchItAndPlaysAway) {
+  // Vision put the cue ball 0.5 mm into red r7: the repair moves them apart to an
+  // exact touch, and the touching-ball rule then has the cue ball play away from r7.
+  v1::PlanRequest r = ObviousPot();
+  const v1::Vec2 red = r.table().balls(1).position();
+  const double x = red.x() - (2 * 0.02625 - 0.5e-3);
+  r.mutable_table()->mutable_balls(0)->mutable_position()->set_x(x);
+  r.mutable_table()->mutable_balls(0)->mutable_position()->set_y(red.y());
+  v1::PlanResponse resp;
+  PlanControl control;
+  control.vision_tolerance_mm = 1;
+  const ApiStatus st = Plan(r, &resp, control);
+  ASSERT_TRUE(st.ok()) << st.message;
+  ASSERT_EQ(resp.warnings_size(), 2);  // both balls moved by the least distance
+  ASSERT_GT(resp.shots_size(), 0) << resp.reason();
+  for (const v1::PlannedShot& s : resp.shots()) {
+    // Away from the red: the heading's component towards it is not positive.
+    const double h = s.heading_deg() * physics::kPi / 180;
+    EXPECT_LE(std::cos(h), 1e-9) << s.heading_deg();
+    EXPECT_GE(s.foul_probability(), 0);
+  }
+}
+
 TEST(PlanTest, BadRequestIsInvalidArgument) {
   v1::PlanRequest r = ObviousPot();
   r.set_max_shots(99);
