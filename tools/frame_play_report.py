@@ -11,8 +11,9 @@ named in the document. Standard library only.
 import json
 import math
 import os
-import platform
 import sys
+
+from report_machine import machine
 
 OPPONENTS = ("direct-pots", "one-ply")
 VISION_MM = ("0.2", "0.5")
@@ -21,19 +22,6 @@ PLAYERS = {
     "direct-pots": "direct pots only, without the lookahead",
     "one-ply": "the default without the lookahead",
 }
-
-
-def machine():
-    cpu = "?"
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    cpu = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    return f"{cpu}, {os.cpu_count()} cores, {platform.system()} {platform.release()}"
 
 
 def load(data_dir):
@@ -175,7 +163,7 @@ def targets_table(runs, selfplay):
             decided = d["framesWonA"] + d["framesWonB"]
             won = d["framesWonA"] / decided if decided else 0
             rows.append((f"the default wins at least {100 * goal:.0f} % of frames against {opponent}",
-                         f"{100 * won:.0f} % ({share(d)})", won >= goal))
+                         share(d), won >= goal))
     medians = [d["safetyOutlookP50A"] for o, v, d, w in runs
                if v == "0.2" and d.get("safetyOutlookP50A") is not None]
     if medians:

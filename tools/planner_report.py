@@ -10,7 +10,6 @@ REVISION, the git commit whose code was measured, is named in the document.
 """
 import json
 import os
-import platform
 import sys
 
 import matplotlib
@@ -18,23 +17,12 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from report_machine import machine
+
 
 def load(data, name):
     with open(os.path.join(data, name)) as f:
         return json.load(f)
-
-
-def machine():
-    cpu = "?"
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    cpu = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    return f"{cpu}, {os.cpu_count()} cores, {platform.system()} {platform.release()}"
 
 
 def ends(data, run):
