@@ -6,11 +6,12 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "cli/args.h"
+#include "cli/play_flags.h"
 #include "cli/commands.h"
-#include "planner/limits.h"
 #include "planner/match.h"
 #include "planner/outlook.h"
 
@@ -85,50 +86,29 @@ std::string Parse(Args& args, Parsed* p) {
   const auto seed = args.Integer("seed", std::nullopt, 0, std::numeric_limits<long>::max());
   const auto player_a = args.Text("player-a", "default");
   const auto player_b = args.Text("player-b", "direct-pots");
-  const auto budget = args.Number("budget-ms", 80.0);
-  const auto heading = args.Number("noise-heading-deg", physics::RadToDeg(o.noise.heading));
-  const auto speed = args.Number("noise-speed", o.noise.speed_fraction);
-  const auto spin = args.Number("noise-spin", o.noise.topspin);
-  const auto position = args.Number("noise-position-mm", o.noise.position * 1e3);
-  const auto clearance = args.Number("cue-clearance-m", o.limits.cue.length);
-  const auto sims = args.Integer("max-simulations", 0, 0, 100'000'000);
-  const auto samples = args.Integer("samples", o.monte_carlo_samples, 0, 100'000);
-  const auto threads = args.Integer("threads", o.threads, 1, 64);
   const auto shots = args.Integer("max-shots", planner::kFrameShotCap, 1, planner::kFrameShotCap);
   if (!args.error().empty()) return args.error();
+  PlayFlags defaults, play;
+  defaults.noise = o.noise;
+  defaults.limits = o.limits;
+  defaults.monte_carlo_samples = o.monte_carlo_samples;
+  defaults.threads = o.threads;
+  if (const std::string e = ReadPlayFlags(args, defaults, &play); !e.empty()) return e;
   const auto a = planner::ParsePlayerKind(*player_a);
   const auto b = planner::ParsePlayerKind(*player_b);
   const char* players = "(one of default, direct-pots, one-ply)";
   if (!a) return "--player-a '" + *player_a + "' is not a player " + players;
   if (!b) return "--player-b '" + *player_b + "' is not a player " + players;
-  auto range = [](const char* flag, double x, double lo, double hi) -> std::string {
-    if (x >= lo && x <= hi) return "";
-    std::ostringstream s;
-    s << "--" << flag << " " << x << " is out of range [" << lo << ", " << hi << "]";
-    return s.str();
-  };
-  namespace lim = planner::limits;
-  for (const std::string& e :
-       {range("budget-ms", *budget, lim::kTimeBudget.lo * 1e3, lim::kTimeBudget.hi * 1e3),
-        range("noise-heading-deg", *heading, 0, physics::RadToDeg(lim::kHeadingSigma.hi)),
-        range("noise-speed", *speed, 0, lim::kSpeedSigmaFraction.hi), range("noise-spin", *spin, 0, lim::kSpinSigma.hi),
-        range("noise-position-mm", *position, 0, lim::kPositionSigma.hi * 1e3),
-        range("cue-clearance-m", *clearance, 0, lim::kCueClearance.hi)}) {
-    if (!e.empty()) return e;
-  }
   o.frames = static_cast<int>(*frames);
   o.seed = static_cast<std::uint64_t>(*seed);
   o.players = {*a, *b};
-  p->budget_ms = *budget;
-  o.time_budget = *budget * 1e-3;
-  o.noise.heading = physics::DegToRad(*heading);
-  o.noise.speed_fraction = *speed;
-  o.noise.topspin = o.noise.sidespin = *spin;
-  o.noise.position = *position * 1e-3;
-  o.limits.cue.length = *clearance;
-  o.max_simulations = *sims;
-  o.monte_carlo_samples = static_cast<int>(*samples);
-  o.threads = static_cast<int>(*threads);
+  p->budget_ms = play.budget_ms;
+  o.time_budget = play.budget_ms * 1e-3;
+  o.noise = play.noise;
+  o.limits = play.limits;
+  o.max_simulations = play.max_simulations;
+  o.monte_carlo_samples = play.monte_carlo_samples;
+  o.threads = play.threads;
   o.max_shots_per_frame = static_cast<int>(*shots);
   return planner::MatchOptionsError(o);
 }
@@ -228,10 +208,9 @@ void PrintText(const planner::MatchReport& r, std::ostream& out) {
 }  // namespace
 
 int RunMatch(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
-  Args args(argv,
-            {"frames", "seed", "player-a", "player-b", "budget-ms", "noise-heading-deg", "noise-speed", "noise-spin",
-             "noise-position-mm", "cue-clearance-m", "max-simulations", "samples", "threads", "max-shots"},
-            {"json", "help", "progress"});
+  std::set<std::string> valued = {"frames", "seed", "player-a", "player-b", "max-shots"};
+  valued.insert(std::begin(kPlayFlagNames), std::end(kPlayFlagNames));
+  Args args(argv, valued, {"json", "help", "progress"});
   if (args.error().empty() && args.Switch("help")) {
     out << kHelp;
     return kExitOk;

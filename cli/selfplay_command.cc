@@ -3,11 +3,13 @@
 // time per shot. The measure of docs/planner.md.
 #include <fstream>
 #include <iomanip>
+#include <set>
 #include <iostream>
 #include <map>
 #include <sstream>
 
 #include "cli/args.h"
+#include "cli/play_flags.h"
 #include "cli/commands.h"
 #include "planner/selfplay.h"
 
@@ -56,11 +58,9 @@ Planner:
 }  // namespace
 
 int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
-  Args args(argv,
-            {"frames", "seed", "budget-ms", "noise-heading-deg", "noise-speed", "noise-spin",
-             "noise-position-mm", "cue-clearance-m", "max-simulations", "samples", "threads",
-             "records"},
-            {"json", "help", "pot-only", "one-ply", "progress"});
+  std::set<std::string> valued = {"frames", "seed", "records"};
+  valued.insert(std::begin(kPlayFlagNames), std::end(kPlayFlagNames));
+  Args args(argv, valued, {"json", "help", "pot-only", "one-ply", "progress"});
   if (args.error().empty() && args.Switch("help")) {
     out << kHelp;
     return kExitOk;
@@ -68,43 +68,27 @@ int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::os
   planner::SelfPlayOptions o;
   const auto frames = args.Integer("frames", std::nullopt, 1, 100'000);
   const auto seed = args.Integer("seed", std::nullopt, 0, std::numeric_limits<long>::max());
-  const auto budget = args.Number("budget-ms", 80.0);
-  const auto heading = args.Number("noise-heading-deg", physics::RadToDeg(o.noise.heading));
-  const auto speed = args.Number("noise-speed", o.noise.speed_fraction);
-  const auto spin = args.Number("noise-spin", o.noise.topspin);
-  const auto position = args.Number("noise-position-mm", o.noise.position * 1e3);
-  const auto clearance = args.Number("cue-clearance-m", o.limits.cue.length);
-  const auto sims = args.Integer("max-simulations", 0, 0, 100'000'000);
-  const auto samples = args.Integer("samples", o.monte_carlo_samples, 0, 100'000);
-  const auto threads = args.Integer("threads", o.threads, 1, 64);
-  if (!args.error().empty()) {
-    err << "snooker selfplay: " << args.error() << "\n(see snooker selfplay --help)\n";
+  PlayFlags defaults, play;
+  defaults.noise = o.noise;
+  defaults.limits = o.limits;
+  defaults.monte_carlo_samples = o.monte_carlo_samples;
+  defaults.threads = o.threads;
+  std::string error = args.error();
+  if (error.empty()) error = ReadPlayFlags(args, defaults, &play);
+  if (!error.empty()) {
+    err << "snooker selfplay: " << error << "\n(see snooker selfplay --help)\n";
     return kExitUsage;
   }
-  // Ranges, named by flag (the planner checks them again by field).
-  auto bad = [&](const char* flag, double x, const char* rule) {
-    err << "snooker selfplay: --" << flag << " " << x << " " << rule << "\n";
-    return kExitUsage;
-  };
-  if (!(*budget >= 1 && *budget <= 60'000)) return bad("budget-ms", *budget, "is out of range [1, 60000]");
-  if (!(*heading >= 0 && *heading <= 10)) return bad("noise-heading-deg", *heading, "is out of range [0, 10]");
-  if (!(*speed >= 0 && *speed <= 0.5)) return bad("noise-speed", *speed, "is out of range [0, 0.5]");
-  if (!(*spin >= 0 && *spin <= 100)) return bad("noise-spin", *spin, "is out of range [0, 100]");
-  if (!(*position >= 0 && *position <= 50)) return bad("noise-position-mm", *position, "is out of range [0, 50]");
-  if (!(*clearance >= 0 && *clearance <= 2)) return bad("cue-clearance-m", *clearance, "is out of range [0, 2]");
   o.frames = static_cast<int>(*frames);
   o.seed = static_cast<std::uint64_t>(*seed);
-  o.time_budget = *budget * 1e-3;
-  o.noise.heading = physics::DegToRad(*heading);
-  o.noise.speed_fraction = *speed;
-  o.noise.topspin = o.noise.sidespin = *spin;
-  o.noise.position = *position * 1e-3;
-  o.limits.cue.length = *clearance;
+  o.time_budget = play.budget_ms * 1e-3;
+  o.noise = play.noise;
+  o.limits = play.limits;
   o.position_play = !args.Switch("pot-only");
   o.lookahead = !args.Switch("one-ply");
-  o.max_simulations = *sims;
-  o.monte_carlo_samples = static_cast<int>(*samples);
-  o.threads = static_cast<int>(*threads);
+  o.max_simulations = play.max_simulations;
+  o.monte_carlo_samples = play.monte_carlo_samples;
+  o.threads = play.threads;
   struct Progress {
     std::ostream* err;
   } progress{&err};

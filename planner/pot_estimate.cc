@@ -40,33 +40,43 @@ double TypicalContactSpeed(double distance, double cut) {
   return std::clamp(v_object / (kTransfer * std::max(std::cos(cut), 0.2)), 0.5, 5.0);
 }
 
+std::optional<PocketLine> LineIntoPocket(const PocketModel& pockets, const Vec2& from, physics::PocketId pocket,
+                                         double arrival_speed) {
+  const Vec2 q = pockets.table().pocket(pocket).mouth_centre - from;
+  const double l0 = q.norm();
+  if (!(l0 > 0)) return std::nullopt;
+  PocketLine line;
+  // The line whose offset at the mouth is the window's centre: offset =
+  // -l0 sin(phi_q - theta).
+  double theta = Direction(q);
+  for (int pass = 0; pass < 2; ++pass) {
+    line.window = pockets.Window(pocket, theta, arrival_speed);
+    if (line.window.empty) return std::nullopt;
+    const double s = line.window.centre() / l0;
+    if (std::abs(s) >= 1) return std::nullopt;
+    theta = Direction(q) + std::asin(s);
+  }
+  line.direction = theta;
+  line.distance = l0 * std::cos(std::asin(line.window.centre() / l0));
+  return line;
+}
+
 std::optional<PotEstimate> EstimatePot(const Vec2& cue, const Vec2& object, physics::PocketId pocket,
                                        double cue_sigma, double object_sigma,
                                        const NoiseModel& noise, const PocketModel& pockets,
                                        const ThrowModel& throws, double arrival_speed) {
-  const physics::Pocket& p = pockets.table().pocket(pocket);
   const double radius = pockets.table().ball_radius();
-  const Vec2 q = p.mouth_centre - object;
-  const double l0 = q.norm();
-  if (!(l0 > 0)) return std::nullopt;
+  const auto line = LineIntoPocket(pockets, object, pocket, arrival_speed);
+  if (!line) return std::nullopt;
+  const double theta = line->direction;
   PotEstimate e;
-  // Aim at the window's centre: the line through the object ball whose offset at
-  // the mouth is the centre (offset = -l0 sin(phi_q - theta)). The window depends on
-  // the direction, so settle it in two passes.
-  double theta = Direction(q);
-  for (int pass = 0; pass < 2; ++pass) {
-    e.window = pockets.Window(pocket, theta, arrival_speed);
-    if (e.window.empty) return std::nullopt;
-    const double s = e.window.centre() / l0;
-    if (std::abs(s) >= 1) return std::nullopt;
-    theta = Direction(q) + std::asin(s);
-  }
+  e.window = line->window;
   const auto aim = AimAlong(cue, object, theta, radius);
   if (!aim) return std::nullopt;
   e.aim = *aim;
   e.object_direction = theta;
   e.approach = pockets.Approach(pocket, theta);
-  e.distance = l0 * std::cos(std::asin(e.window.centre() / l0));
+  e.distance = line->distance;
   const double contact = TypicalContactSpeed(e.distance, e.aim.cut);
   e.sigma = LateralSigma(cue, object, e.aim.heading, e.aim.cut, e.distance, contact, cue_sigma,
                          object_sigma, noise, throws, radius);

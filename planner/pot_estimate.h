@@ -76,6 +76,20 @@ inline constexpr double kTypicalArrivalSpeed = 0.5;
 /// `cut` (rad): enough to bring the object ball to the mouth at kTypicalArrivalSpeed. m/s.
 double TypicalContactSpeed(double distance, double cut);
 
+/// A ball's straight line into a pocket aimed at the centre of the pocket's window
+/// (the line whose offset at the mouth is the window's centre; the window depends
+/// on the direction, so it is settled in two passes).
+struct PocketLine {
+  double direction = 0;  ///< rad, table frame
+  PocketWindow window;   ///< at the arrival speed asked for
+  double distance = 0;   ///< from the ball to the mouth along the line, m
+};
+
+/// The line of a ball at `from` into `pocket`, or nullopt when the pocket is closed
+/// to it (an empty window) or the window's centre is out of its reach.
+std::optional<PocketLine> LineIntoPocket(const PocketModel& pockets, const physics::Vec2& from,
+                                         physics::PocketId pocket, double arrival_speed = kTypicalArrivalSpeed);
+
 /// The estimate for potting `object` into `pocket` from `cue`, or nullopt when the
 /// pocket cannot be reached at that angle or the cut is 90 deg or more. Only the
 /// geometry of the three points: paths blocked by other balls are the caller's.

@@ -78,33 +78,19 @@ bool ValidBall(const TableState& table, int i) {
   return i >= 0 && i < static_cast<int>(table.balls.size());
 }
 
-// The direct line of a ball into a pocket, aimed at the window's centre (the
-// arithmetic of pot_estimate.h's EstimatePot, without the cue ball).
-struct PocketLine {
-  double direction = 0;  // rad
-  PocketWindow window;
-  double distance = 0;   // to the mouth, m
-  Vec2 aim_point = Vec2::Zero();  // where the line passes the mouth centre, m
+// A ball's line into a pocket (pot_estimate.h) and where it passes the mouth centre.
+struct RouteLine : PocketLine {
+  Vec2 aim_point = Vec2::Zero();  // m
 };
 
-std::optional<PocketLine> LineIntoPocket(const PocketModel& pockets, const Vec2& from, PocketId pocket) {
-  const physics::Pocket& p = pockets.table().pocket(pocket);
-  const Vec2 q = p.mouth_centre - from;
-  const double l0 = q.norm();
-  if (!(l0 > 0)) return std::nullopt;
-  PocketLine line;
-  double theta = Direction(q);
-  for (int pass = 0; pass < 2; ++pass) {
-    line.window = pockets.Window(pocket, theta, kTypicalArrivalSpeed);
-    if (line.window.empty) return std::nullopt;
-    const double s = line.window.centre() / l0;
-    if (std::abs(s) >= 1) return std::nullopt;
-    theta = Direction(q) + std::asin(s);
-  }
-  line.direction = theta;
-  line.distance = l0 * std::cos(std::asin(line.window.centre() / l0));
-  line.aim_point = p.mouth_centre + line.window.centre() * Left(physics::HeadingVector(theta));
-  return line;
+std::optional<RouteLine> LineToPocket(const PocketModel& pockets, const Vec2& from, PocketId pocket) {
+  const auto line = LineIntoPocket(pockets, from, pocket);
+  if (!line) return std::nullopt;
+  RouteLine out;
+  static_cast<PocketLine&>(out) = *line;
+  out.aim_point = pockets.table().pocket(pocket).mouth_centre +
+                  line->window.centre() * Left(physics::HeadingVector(line->direction));
+  return out;
 }
 
 // d(object direction) / d(cut) of the ghost-ball construction (search.cc's
@@ -191,7 +177,7 @@ struct PlantLine {
 };
 
 std::optional<PlantLine> PlantGeometry(const Vec2& a, const Vec2& b, bool set, PocketId pocket,
-                                       const std::optional<PocketLine>& line, const PotContext& ctx,
+                                       const std::optional<RouteLine>& line, const PotContext& ctx,
                                        const RouteOptions& options, RouteRefusal& reason) {
   const double r = ctx.table->ball_radius();
   PlantLine pl;
@@ -233,7 +219,7 @@ std::optional<PlantLine> PlantGeometry(const Vec2& a, const Vec2& b, bool set, P
 }
 
 std::optional<RouteCandidate> PlantFrom(const TableState& table, int cue, int first, int potted,
-                                        PocketId pocket, const std::optional<PocketLine>& line,
+                                        PocketId pocket, const std::optional<RouteLine>& line,
                                         const PotContext& ctx, const RouteOptions& options,
                                         RouteRefusal* why) {
   RouteRefusal reason = RouteRefusal::kNone;
@@ -308,7 +294,7 @@ std::optional<RouteCandidate> AssessPlant(const TableState& table, int cue, Ball
       !BothOn(on, table.balls[static_cast<size_t>(first)].kind, table.balls[static_cast<size_t>(potted)].kind)) {
     return Refuse(why, RouteRefusal::kNotOn);
   }
-  const auto line = LineIntoPocket(*ctx.pockets, At(table, potted), pocket);
+  const auto line = LineToPocket(*ctx.pockets, At(table, potted), pocket);
   return PlantFrom(table, cue, first, potted, pocket, line, ctx, options, why);
 }
 
@@ -371,14 +357,14 @@ std::optional<RouteCandidate> DoubleFrom(const TableState& table, int cue, int o
 // A kick's object-ball side, the same for every cushion sequence: its line into
 // the pocket, its ghost-ball position, and whether that line is clear.
 struct KickTarget {
-  std::optional<PocketLine> line;
+  std::optional<RouteLine> line;
   Vec2 ghost = Vec2::Zero();
   bool clear = false;
 };
 
 KickTarget KickTargetFor(const TableState& table, int cue, int object, PocketId pocket, const PotContext& ctx) {
   KickTarget k;
-  k.line = LineIntoPocket(*ctx.pockets, At(table, object), pocket);
+  k.line = LineToPocket(*ctx.pockets, At(table, object), pocket);
   if (!k.line) return k;
   const double r = ctx.table->ball_radius();
   k.ghost = At(table, object) - 2 * r * physics::HeadingVector(k.line->direction);
@@ -392,7 +378,7 @@ std::optional<RouteCandidate> KickFrom(const TableState& table, int cue, int obj
                                        const PotContext& ctx, const RouteOptions& options, RouteRefusal* why) {
   if (!target.line) return Refuse(why, RouteRefusal::kPocketAngle);
   if (!target.clear) return Refuse(why, RouteRefusal::kObjectBallPath);
-  const PocketLine* line = &*target.line;
+  const RouteLine* line = &*target.line;
   const double r = ctx.table->ball_radius();
   const Vec2 c = At(table, cue), o = At(table, object);
   const Vec2 ghost = target.ghost;
@@ -678,12 +664,12 @@ std::vector<RouteCandidate> EnumeratePlants(const TableState& table, int cue, Ba
   if (!ValidBall(table, cue)) return out;
   const int n = static_cast<int>(table.balls.size());
   // Each potted ball's lines into the pockets, once.
-  std::vector<std::array<std::optional<PocketLine>, physics::kPocketCount>> lines(static_cast<size_t>(n));
+  std::vector<std::array<std::optional<RouteLine>, physics::kPocketCount>> lines(static_cast<size_t>(n));
   for (int b = 0; b < n; ++b) {
     if (!OnAndNotCue(table, cue, on, b)) continue;
     for (int k = 0; k < physics::kPocketCount; ++k) {
       lines[static_cast<size_t>(b)][static_cast<size_t>(k)] =
-          LineIntoPocket(*ctx.pockets, At(table, b), static_cast<PocketId>(k));
+          LineToPocket(*ctx.pockets, At(table, b), static_cast<PocketId>(k));
     }
   }
   for (int a = 0; a < n; ++a) {

@@ -1,0 +1,50 @@
+#include "cli/play_flags.h"
+
+#include <sstream>
+
+#include "planner/limits.h"
+
+namespace snooker::cli {
+
+std::string ReadPlayFlags(Args& args, const PlayFlags& defaults, PlayFlags* out) {
+  namespace lim = planner::limits;
+  const auto budget = args.Number("budget-ms", defaults.budget_ms);
+  const auto heading = args.Number("noise-heading-deg", physics::RadToDeg(defaults.noise.heading));
+  const auto speed = args.Number("noise-speed", defaults.noise.speed_fraction);
+  const auto spin = args.Number("noise-spin", defaults.noise.topspin);
+  const auto position = args.Number("noise-position-mm", defaults.noise.position * 1e3);
+  const auto clearance = args.Number("cue-clearance-m", defaults.limits.cue.length);
+  const auto sims = args.Integer("max-simulations", defaults.max_simulations, lim::kMaxSimulations.lo,
+                                 lim::kMaxSimulations.hi);
+  const auto samples = args.Integer("samples", defaults.monte_carlo_samples, lim::kMonteCarloSamples.lo,
+                                    lim::kMonteCarloSamples.hi);
+  const auto threads = args.Integer("threads", defaults.threads, lim::kThreads.lo, lim::kThreads.hi);
+  if (!args.error().empty()) return args.error();
+  auto range = [](const char* flag, double x, double lo, double hi) -> std::string {
+    if (x >= lo && x <= hi) return "";
+    std::ostringstream s;
+    s << "--" << flag << " " << x << " is out of range [" << lo << ", " << hi << "]";
+    return s.str();
+  };
+  for (const std::string& e :
+       {range("budget-ms", *budget, lim::kTimeBudget.lo * 1e3, lim::kTimeBudget.hi * 1e3),
+        range("noise-heading-deg", *heading, 0, physics::RadToDeg(lim::kHeadingSigma.hi)),
+        range("noise-speed", *speed, 0, lim::kSpeedSigmaFraction.hi), range("noise-spin", *spin, 0, lim::kSpinSigma.hi),
+        range("noise-position-mm", *position, 0, lim::kPositionSigma.hi * 1e3),
+        range("cue-clearance-m", *clearance, 0, lim::kCueClearance.hi)}) {
+    if (!e.empty()) return e;
+  }
+  *out = defaults;
+  out->budget_ms = *budget;
+  out->noise.heading = physics::DegToRad(*heading);
+  out->noise.speed_fraction = *speed;
+  out->noise.topspin = out->noise.sidespin = *spin;
+  out->noise.position = *position * 1e-3;
+  out->limits.cue.length = *clearance;
+  out->max_simulations = *sims;
+  out->monte_carlo_samples = static_cast<int>(*samples);
+  out->threads = static_cast<int>(*threads);
+  return "";
+}
+
+}  // namespace snooker::cli
