@@ -20,20 +20,26 @@ struct Shot {
   /// Z component of the spin (right-hand rule, z up). rad/s; positive is
   /// counter-clockwise seen from above, what a tip struck right of centre imparts.
   double sidespin = 0;
+  /// Spin about the heading itself. rad/s; what an elevated cue with side adds
+  /// (physics/cue/strike.h). Positive for right side: the cloth's friction then
+  /// curves the sliding ball to the right (swerve). Zero for a level cue.
+  double swerve_spin = 0;
 };
 
 /// Unit vector of a heading (rad): (cos h, sin h).
 inline Vec2 HeadingVector(double heading) { return {std::cos(heading), std::sin(heading)}; }
 
 /// The cue ball at `position` right after the strike:
-/// v = speed (cos h, sin h, 0), w = topspin (z x heading) + sidespin z.
+/// v = speed (cos h, sin h, 0), w = topspin (z x heading) + sidespin z
+/// + swerve_spin heading.
 inline BallState StruckBall(const Shot& shot, const Vec2& position) {
   const Vec2 dir = HeadingVector(shot.heading);
   BallState s;
   s.r = position;
   s.v = Vec3(shot.speed * dir.x(), shot.speed * dir.y(), 0.0);
   // z x heading = (-sin h, cos h, 0): positive topspin rolls the ball forwards.
-  s.w = Vec3(-shot.topspin * dir.y(), shot.topspin * dir.x(), shot.sidespin);
+  s.w = Vec3(-shot.topspin * dir.y() + shot.swerve_spin * dir.x(),
+             shot.topspin * dir.x() + shot.swerve_spin * dir.y(), shot.sidespin);
   return s;
 }
 
