@@ -27,7 +27,16 @@ struct PotContext {
   const physics::TableModel* table = nullptr;
   const PocketModel* pockets = nullptr;
   const ThrowModel* throws = nullptr;
+  /// The noise in the fast estimates' terms (BallTermsNoise of `execution`).
   NoiseModel noise;
+  /// The request's noise as given: what the Monte Carlo samples (robustness.h).
+  NoiseModel execution;
+  /// The robot's cue (nullptr: the default cue).
+  const physics::CueParams* cue_model = nullptr;
+  const physics::CueParams& cue_params() const {
+    static const physics::CueParams kDefault;
+    return cue_model != nullptr ? *cue_model : kDefault;
+  }
   /// Vision sigma per ball (m, per axis), same order as the table; empty: all
   /// balls use noise.position.
   std::vector<double> position_sigma;

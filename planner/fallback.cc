@@ -64,12 +64,19 @@ std::optional<FallbackShot> FindLegalStroke(const TableState& table, int cue, Ba
   PotContext after_ctx = ctx;
   after_ctx.position_sigma.clear();
   const RobotLimits& lim = settings.limits;
+  const std::vector<int> touching = TouchingCueBall(table, *ctx.table);
   std::optional<FallbackShot> best;
   int simulations = 0;
   std::vector<Vec2> finals;
   for (const auto& [distance, ball] : balls) {
     for (const Aim& aim : AimsAt(table, cue, ball, ctx, options)) {
       if (CueMargin(table, cue, aim.heading, lim.cue, *ctx.table) < 0) continue;
+      const Vec2 u(std::cos(aim.heading), std::sin(aim.heading));
+      if (std::any_of(touching.begin(), touching.end(), [&](int i) {
+            return u.dot(table.balls[static_cast<size_t>(i)].position - c) > 0;  // a push
+          })) {
+        continue;
+      }
       for (const double v : {options.soft, options.firm}) {
         if (simulations >= options.max_simulations || interrupt.Due()) {
           if (best) best->simulations = simulations;

@@ -64,18 +64,49 @@ double PathMargin(const physics::Vec2& a, const physics::Vec2& b, double clearan
 double TravelMargin(const physics::Vec2& a, const physics::Vec2& b, double clearance,
                     const TableState& table, int skip_a, int skip_b);
 
-/// The room the robot's cue needs behind the cue ball: a straight, level stick of
-/// `radius` (m) along the heading, from the ball back over `length` (m) of bed.
+/// The room the robot's cue needs behind the cue ball: a straight stick of `radius`
+/// (m) along the heading, from the ball back over `length` (m) of bed, level when
+/// that clears and otherwise raised (the butt up) by as little as clears, up to
+/// `max_elevation`.
 struct CueClearance {
   double length = 0.10;
   double radius = 0.007;
+  /// Steepest cue, rad (25 deg: over a cushion with the ball frozen to it; the
+  /// strike's hop limit, physics/cue/strike.h, allows only soft shots that steep).
+  double max_elevation = 25.0 * physics::kPi / 180;
+  /// The cushion in the stick's way (seen from the side): its nose at the table's
+  /// cushion height on the nose line, its top `cushion_top` (m) above the bed
+  /// `cushion_top_setback` (m) behind the nose line, the rail behind it no higher.
+  double cushion_top = 0.042;
+  double cushion_top_setback = 0.015;
 };
 
 /// How much room the cue has for a shot from the cue ball (index `cue` of `table`)
-/// along `heading`: the smallest gap between the stick and another ball or a
-/// cushion (the stick is at the ball's centre height, below the cushion nose, so it
-/// cannot pass over a cushion). Negative: the shot cannot be played. m.
+/// along `heading` at `elevation` (rad), the tip meeting the ball `tip_height` (a
+/// fraction of R, up as seen along the cue) above the centre line: the smallest gap
+/// between the stick and another ball (3-D: a raised stick rises behind the ball),
+/// or a cushion (a level stick at the ball's height cannot pass over one; a raised
+/// one must clear the nose and the top where it crosses them). The stick's axis is
+/// taken through the contact point (the tip's dome moves it by a few mm). Negative:
+/// the shot cannot be played so. m.
+double CueMarginAt(const TableState& table, int cue, double heading, double elevation, double tip_height,
+                   const CueClearance& cue_room, const physics::TableModel& model);
+
+/// The lowest elevation in whole degrees up to cue_room.max_elevation at which the
+/// cue clears (CueMarginAt >= 0) with the tip at `tip_height`, rad; nullopt when
+/// none does.
+std::optional<double> CueElevation(const TableState& table, int cue, double heading, double tip_height,
+                                   const CueClearance& cue_room, const physics::TableModel& model);
+
+/// How much room the cue has along `heading` as the robot would play it: the level
+/// centre-line margin when it clears; otherwise CueMarginAt at the lowest elevation
+/// that clears with the tip as high as kMaxTipOffset allows (the level margin when
+/// none does). m.
 double CueMargin(const TableState& table, int cue, double heading, const CueClearance& cue_room,
                  const physics::TableModel& model);
+
+/// The largest tip offset the planner plays, fraction of R: under the default cue's
+/// miscue limit (0.51, physics/cue/strike.h) with room for the robot's noise.
+inline constexpr double kMaxTipOffset = 0.45;
 
 }  // namespace snooker::planner

@@ -37,6 +37,11 @@ inline constexpr Range kSpinFraction{0, 3};
 /// there, m.
 inline constexpr Range kCueClearance{0, 2};
 inline constexpr Range kCueRadius{0, 0.05};
+/// The cue's speed at impact, m/s (10 m/s: beyond any break-off).
+inline constexpr Range kCueSpeed{0, 10};
+/// The steepest cue the robot may raise, rad (above 60 deg a cue strikes down into
+/// the bed: masse, which the strike model does not play).
+inline constexpr Range kMaxElevation{0, 60 * physics::kPi / 180};
 
 // --- Noise ------------------------------------------------------------------------
 /// Standard deviation of the heading, rad (10 deg: a robot worse than that cannot pot).
@@ -45,6 +50,13 @@ inline constexpr Range kHeadingSigma{0, 10 * physics::kPi / 180};
 inline constexpr Range kSpeedSigmaFraction{0, 0.5};
 /// Standard deviation of topspin and sidespin, rad/s.
 inline constexpr Range kSpinSigma{0, 100};
+/// Standard deviation of the tip's placement on the ball, per axis, m (5 mm: a
+/// fifth of the radius).
+inline constexpr Range kTipOffsetSigma{0, 0.005};
+/// Standard deviation of the cue's elevation, rad.
+inline constexpr Range kElevationSigma{0, 10 * physics::kPi / 180};
+/// The model's uncertainty in squirt and throw, a fraction of the model's.
+inline constexpr Range kModelUncertainty{0, 1};
 /// Vision's standard deviation of a ball centre, per axis, m (5 cm: a different
 /// table, not vision's error).
 inline constexpr Range kPositionSigma{0, 0.05};

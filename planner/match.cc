@@ -183,7 +183,7 @@ Played Simulate(physics::Simulator& sim, const TableState& t, int cue, const phy
 // What the striker plays this turn.
 struct TurnChoice {
   std::optional<Vec2> cue_start;
-  physics::Shot shot;
+  physics::CueStrike cue;
   std::optional<BallKind> nominated;
   ShotKind kind = ShotKind::kPot;
   PotRoute route = PotRoute::kDirect;
@@ -264,7 +264,7 @@ TurnChoice MatchRunner::Choose(const FrameState& f, int frame, Rng& rng) const {
     if (f.cue_in_hand && p.cue_start) start = SettlePlacement(f.table, *p.cue_start, model_);
     if (!f.cue_in_hand || start) {
       c.cue_start = start;
-      c.shot = p.shot;
+      c.cue = p.cue;
       c.kind = p.kind;
       c.route = p.route;
       c.nominated = NominationFor(f, p.first_ball >= 0 ? p.first_ball : p.object_ball);
@@ -273,7 +273,8 @@ TurnChoice MatchRunner::Choose(const FrameState& f, int frame, Rng& rng) const {
   }
   const FallbackShot fb = NearestBallOnShot(f.table, f.cue_in_hand, f.ball_on, o_.limits, model_);
   c.cue_start = fb.cue_start;
-  c.shot = fb.shot;
+  c.cue = LevelStrikeFor(fb.shot, planner_.config().cue, planner_.config().full.ball,
+                         planner_.config().full.cloth.g);
   c.nominated = NominationFor(f, fb.first_ball >= 0 ? fb.first_ball : fb.target);
   c.stall = true;
   return c;
@@ -285,7 +286,11 @@ void MatchRunner::Play(FrameState& f, const TurnChoice& c, Rng& rng, FrameSummar
   s.nominated = c.nominated;
   const TableState table = StrokeTable(f, c.cue_start);
   s.touching = TouchingCueBall(table, model_);
-  const Played out = Simulate(sim_, table, table.cue_index(), SampleExecution(c.shot, o_.noise, rng));
+  // The robot's cue with its execution noise; the world is the model itself.
+  const PlannerConfig& config = planner_.config();
+  const PlayedStroke played =
+      SampleStroke(c.cue, config.cue, config.full.ball, config.full.cloth.g, o_.noise, false, rng);
+  const Played out = Simulate(sim_, table, table.cue_index(), played.shot);
   if (out.status == physics::SimStatus::kAtRest) {
     s.first_hit = out.first_hit;
     s.potted = out.potted;

@@ -443,6 +443,7 @@ std::optional<PlannedShot> PlanRun::Verify(Worker& w, const Candidate& cand, con
   ps.kind = cand.kind;
   ps.route = route;
   ps.cue_start = cand.cue_start;
+  ps.cue = sc.cue;
   ps.shot = sc.shot;
   ps.cut = sc.cut;
   ps.first_ball = out.first_hit;
@@ -562,8 +563,10 @@ void PlanRun::Fallback() {
   if (t > 0) c.cue_start = table.balls.back().position;
   candidates_.push_back(c);
   failed_verification_.push_back(0);
+  // The scan plays level centre-ball strokes; the robot plays them with its cue.
   ShotCandidate sc;
-  sc.shot = found->shot;
+  sc.cue = LevelStrikeFor(found->shot, config_.cue, config_.full.ball, config_.full.cloth.g);
+  sc.shot = physics::Strike(sc.cue, config_.cue, config_.full.ball, config_.full.cloth.g).shot;
   sc.score = found->score;
   ++answer_.simulations;
   if (auto ps = Verify(w, candidates_.back(), sc, failed_verification_.size() - 1)) shots_.push_back(std::move(*ps));
@@ -667,7 +670,7 @@ void PlanRun::RankByMonteCarlo() {
     const std::uint64_t key = (static_cast<std::uint64_t>(ps.kind) * 64 + static_cast<std::uint64_t>(ps.object_ball + 1)) * 8 +
                               static_cast<std::uint64_t>(ps.pocket);
     tallies[static_cast<size_t>(task)] =
-        RunSamples(SetupFor(cand), ps.shot, ctx_, settings_, workers_[static_cast<size_t>(worker)]->full,
+        RunSamples(SetupFor(cand), ps.cue, ctx_, settings_, workers_[static_cast<size_t>(worker)]->full,
                    schedule_.monte_carlo, DeriveSeed(request_.seed, key, static_cast<std::uint64_t>(b)), kBlock);
   });
   for (int s = 0; s < n; ++s) {
@@ -784,7 +787,11 @@ PotContext Planner::ContextFor(const PlanRequest& request) const {
   ctx.table = config_.table;
   ctx.pockets = pockets_;
   ctx.throws = throws_;
-  ctx.noise = request.noise;
+  // The estimates take the cue's noise as it acts on the cue ball: at a typical
+  // mid-table speed of 1.5 m/s for the spin of a misplaced tip.
+  ctx.execution = request.noise;
+  ctx.noise = BallTermsNoise(request.noise, config_.cue, config_.full.ball, 1.5);
+  ctx.cue_model = &config_.cue;
   ctx.position_sigma = request.position_sigma;
   ctx.cue = request.limits.cue;
   return ctx;

@@ -125,7 +125,11 @@ struct PlannedShot {
   PotRoute route = PotRoute::kDirect;
   /// The cue ball in hand: where the robot places it (table frame, m, in the D).
   std::optional<physics::Vec2> cue_start;
-  /// The shot, as `snooker simulate` takes it (heading in rad here).
+  /// The stroke in the robot's terms (physics/cue/strike.h): cue speed, heading
+  /// (squirt compensated), tip offsets and elevation.
+  physics::CueStrike cue;
+  /// The shot, as `snooker simulate` takes it (heading in rad here): what `cue`
+  /// gives the cue ball (physics::Strike), exactly.
   physics::Shot shot;
   /// Cut angle (geometry.h's sign), rad.
   double cut = 0;
@@ -224,6 +228,8 @@ struct PlannerConfig {
     return p;
   }();
   SearchSettings search_settings;
+  /// The robot's cue: how its strikes become the cue ball's motion.
+  physics::CueParams cue;
   /// Simulations per millisecond per thread that the budget buys: measured on the
   /// 2-core development machine (Release, the impact tables on) at about 80 a
   /// millisecond per thread for a mid-frame table's search and Monte Carlo, so that

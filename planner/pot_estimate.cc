@@ -7,6 +7,20 @@ namespace snooker::planner {
 
 using physics::Vec2;
 
+NoiseModel BallTermsNoise(const NoiseModel& noise, const physics::CueParams& cue, const physics::BallParams& ball,
+                          double speed) {
+  NoiseModel out = noise;
+  const double R = ball.radius;
+  // Squirt per unit of side offset at the centre: d alpha / d side.
+  const double squirt_rate = 2.5 / (1 + ball.mass / cue.end_mass + 2.5);
+  const double spin = 2.5 * speed * noise.tip_offset / (R * R);
+  out.heading = std::hypot(noise.heading, noise.aim, squirt_rate * noise.tip_offset / R);
+  out.speed_fraction = std::hypot(noise.speed_fraction, noise.cue_speed_fraction);
+  out.topspin = std::hypot(noise.topspin, spin);
+  out.sidespin = std::hypot(noise.sidespin, spin);
+  return out;
+}
+
 double NormalCdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
 
 double WindowProbability(double mean, double sigma, const PocketWindow& window) {

@@ -22,25 +22,51 @@
 
 #include "physics/core/types.h"
 #include "physics/table/table.h"
+#include "physics/cue/strike.h"
 #include "planner/geometry.h"
 #include "planner/pocket_model.h"
 #include "planner/throw_model.h"
 
 namespace snooker::planner {
 
-/// Standard deviations of the robot's execution and of vision (all independent,
-/// Gaussian, zero mean).
+/// Standard deviations of the robot's execution, of the model and of vision (all
+/// independent, Gaussian, zero mean). The execution is the robot's cue (its aim,
+/// speed, tip placement and elevation, struck through physics/cue/strike.h); the
+/// model's uncertainty is the squirt and the throw a real table gives, each a
+/// fraction of the model's. Defaults and their reasons: docs/cue.md.
 struct NoiseModel {
-  /// Heading, rad.
-  double heading = 0.02 * physics::kPi / 180;
-  /// Speed, as a fraction of the speed.
-  double speed_fraction = 0.01;
-  /// Topspin and sidespin, rad/s.
-  double topspin = 2.0;
-  double sidespin = 2.0;
+  /// The cue's aim (its heading), rad: a robot's pointing repeatability.
+  double aim = 0.02 * physics::kPi / 180;
+  /// The cue's speed, as a fraction of the speed.
+  double cue_speed_fraction = 0.01;
+  /// Where the tip meets the ball, per axis (across and up), m: the end effector's
+  /// placement at the tip.
+  double tip_offset = 0.1e-3;
+  /// The cue's elevation, rad.
+  double elevation = 0.1 * physics::kPi / 180;
+  /// The squirt, as a fraction of the model's (the shaft's end mass is known to
+  /// about this), and the throw of ball-ball impacts, as a fraction of the model's
+  /// (cloth, chalk and ball condition move it).
+  double squirt_fraction = 0.15;
+  double throw_fraction = 0.10;
+  /// More noise on the cue ball itself after the strike, for a client that models
+  /// its own execution in those terms: heading, rad; speed, fraction; topspin and
+  /// sidespin, rad/s. Zero by default.
+  double heading = 0;
+  double speed_fraction = 0;
+  double topspin = 0;
+  double sidespin = 0;
   /// Vision: each ball centre, per axis, m (the API's default for every ball).
   double position = 0.2e-3;
 };
+
+/// The noise of the cue ball just after the strike, in the terms of the fast
+/// estimates (heading, speed, topspin, sidespin): `noise`'s own terms plus what the
+/// cue's noise gives a centre-ball strike at `speed` (m/s): the aim and the squirt
+/// of an offset error in heading, the offset errors' spin (5/2 v dx / R^2), the cue
+/// speed's error in speed. The other terms of `noise` are kept.
+NoiseModel BallTermsNoise(const NoiseModel& noise, const physics::CueParams& cue, const physics::BallParams& ball,
+                          double speed);
 
 /// Standard normal cumulative distribution.
 double NormalCdf(double x);

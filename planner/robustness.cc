@@ -54,6 +54,37 @@ physics::Shot SampleExecution(const physics::Shot& shot, const NoiseModel& noise
   return s;
 }
 
+PlayedStroke SampleStroke(const physics::CueStrike& cue, const physics::CueParams& cue_params,
+                          const physics::BallParams& ball, double gravity, const NoiseModel& noise,
+                          bool model_uncertainty, Rng& rng) {
+  physics::CueStrike k = cue;
+  k.speed = std::max(0.0, cue.speed * (1 + noise.cue_speed_fraction * rng.Gaussian()));
+  k.heading = cue.heading + noise.aim * rng.Gaussian();
+  k.side = cue.side + noise.tip_offset / ball.radius * rng.Gaussian();
+  k.height = cue.height + noise.tip_offset / ball.radius * rng.Gaussian();
+  k.elevation = std::clamp(cue.elevation + noise.elevation * rng.Gaussian(), 0.0, 0.45 * physics::kPi);
+  const double squirt_error = rng.Gaussian(), throw_error = rng.Gaussian();
+  const physics::StrikeResult res = physics::Strike(k, cue_params, ball, gravity);
+  PlayedStroke out;
+  out.status = res.status;
+  out.shot = res.shot;
+  if (model_uncertainty) {
+    out.shot.heading += noise.squirt_fraction * squirt_error * res.squirt;
+    out.throw_scale = std::max(0.0, 1 + noise.throw_fraction * throw_error);
+  }
+  out.shot = SampleExecution(out.shot, noise, rng);
+  return out;
+}
+
+physics::CueStrike LevelStrikeFor(const physics::Shot& shot, const physics::CueParams& cue,
+                                  const physics::BallParams& ball, double gravity) {
+  if (const auto k = physics::StrikeFor(shot, 0.0, cue, ball, gravity)) return *k;
+  physics::Shot plain = shot;
+  plain.topspin = plain.sidespin = plain.swerve_spin = 0;
+  if (const auto k = physics::StrikeFor(plain, 0.0, cue, ball, gravity)) return *k;
+  return physics::CueStrike{0.0, shot.heading, 0.0, 0.0, 0.0};
+}
+
 void MonteCarloTally::Add(const MonteCarloTally& o) {
   samples += o.samples;
   successes += o.successes;
@@ -86,7 +117,7 @@ double MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span
   return -(penalty + opponent);
 }
 
-MonteCarloTally RunSamples(const ShotSetup& setup, const physics::Shot& shot, const PotContext& ctx,
+MonteCarloTally RunSamples(const ShotSetup& setup, const physics::CueStrike& cue, const PotContext& ctx,
                            const SearchSettings& settings, ShotSimulator& sim, const StopControl& stop,
                            std::uint64_t seed, int count) {
   MonteCarloTally tally;
@@ -101,9 +132,12 @@ MonteCarloTally RunSamples(const ShotSetup& setup, const physics::Shot& shot, co
       break;
     }
     SampleTruePositions(*setup.table, ctx, rng, &truth);
-    const physics::Shot played = SampleExecution(shot, ctx.noise, rng);
+    const PlayedStroke played = SampleStroke(cue, ctx.cue_params(), sim.params().ball, sim.params().cloth.g,
+                                             ctx.execution, true, rng);
+    sim.set_throw_scale(played.throw_scale);
     // To rest, never stopped early: a miss is scored by the table it leaves.
-    const ShotOutcome& out = sim.Run(setup, played, truth, ShotSimulator::Mode::kToRest, interrupt);
+    const ShotOutcome& out = sim.Run(setup, played.shot, truth, ShotSimulator::Mode::kToRest, interrupt);
+    sim.set_throw_scale(1.0);
     if (out.status == physics::SimStatus::kInterrupted) {
       tally.interrupted = true;
       break;

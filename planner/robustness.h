@@ -4,8 +4,11 @@
 // Each sample draws the true table (every ball where vision saw it plus a Gaussian
 // error per axis: NoiseModel::position or the ball's own sigma; balls pushed apart
 // if the draw overlaps them, and kept on the bed) and the shot as the robot plays
-// it (speed x (1 + e_v), heading + e_h, topspin + e_t, sidespin + e_s), then
-// simulates it at full fidelity. Success = what the shot is for (a pot's object
+// it: the cue's speed x (1 + e_v), its aim + e_a, the tip's offsets + e_x, e_y, its
+// elevation + e_e, struck through physics/cue/strike.h; with the model's
+// uncertainty, the squirt x (1 + e_q) and the throw of every ball-ball impact x
+// (1 + e_w) (SimParams::throw_scale); then the cue ball's own extra noise, if any.
+// It simulates that at full fidelity. Success = what the shot is for (a pot's object
 // ball drops, in any pocket, with no foul; a safety is legal); the tally also counts
 // the successes in the named pocket and the fouls. Every sample is scored in points
 // for the striker (MonteCarloScore): a success by the position it really left, a
@@ -35,8 +38,30 @@ namespace snooker::planner {
 void SampleTruePositions(const TableState& seen, const PotContext& ctx, Rng& rng,
                          std::vector<physics::Vec2>* out);
 
-/// The shot as the robot plays it under `noise` (speed kept >= 0).
+/// The shot as the robot plays it under `noise`'s extra noise on the cue ball
+/// (speed kept >= 0).
 physics::Shot SampleExecution(const physics::Shot& shot, const NoiseModel& noise, Rng& rng);
+
+/// A stroke as played: what the cue ball got, and the throw scale of the world.
+struct PlayedStroke {
+  physics::Shot shot;
+  double throw_scale = 1;
+  physics::StrikeStatus status = physics::StrikeStatus::kOk;
+};
+
+/// `cue` as the robot plays it under `noise` (the cue's execution, then the cue
+/// ball's extra noise); with `model_uncertainty` also the squirt's and the throw's
+/// (the Monte Carlo's belief about a real table; a simulated world that is the
+/// model itself leaves them out). A miscue keeps its strike (a real miscue
+/// squirts off unpredictably: the sample is a failure of the planned shot anyway).
+PlayedStroke SampleStroke(const physics::CueStrike& cue, const physics::CueParams& cue_params,
+                          const physics::BallParams& ball, double gravity, const NoiseModel& noise,
+                          bool model_uncertainty, Rng& rng);
+
+/// The level strike that gives `shot` (physics::StrikeFor), or for spins beyond
+/// the miscue limit a centre strike of its speed and heading.
+physics::CueStrike LevelStrikeFor(const physics::Shot& shot, const physics::CueParams& cue,
+                                  const physics::BallParams& ball, double gravity);
 
 struct MonteCarloTally {
   int samples = 0;
@@ -70,9 +95,10 @@ struct MonteCarloTally {
 double MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span<const physics::Vec2> finals,
                        const PotContext& after_ctx, const SearchSettings& settings);
 
-/// Runs `count` samples of block stream `seed` for `shot` played as `setup` says
-/// (its table as vision saw it). `sim` should run at full fidelity.
-MonteCarloTally RunSamples(const ShotSetup& setup, const physics::Shot& shot, const PotContext& ctx,
+/// Runs `count` samples of block stream `seed` for the stroke `cue` played as
+/// `setup` says (its table as vision saw it), under ctx.execution's noise and
+/// ctx.cue_params(). `sim` should run at full fidelity.
+MonteCarloTally RunSamples(const ShotSetup& setup, const physics::CueStrike& cue, const PotContext& ctx,
                            const SearchSettings& settings, ShotSimulator& sim, const StopControl& stop,
                            std::uint64_t seed, int count);
 

@@ -107,6 +107,12 @@ class Search {
     after_ctx_ = ctx;
     after_ctx_.position_sigma.clear();
     final_positions_.reserve(table.balls.size());
+    // A cue ball touching a ball plays away from it (no push): the directions in
+    // which the cue ball may not set off.
+    const Vec2 c = table.balls[static_cast<size_t>(cue_)].position;
+    for (const int i : TouchingCueBall(table, *ctx.table)) {
+      touching_.push_back((table.balls[static_cast<size_t>(i)].position - c).normalized());
+    }
   }
 
   SearchResult Run() {
@@ -204,17 +210,10 @@ class Search {
     ++result_.evaluations;
     std::array<double, 4> u = {x[0], x[1], x[2], n > 3 ? x[3] : 0.5};
     for (double& c : u) c = std::clamp(c, 0.0, 1.0);
-    const double r = ctx_.table->ball_radius();
-    const RobotLimits& lim = settings_.limits;
-    physics::Shot shot;
-    shot.speed = v_lo_ + u[0] * (v_hi_ - v_lo_);
-    shot.topspin = (2 * u[1] - 1) * lim.max_topspin_fraction * shot.speed / r;
-    shot.sidespin = (2 * u[2] - 1) * lim.max_sidespin_fraction * shot.speed / r;
-    const Aim aim = AimFor(shot, u[3]);
-    if (!aim.heading || CueMargin(table_, cue_, *aim.heading, lim.cue, *ctx_.table) < 0) {
-      return Keep(u, Unplayable());
-    }
-    shot.heading = *aim.heading;
+    const auto stroke = StrokeFor(u);
+    if (!stroke) return Keep(u, Unplayable());
+    const physics::Shot& shot = stroke->shot;
+    const Aim& aim = stroke->aim;
     ++result_.simulations;
     const ShotOutcome& out = sim_.Run(setup_, shot, {}, ShotSimulator::Mode::kDecide, interrupt_);
     if (out.status == physics::SimStatus::kInterrupted) {
@@ -237,6 +236,7 @@ class Search {
         result_.by_spin[static_cast<size_t>(SpinClassOf(shot, ctx_.table->ball_radius()))];
     if (!result_.best || score > result_.best->score || !best_of_class || score > best_of_class->score) {
       ShotCandidate c;
+      c.cue = stroke->cue;
       c.shot = shot;
       c.cut = aim.cut;
       c.score = score;
@@ -256,6 +256,76 @@ class Search {
     std::optional<double> heading;
     double cut = 0;
   };
+
+  struct Stroke {
+    physics::CueStrike cue;
+    physics::Shot shot;
+    Aim aim;
+  };
+
+  // The stroke at the unit-cube point u: the cue's strength and tip offsets from
+  // u[0..2], its heading from the aim (u[3]) with the squirt taken off, its
+  // elevation the lowest that clears. nullopt when the robot cannot play it (no
+  // aim, no room for the cue at any elevation, a cue speed beyond its range, a
+  // miscue or a hop).
+  std::optional<Stroke> StrokeFor(const std::array<double, 4>& u) const {
+    const RobotLimits& lim = settings_.limits;
+    const physics::CueParams& cue = ctx_.cue_params();
+    const physics::BallParams& ball = sim_.params().ball;
+    const double g = sim_.params().cloth.g;
+    const double max_height = std::min(kMaxTipOffset, lim.max_topspin_fraction / 2.5);
+    const double max_side = std::min(kMaxTipOffset, lim.max_sidespin_fraction / 2.5);
+    Stroke k;
+    k.cue.height = (2 * u[1] - 1) * max_height;
+    k.cue.side = (2 * u[2] - 1) * max_side;
+    const double off2 = k.cue.height * k.cue.height + k.cue.side * k.cue.side;
+    const double v = v_lo_ + u[0] * (v_hi_ - v_lo_);
+    k.cue.speed = v * (1 + ball.mass / cue.mass + 2.5 * off2) / (1 + cue.tip_restitution);
+    if (k.cue.speed < lim.min_cue_speed || k.cue.speed > lim.max_cue_speed) return std::nullopt;
+    // Aim the ball for a level strike, then raise the cue if it must be, and aim
+    // again with that strike's spins.
+    for (int pass = 0; pass < 2; ++pass) {
+      physics::StrikeResult res = physics::Strike(k.cue, cue, ball, g);
+      k.aim = AimFor(res.shot, u[3]);
+      if (!k.aim.heading) return std::nullopt;
+      k.cue.heading = WrapAngle(*k.aim.heading - res.squirt);
+      if (pass == 0) {
+        const auto elevation = CueElevation(table_, cue_, k.cue.heading, k.cue.height, lim.cue, *ctx_.table);
+        if (!elevation) return std::nullopt;
+        if (*elevation == 0) {
+          res = physics::Strike(k.cue, cue, ball, g);
+          if (!Playable(res) || !AwayFromTouching(res.shot.heading)) return std::nullopt;
+          k.shot = res.shot;
+          return k;
+        }
+        k.cue.elevation = *elevation;
+      }
+    }
+    if (CueMarginAt(table_, cue_, k.cue.heading, k.cue.elevation, k.cue.height, lim.cue, *ctx_.table) < 0) {
+      return std::nullopt;
+    }
+    const physics::StrikeResult res = physics::Strike(k.cue, cue, ball, g);
+    if (!Playable(res) || !AwayFromTouching(res.shot.heading)) return std::nullopt;
+    k.shot = res.shot;
+    return k;
+  }
+
+  // No push: the cue ball sets off away from (or along) every ball it touches.
+  bool AwayFromTouching(double heading) const {
+    const Vec2 u(std::cos(heading), std::sin(heading));
+    return std::all_of(touching_.begin(), touching_.end(), [&](const Vec2& t) { return u.dot(t) <= 0; });
+  }
+
+  // A strike the robot can play and whose spins keep within the request's limits
+  // (a raised cue spins the ball more per unit of speed than a level one).
+  bool Playable(const physics::StrikeResult& res) const {
+    const RobotLimits& lim = settings_.limits;
+    const double rolling = res.shot.speed / ctx_.table->ball_radius();
+    return res.status == physics::StrikeStatus::kOk &&
+           std::abs(res.shot.topspin) <= lim.max_topspin_fraction * rolling &&
+           std::abs(res.shot.sidespin) <= lim.max_sidespin_fraction * rolling &&
+           res.shot.speed >= lim.min_speed && res.shot.speed <= lim.max_speed;
+  }
 
   // The heading (and cut on the aim ball) for the fourth search variable u in [0, 1].
   Aim AimFor(const physics::Shot& shot, double u) const {
@@ -328,6 +398,7 @@ class Search {
   const StopControl& stop_;
   physics::Interrupt interrupt_;
   ShotSetup setup_;
+  std::vector<Vec2> touching_;
   int cue_ = -1;
   double v_lo_ = 0, v_hi_ = 0;
   nlopt::opt* opt_ = nullptr;

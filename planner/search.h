@@ -1,12 +1,21 @@
 // The NLopt search of one candidate pot (one object ball into one pocket) over the
-// four numbers of a shot: cue speed, topspin, sidespin and cut angle.
+// four numbers of a stroke in the robot's terms: its strength, where the tip meets
+// the ball (up and across) and the cut angle; the cue's elevation follows from the
+// room behind the ball.
 //
 // Parametrisation (all searched in the unit cube, so every step is in proportion
 // to the robot's range):
-//   speed    in [v_lo, v_hi]: v_lo just brings the object ball to the mouth, v_hi
-//            caps a positional shot within the robot's largest speed;
-//   topspin  in [-1, 1] x max_topspin_fraction x v / R (draw to follow);
-//   sidespin in [-1, 1] x max_sidespin_fraction x v / R;
+//   speed    the cue ball's speed in [v_lo, v_hi]: v_lo just brings the object ball
+//            to the mouth, v_hi caps a positional shot within the robot's largest
+//            speed; the cue's speed is the one that gives it (strike.h's axial
+//            impulse at the tip offset), within RobotLimits' cue speeds;
+//   height   the tip's offset up, fraction of R, in [-1, 1] x min(kMaxTipOffset,
+//            max_topspin_fraction / 2.5) (draw to follow: a level strike at height
+//            h spins the ball at 5/2 h v / R);
+//   side     the tip's offset across, in [-1, 1] x min(kMaxTipOffset,
+//            max_sidespin_fraction / 2.5);
+//   elevation the lowest at which the cue clears the balls and cushions behind
+//            (geometry.h CueElevation): level wherever it can be;
 //   cut      = the aim that the collision model predicts will send the object ball
 //            along the planned line (the ghost-ball cut corrected for the throw of
 //            this speed and spin: ThrowModel's impact solve of the cue ball as it
@@ -69,8 +78,12 @@ struct RobotLimits {
   /// the shot's speed v (a tip offset of half the radius gives about 1.25).
   double max_topspin_fraction = 1.0;
   double max_sidespin_fraction = 0.5;
-  /// Room the cue needs behind the cue ball.
+  /// Room the cue needs behind the cue ball, and how steep it may be.
   CueClearance cue;
+  /// The cue's speed range at impact, m/s (the strike gives the ball about 1.37
+  /// times the cue's speed from the centre).
+  double min_cue_speed = 0.1;
+  double max_cue_speed = 5.0;
 };
 
 /// Local optimiser of the second stage.
@@ -102,6 +115,9 @@ struct SearchSettings {
 
 /// One evaluated shot.
 struct ShotCandidate {
+  /// The stroke as the robot plays it, and what it gives the cue ball
+  /// (physics::Strike of `cue`).
+  physics::CueStrike cue;
   physics::Shot shot;
   double cut = 0;               ///< rad
   double score = 0;             ///< the objective

@@ -113,7 +113,10 @@ SelfPlayReport RunSelfPlay(const Planner& planner, const SelfPlayOptions& o,
         rec.end = ToString(plan.kind);
         break;
       }
-      const physics::Shot played = SampleExecution(plan.shot, o.noise, rng);
+      // The robot's cue with its execution noise; the world is the model itself.
+      const physics::Shot played = SampleStroke(plan.cue, planner.config().cue, planner.config().full.ball,
+                                                planner.config().full.cloth.g, o.noise, false, rng)
+                                       .shot;
       const ShotSetup setup{&truth, truth.cue_index(), plan.object_ball, plan.pocket, *on, plan.kind,
                             plan.route == PotRoute::kPlant ? plan.first_ball : -1};
       const ShotOutcome& out = truth_sim.Run(setup, played, {}, ShotSimulator::Mode::kFull, no_interrupt);

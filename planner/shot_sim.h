@@ -105,6 +105,12 @@ class ShotSimulator {
   const physics::Simulator& simulator() const { return sim_; }
   const ShotOutcome& outcome() const { return out_; }
   const physics::SimParams& params() const { return params_; }
+  /// Scales the throw of every ball-ball impact of the next runs (SimParams::
+  /// throw_scale; 1: the model's).
+  void set_throw_scale(double scale) {
+    params_.throw_scale = scale;
+    sim_.set_throw_scale(scale);
+  }
   /// Simulations run since construction.
   long runs() const { return runs_; }
 

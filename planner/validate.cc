@@ -128,12 +128,25 @@ std::vector<FieldError> ValidateSettings(const PlanRequest& r) {
              Unit::kRollingSpin);
   CheckRange(&errors, "limits.cue.length", l.cue.length, lim::kCueClearance, Unit::kMetre);
   CheckRange(&errors, "limits.cue.radius", l.cue.radius, lim::kCueRadius, Unit::kMetre);
+  CheckRange(&errors, "limits.cue.max_elevation", l.cue.max_elevation, lim::kMaxElevation, Unit::kRadian);
+  CheckRange(&errors, "limits.min_cue_speed", l.min_cue_speed, lim::kCueSpeed, Unit::kMetrePerSecond);
+  CheckRange(&errors, "limits.max_cue_speed", l.max_cue_speed, lim::kCueSpeed, Unit::kMetrePerSecond);
+  if (std::isfinite(l.min_cue_speed) && std::isfinite(l.max_cue_speed) && !(l.max_cue_speed > l.min_cue_speed)) {
+    errors.push_back({"limits.max_cue_speed", -1, l.max_cue_speed, "", Unit::kMetrePerSecond, std::nullopt,
+                      "must exceed limits.min_cue_speed (" + Num(l.min_cue_speed) + " m/s)"});
+  }
   const NoiseModel& z = r.noise;
   CheckRange(&errors, "noise.heading", z.heading, lim::kHeadingSigma, Unit::kRadian);
   CheckRange(&errors, "noise.speed_fraction", z.speed_fraction, lim::kSpeedSigmaFraction, Unit::kFraction);
   CheckRange(&errors, "noise.topspin", z.topspin, lim::kSpinSigma, Unit::kRadPerSecond);
   CheckRange(&errors, "noise.sidespin", z.sidespin, lim::kSpinSigma, Unit::kRadPerSecond);
   CheckRange(&errors, "noise.position", z.position, lim::kPositionSigma, Unit::kMetre);
+  CheckRange(&errors, "noise.aim", z.aim, lim::kHeadingSigma, Unit::kRadian);
+  CheckRange(&errors, "noise.cue_speed_fraction", z.cue_speed_fraction, lim::kSpeedSigmaFraction, Unit::kFraction);
+  CheckRange(&errors, "noise.tip_offset", z.tip_offset, lim::kTipOffsetSigma, Unit::kMetre);
+  CheckRange(&errors, "noise.elevation", z.elevation, lim::kElevationSigma, Unit::kRadian);
+  CheckRange(&errors, "noise.squirt_fraction", z.squirt_fraction, lim::kModelUncertainty, Unit::kFraction);
+  CheckRange(&errors, "noise.throw_fraction", z.throw_fraction, lim::kModelUncertainty, Unit::kFraction);
   const size_t balls = r.table.balls.size();
   if (!r.position_sigma.empty() && r.position_sigma.size() != balls) {
     errors.push_back({"position_sigma", -1, static_cast<double>(r.position_sigma.size()), "", Unit::kNone,

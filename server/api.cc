@@ -162,10 +162,15 @@ ApiStatus Simulate(const v1::SimulateRequest& request, v1::SimulateResponse* res
   errors.insert(errors.begin(), check.errors.begin(), check.errors.end());
   const std::vector<FieldError> more = ValidateShotAndOptions(request);
   errors.insert(errors.end(), more.begin(), more.end());
+  // A stroke in the robot's terms is struck into the cue ball's shot first.
+  v1::Shot shot = request.shot();
+  if (request.has_cue() && errors.empty()) {
+    if (const auto struck = ShotFromCue(request.cue(), &errors)) ToProto(*struck, &shot);
+  }
   if (!errors.empty()) return ApiStatus::Invalid(Describe(errors));
   const v1::TableState& state = check.repaired ? *check.repaired : request.table();
   const bool paths = request.options().include_paths();
-  const std::vector<physics::BallState> balls = BallStatesFrom(state, request.shot());
+  const std::vector<physics::BallState> balls = BallStatesFrom(state, shot);
   physics::Simulator sim(table, SimParamsFrom(request.options()));
   physics::RunOptions run;
   run.record_events = true;

@@ -342,14 +342,53 @@ std::optional<double> VisionTolerance(std::optional<double> requested_mm, double
   return *requested_mm * 1e-3;
 }
 
+std::optional<physics::Shot> ShotFromCue(const v1::CueStrike& cue, std::vector<FieldError>* errors) {
+  const std::size_t before = errors->size();
+  CheckRange(errors, cue.speed(), "cue.speed", physics::Range{0, 10}, "m/s");
+  CheckRange(errors, cue.heading_deg(), "cue.heading_deg", slim::kHeadingDeg, "deg");
+  CheckRange(errors, cue.tip_side(), "cue.tip_side", physics::Range{-1, 1}, "of R");
+  CheckRange(errors, cue.tip_height(), "cue.tip_height", physics::Range{-1, 1}, "of R");
+  CheckRange(errors, cue.elevation_deg(), "cue.elevation_deg", physics::Range{0, 59.999}, "deg");
+  if (errors->size() > before) return std::nullopt;
+  const physics::SimParams sim;
+  const physics::CueParams model;
+  const physics::CueStrike k{cue.speed(), physics::DegToRad(NormalizedHeadingDeg(cue.heading_deg())), cue.tip_side(),
+                             cue.tip_height(), physics::DegToRad(cue.elevation_deg())};
+  const physics::StrikeResult res = physics::Strike(k, model, sim.ball, sim.cloth.g);
+  if (res.status == physics::StrikeStatus::kMiscue) {
+    errors->push_back({"cue", "tip offset " + FormatNumber(std::hypot(cue.tip_side(), cue.tip_height())),
+                       "a miscue: beyond the tip's limit of " + FormatNumber(physics::MiscueLimit(model)) + " of R"});
+    return std::nullopt;
+  }
+  if (res.status != physics::StrikeStatus::kOk) {
+    errors->push_back({"cue", "elevation " + FormatNumber(cue.elevation_deg()) + " deg at " + FormatNumber(cue.speed()) + " m/s",
+                       "the ball would hop " + FormatNumber(res.hop * 1e3) + " mm, more than the model's " +
+                           FormatNumber(model.max_hop * 1e3) + " mm"});
+    return std::nullopt;
+  }
+  return res.shot;
+}
+
+void ToProto(const physics::Shot& shot, v1::Shot* out) {
+  out->set_speed(shot.speed);
+  out->set_heading_deg(physics::RadToDeg(shot.heading));
+  out->set_topspin(shot.topspin);
+  out->set_sidespin(shot.sidespin);
+  out->set_swerve_spin(shot.swerve_spin);
+}
+
 std::vector<FieldError> ValidateShotAndOptions(const v1::SimulateRequest& r) {
   std::vector<FieldError> errors;
+  if (r.has_cue() && r.has_shot()) {
+    errors.push_back({"cue", "set", "give either shot or cue, not both"});
+  }
   const v1::Shot& shot = r.shot();
   CheckRange(&errors, shot.speed(), "shot.speed", plim::kShotSpeed, "m/s");
   CheckRange(&errors, shot.heading_deg(), "shot.heading_deg", slim::kHeadingDeg, "deg");
   const physics::Range spin{-plim::kMaxSpin, plim::kMaxSpin};
   CheckRange(&errors, shot.topspin(), "shot.topspin", spin, "rad/s");
   CheckRange(&errors, shot.sidespin(), "shot.sidespin", spin, "rad/s");
+  CheckRange(&errors, shot.swerve_spin(), "shot.swerve_spin", spin, "rad/s");
   using O = v1::SimulationOptions;
   const O& o = r.options();
   if (o.has_max_events() && (o.max_events() < 1 || o.max_events() > plim::kMaxEvents)) {
@@ -379,7 +418,7 @@ double NormalizedHeadingDeg(double heading_deg) {
 
 physics::Shot ShotFrom(const v1::Shot& shot) {
   return {shot.speed(), physics::DegToRad(NormalizedHeadingDeg(shot.heading_deg())), shot.topspin(),
-          shot.sidespin()};
+          shot.sidespin(), shot.swerve_spin()};
 }
 
 std::vector<physics::BallState> BallStatesFrom(const v1::TableState& table, const v1::Shot& shot) {
@@ -560,6 +599,18 @@ void ModelToProto(const physics::SimParams& sim, const physics::TableModel& tabl
     cushion->add_restitution(sim.cushion.restitution_curve.e[static_cast<std::size_t>(i)]);
   }
   cushion->set_constant_restitution(sim.cushion.e_e);
+  const physics::CueParams cue;
+  v1::CueModel* c = response->mutable_cue();
+  c->set_mass_kg(cue.mass);
+  c->set_tip_radius_m(cue.tip_radius);
+  c->set_tip_restitution(cue.tip_restitution);
+  c->set_tip_friction(cue.tip_friction);
+  c->set_end_mass_kg(cue.end_mass);
+  c->set_bed_restitution(cue.bed_restitution);
+  c->set_max_hop_m(cue.max_hop);
+  c->set_miscue_limit(physics::MiscueLimit(cue));
+  c->set_squirt_at_045_deg(physics::RadToDeg(physics::SquirtAngle(0.45, cue, sim.ball)));
+  c->set_centre_speed_ratio(physics::Strike(physics::CueStrike{1, 0, 0, 0, 0}, cue, sim.ball, sim.cloth.g).shot.speed);
   v1::SimulationDefaults* d = response->mutable_simulation();
   d->set_max_events(sim.max_events);
   d->set_max_time_s(sim.max_time);

@@ -13,6 +13,7 @@
 #include "physics/core/ball_state.h"
 #include "physics/core/shot.h"
 #include "physics/core/params.h"
+#include "physics/cue/strike.h"
 #include "physics/sim/simulate.h"
 #include "physics/table/table.h"
 #include "snooker/v1/collide.pb.h"
@@ -99,6 +100,10 @@ double NormalizedHeadingDeg(double heading_deg);
 
 /// The shot in library units (heading normalised, in rad).
 physics::Shot ShotFrom(const v1::Shot& shot);
+/// The shot a CueStrike gives the cue ball (the default cue, physics/cue/strike.h),
+/// or nullopt with the reasons in `errors` (a value out of range, a miscue, a hop).
+std::optional<physics::Shot> ShotFromCue(const v1::CueStrike& cue, std::vector<FieldError>* errors);
+void ToProto(const physics::Shot& shot, v1::Shot* out);
 
 /// Simulation parameters from the request's options (defaults where unset).
 physics::SimParams SimParamsFrom(const v1::SimulationOptions& options);

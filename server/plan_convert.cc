@@ -25,6 +25,15 @@ constexpr ApiField kApiFields[] = {
     {"limits.max_sidespin_fraction", "limits.max_sidespin_fraction", 1, "of the rolling spin"},
     {"limits.cue.length", "limits.cue_clearance_m", 1, "m"},
     {"limits.cue.radius", "limits.cue_radius_m", 1, "m"},
+    {"limits.cue.max_elevation", "limits.max_elevation_deg", 180 / physics::kPi, "deg"},
+    {"limits.min_cue_speed", "limits.min_cue_speed", 1, "m/s"},
+    {"limits.max_cue_speed", "limits.max_cue_speed", 1, "m/s"},
+    {"noise.aim", "noise.aim_sigma_deg", 180 / physics::kPi, "deg"},
+    {"noise.cue_speed_fraction", "noise.cue_speed_sigma_fraction", 1, ""},
+    {"noise.tip_offset", "noise.tip_offset_sigma_mm", 1e3, "mm"},
+    {"noise.elevation", "noise.elevation_sigma_deg", 180 / physics::kPi, "deg"},
+    {"noise.squirt_fraction", "noise.squirt_sigma_fraction", 1, ""},
+    {"noise.throw_fraction", "noise.throw_sigma_fraction", 1, ""},
     {"noise.heading", "noise.heading_sigma_deg", 180 / physics::kPi, "deg"},
     {"noise.speed_fraction", "noise.speed_sigma_fraction", 1, ""},
     {"noise.topspin", "noise.topspin_sigma", 1, "rad/s"},
@@ -231,12 +240,21 @@ planner::PlanRequest PlanRequestFrom(const v1::PlanRequest& r, std::optional<dou
   if (l.has_max_sidespin_fraction()) p.limits.max_sidespin_fraction = l.max_sidespin_fraction();
   if (l.has_cue_clearance_m()) p.limits.cue.length = l.cue_clearance_m();
   if (l.has_cue_radius_m()) p.limits.cue.radius = l.cue_radius_m();
+  if (l.has_max_elevation_deg()) p.limits.cue.max_elevation = physics::DegToRad(l.max_elevation_deg());
+  if (l.has_min_cue_speed()) p.limits.min_cue_speed = l.min_cue_speed();
+  if (l.has_max_cue_speed()) p.limits.max_cue_speed = l.max_cue_speed();
   const v1::NoiseModel& n = r.noise();
   if (n.has_heading_sigma_deg()) p.noise.heading = physics::DegToRad(n.heading_sigma_deg());
   if (n.has_speed_sigma_fraction()) p.noise.speed_fraction = n.speed_sigma_fraction();
   if (n.has_topspin_sigma()) p.noise.topspin = n.topspin_sigma();
   if (n.has_sidespin_sigma()) p.noise.sidespin = n.sidespin_sigma();
   if (n.has_position_sigma_mm()) p.noise.position = n.position_sigma_mm() * 1e-3;
+  if (n.has_aim_sigma_deg()) p.noise.aim = physics::DegToRad(n.aim_sigma_deg());
+  if (n.has_cue_speed_sigma_fraction()) p.noise.cue_speed_fraction = n.cue_speed_sigma_fraction();
+  if (n.has_tip_offset_sigma_mm()) p.noise.tip_offset = n.tip_offset_sigma_mm() * 1e-3;
+  if (n.has_elevation_sigma_deg()) p.noise.elevation = physics::DegToRad(n.elevation_sigma_deg());
+  if (n.has_squirt_sigma_fraction()) p.noise.squirt_fraction = n.squirt_sigma_fraction();
+  if (n.has_throw_sigma_fraction()) p.noise.throw_fraction = n.throw_sigma_fraction();
   if (!n.ball_position_sigma_mm().empty()) {
     for (const v1::Ball& b : r.table().balls()) {
       const auto it = n.ball_position_sigma_mm().find(b.id());
@@ -311,6 +329,13 @@ void ToProto(const planner::PlannedShot& s, const v1::TableState& table,
   out->set_heading_deg(physics::RadToDeg(s.shot.heading));
   out->set_topspin(s.shot.topspin);
   out->set_sidespin(s.shot.sidespin);
+  out->set_swerve_spin(s.shot.swerve_spin);
+  v1::CueStrike* cue = out->mutable_cue();
+  cue->set_speed(s.cue.speed);
+  cue->set_heading_deg(physics::RadToDeg(s.cue.heading));
+  cue->set_tip_side(s.cue.side);
+  cue->set_tip_height(s.cue.height);
+  cue->set_elevation_deg(physics::RadToDeg(s.cue.elevation));
   out->set_cut_deg(physics::RadToDeg(s.cut));
   out->set_object_ball(id(s.object_ball));
   const bool pot = s.kind == planner::ShotKind::kPot;

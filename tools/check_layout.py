@@ -26,6 +26,7 @@ STAGES = {
     "physics/core": [],
     "physics/table": ["physics/core"],
     "physics/motion": ["physics/core"],
+    "physics/cue": ["physics/core"],
     "physics/ode": ["physics/core"],
     "physics/impact": ["physics/core", "physics/ode"],
     "physics/events": ["physics/core", "physics/motion", "physics/table"],

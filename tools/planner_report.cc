@@ -237,7 +237,7 @@ int Search() {
       const PlannedShot& s = a.shots.front();
       // An independent judge: the same Monte Carlo objective, its own seed.
       const ShotSetup setup{&r.table, r.table.cue_index(), s.object_ball, s.pocket, BallOn::kRed};
-      MonteCarloTally t = RunSamples(setup, s.shot, reference.ContextFor(r), reference.config().search_settings,
+      MonteCarloTally t = RunSamples(setup, s.cue, reference.ContextFor(r), reference.config().search_settings,
                                      judge, StopControl{}, DeriveSeed(9, k), kJudgeSamples);
       score += t.mean_score();
       pot += t.success_rate();

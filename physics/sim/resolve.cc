@@ -96,6 +96,18 @@ CushionResolution ResolveBallCushionOnTable(const BallState& s, const Vec2& norm
   return out;
 }
 
+namespace {
+
+// Scales what the impact changed of each ball's velocity across the line of
+// centres (the friction's part: the throw) by `scale`.
+void ScaleThrow(const BallState& a, const BallState& b, const Vec2& n, double scale, BallBallResolution* r) {
+  const Vec3 t(-n.y(), n.x(), 0.0);
+  r->a.v += (scale - 1) * (r->a.v - a.v).dot(t) * t;
+  r->b.v += (scale - 1) * (r->b.v - b.v).dot(t) * t;
+}
+
+}  // namespace
+
 PairContactResolution ResolveBallBallContact(const BallState& a, const BallState& b,
                                              ContactStart contact, int level_a, int level_b,
                                              const SimParams& p, const BallBallTable* table) {
@@ -106,10 +118,11 @@ PairContactResolution ResolveBallBallContact(const BallState& a, const BallState
   const Vec2 n = (b.r - a.r).normalized();  // from a to b
   switch (contact) {
     case ContactStart::kApproaching: {
-      const BallBallResolution r =
+      BallBallResolution r =
           ResolveBallBallOnTable(a, b, p.ball, p.ball_ball, p.cloth, p.ball_ball_solver, table);
       out.work = r.work;
       if (r.status == ImpactStatus::kOk) {
+        if (p.throw_scale != 1.0) ScaleThrow(a, b, n, p.throw_scale, &r);
         out.a = AfterImpact(r.a, p);
         out.b = AfterImpact(r.b, p);
         HoldIfReturning(&out.a, &out.b, n, 0, 0, p);

@@ -63,6 +63,11 @@ struct SimParams {
   /// collapse). A rolling ball at 1e-4 m/s would travel v^2 / (2 mu_r g) ~ 4e-8 m
   /// more: far below anything measurable. 0 disables it.
   double rest_speed = 1e-4;
+  /// Scales what a ball-ball impact changes of each ball's velocity across the line
+  /// of centres (the friction's part: throw) before the balls move on. 1: the
+  /// model as it is. The planner's Monte Carlo draws it around 1 for the model's
+  /// uncertainty in throw (a real table throws differently from any fixed model).
+  double throw_scale = 1.0;
   /// A ball that leaves a cushion (or knuckle, or jaw wall, or another ball) after
   /// an impact while the cloth drives it back, and would rise less than this off it
   /// before it returns, is held against it instead: a resting contact. m. Without

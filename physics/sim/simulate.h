@@ -152,6 +152,8 @@ struct PathKnot {
 class Simulator {
  public:
   Simulator(const TableModel& table, const SimParams& params);
+  /// SimParams::throw_scale of the next runs.
+  void set_throw_scale(double scale) { params_.throw_scale = scale; }
 
   /// Simulates from `balls` at t = 0 (at most kMaxBalls) until every ball is at rest
   /// or pocketed, a cap is reached or the run is interrupted: Start, then Step until

@@ -56,10 +56,13 @@ TEST_F(CandidatesTest, EachPruneReason) {
   t.balls[2].position = red + 0.3 * p.axis;
   EXPECT_FALSE(AssessPot(t, 0, 1, PocketId::kTopRight, Context(), &why));
   EXPECT_EQ(why, PruneReason::kObjectBallPath);
-  // A ball right behind the cue ball: no room for the cue.
+  // A ball right behind the cue ball: no room for a level cue; a raised one clears it.
   t.balls[2].position = cue - (2 * kR + 0.01) * p.axis;
-  EXPECT_FALSE(AssessPot(t, 0, 1, PocketId::kTopRight, Context(), &why));
+  PotContext level = Context();
+  level.cue.max_elevation = 0;
+  EXPECT_FALSE(AssessPot(t, 0, 1, PocketId::kTopRight, level, &why));
   EXPECT_EQ(why, PruneReason::kCueRoom);
+  EXPECT_TRUE(AssessPot(t, 0, 1, PocketId::kTopRight, Context(), &why));
   t.balls.pop_back();
   // An 85 deg cut (the cue ball comes almost square across the pocket's line).
   const Vec2 side(-p.axis.y(), p.axis.x());

@@ -96,16 +96,58 @@ TEST(GeometryTest, PathMarginSeesBallsNearTheSegment) {
 TEST(GeometryTest, TheCueNeedsRoomBehindTheCueBall) {
   const physics::TableModel& table = physics::DefaultTable();
   const double c = table.cushion_contact_distance();
-  const CueClearance cue;
+  CueClearance level;
+  level.max_elevation = 0;
   TableState t;
   // Frozen to the left cushion: along the cushion is fine, away from it is not.
   t.balls = {{BallKind::kCue, Vec2(c, 1.0)}};
-  EXPECT_GT(CueMargin(t, 0, physics::kPi / 2, cue, table), 0);
-  EXPECT_LT(CueMargin(t, 0, 0.0, cue, table), 0);
+  EXPECT_GT(CueMargin(t, 0, physics::kPi / 2, level, table), 0);
+  EXPECT_LT(CueMargin(t, 0, 0.0, level, table), 0);
   // A ball right behind the cue ball blocks the stroke; one beside it does not.
   t.balls = {{BallKind::kCue, Vec2(0.8, 1.0)}, {BallKind::kRed, Vec2(0.8, 1.0 - 2 * kR - 0.01)}};
-  EXPECT_LT(CueMargin(t, 0, physics::kPi / 2, cue, table), 0);
-  EXPECT_GT(CueMargin(t, 0, 0.0, cue, table), 0);
+  EXPECT_LT(CueMargin(t, 0, physics::kPi / 2, level, table), 0);
+  EXPECT_GT(CueMargin(t, 0, 0.0, level, table), 0);
+}
+
+// A raised cue passes over a cushion or a ball behind the cue ball: the lowest
+// elevation that clears is found, a lower one does not clear, and a level stroke
+// keeps its level margin.
+TEST(GeometryTest, ARaisedCuePassesOverWhatBlocksALevelOne) {
+  const physics::TableModel& table = physics::DefaultTable();
+  const double c = table.cushion_contact_distance();
+  const CueClearance cue;
+  struct Case {
+    const char* what;
+    std::vector<Ball> balls;
+    double heading;
+  };
+  const std::vector<Case> cases = {
+      {"frozen to the left cushion, away from it", {{BallKind::kCue, Vec2(c, 1.0)}}, 0.0},
+      {"2 cm off the baulk cushion, away from it", {{BallKind::kCue, Vec2(0.9, c + 0.02)}}, physics::kPi / 2},
+      {"a red 1 cm behind", {{BallKind::kCue, Vec2(0.8, 1.0)}, {BallKind::kRed, Vec2(0.8, 1.0 - 2 * kR - 0.01)}},
+       physics::kPi / 2},
+  };
+  for (const Case& k : cases) {
+    TableState t;
+    t.balls = k.balls;
+    EXPECT_LT(CueMarginAt(t, 0, k.heading, 0.0, 0.0, cue, table), 0) << k.what;
+    const auto e = CueElevation(t, 0, k.heading, kMaxTipOffset, cue, table);
+    ASSERT_TRUE(e.has_value()) << k.what;
+    EXPECT_GT(*e, 0) << k.what;
+    EXPECT_LE(*e, cue.max_elevation) << k.what;
+    EXPECT_GE(CueMarginAt(t, 0, k.heading, *e, kMaxTipOffset, cue, table), 0) << k.what;
+    EXPECT_LT(CueMarginAt(t, 0, k.heading, *e - physics::DegToRad(1), kMaxTipOffset, cue, table), 0) << k.what;
+    EXPECT_GE(CueMargin(t, 0, k.heading, cue, table), 0) << k.what;
+  }
+  // A higher cushion top needs a steeper cue.
+  TableState t;
+  t.balls = {{BallKind::kCue, Vec2(c, 1.0)}};
+  CueClearance high = cue;
+  high.cushion_top += 0.004;
+  EXPECT_GT(CueElevation(t, 0, 0.0, kMaxTipOffset, high, table).value_or(10),
+            *CueElevation(t, 0, 0.0, kMaxTipOffset, cue, table));
+  // Level where level clears: the margin is the level one.
+  EXPECT_EQ(CueMargin(t, 0, physics::kPi / 2, cue, table), CueMarginAt(t, 0, physics::kPi / 2, 0, 0, cue, table));
 }
 
 }  // namespace

@@ -140,7 +140,8 @@ TEST(OutlookTest, TouchingBallOnMeansNotSnookered) {
 }
 
 TEST(OutlookTest, TouchingBallNotOnBlocksOnlyStrokesTowardsIt) {
-  const PotContext ctx = Context();
+  PotContext ctx = Context();
+  ctx.cue.max_elevation = 0;  // a level cue (a raised one could pass over the yellow)
   const Vec2 cue(Mid(), 1.0);
   // A yellow touching the cue ball straight up the table, the red beyond it.
   TableState ahead;
@@ -214,8 +215,9 @@ TEST(OutlookTest, TheEscapeIsThereInTheSimulator) {
 TEST(OutlookTest, CagedCueBallHasNoEscape) {
   // Six colours around the cue ball, 2 mm apart from it and 2 mm from each other
   // (centres 2R + 2 mm from the cue ball, 60 deg apart): every stroke and the cue
-  // are blocked, no one-cushion path leaves the cage.
-  const PotContext ctx = Context();
+  // are blocked for a level cue, no one-cushion path leaves the cage.
+  PotContext ctx = Context();
+  ctx.cue.max_elevation = 0;
   const Vec2 c(Mid(), 1.2);
   TableState t;
   t.balls = {{BallKind::kCue, c}, {BallKind::kRed, Vec2(0.4, 2.5)}};

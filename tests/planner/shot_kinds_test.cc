@@ -220,7 +220,7 @@ TEST_P(TouchingBallTest, PlaysAwayFromIt) {
   ASSERT_FALSE(answer.shots.empty()) << answer.reason;
   for (const PlannedShot& s : answer.shots) {
     const Vec2 u(std::cos(s.shot.heading), std::sin(s.shot.heading));
-    EXPECT_LE(u.dot(side), 1e-9) << "plays into the touching ball";
+    EXPECT_LE(u.dot(side), 1e-9) << "plays into the touching ball: " << ToString(s.kind) << " cue heading " << s.cue.heading << " ball " << s.shot.heading << " side " << s.cue.side << " elev " << s.cue.elevation;
     if (s.kind == ShotKind::kPot) {
       ExpectPotAsLabelled(r, s, s.route);
     } else {
