@@ -77,12 +77,25 @@ std::optional<FallbackShot> FindLegalStroke(const TableState& table, int cue, Ba
           })) {
         continue;
       }
+      // Level and central where the cue clears, else raised, the tip high.
+      const auto elevation = CueElevation(table, cue, aim.heading, kMaxTipOffset, lim.cue, *ctx.table);
+      if (!elevation) continue;
       for (const double v : {options.soft, options.firm}) {
         if (simulations >= options.max_simulations || interrupt.Due()) {
           if (best) best->simulations = simulations;
           return best;
         }
-        const physics::Shot shot{std::clamp(v, lim.min_speed, lim.max_speed), aim.heading, 0, 0};
+        const physics::CueParams& cue_params = ctx.cue_params();
+        const physics::BallParams& ball_params = sim.params().ball;
+        physics::CueStrike k;
+        k.heading = aim.heading;
+        k.elevation = *elevation;
+        k.height = *elevation > 0 ? kMaxTipOffset : 0.0;
+        k.speed = std::clamp(v, lim.min_speed, lim.max_speed) *
+                  (1 + ball_params.mass / cue_params.mass + 2.5 * k.height * k.height) / (1 + cue_params.tip_restitution);
+        const physics::StrikeResult struck = physics::Strike(k, cue_params, ball_params, sim.params().cloth.g);
+        if (struck.status != physics::StrikeStatus::kOk) continue;
+        const physics::Shot& shot = struck.shot;
         const ShotSetup setup{&table, cue, ball, physics::PocketId::kBaulkLeft, on, ShotKind::kSafety, -1,
                               TouchingBallOn(table, on, *ctx.table)};
         ++simulations;
@@ -92,8 +105,8 @@ std::optional<FallbackShot> FindLegalStroke(const TableState& table, int cue, Ba
         for (const physics::BallState& b : sim.final_balls()) finals.push_back(b.r);
         const double score = ScoreSafety(table, on, out.first_hit, finals, out.potted, after_ctx, settings).score;
         if (!best || score > best->score) {
-          best = FallbackShot{out.cue_cushions_first > 0 ? ShotKind::kEscape : ShotKind::kSafety, out.first_hit, shot,
-                              score, 0};
+          best = FallbackShot{out.cue_cushions_first > 0 ? ShotKind::kEscape : ShotKind::kSafety, out.first_hit, k,
+                              shot, score, 0};
         }
       }
     }

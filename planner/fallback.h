@@ -31,7 +31,8 @@ struct FallbackOptions {
 struct FallbackShot {
   ShotKind kind = ShotKind::kSafety;  ///< kEscape when it reaches its ball off a cushion
   int object = -1;                    ///< the ball aimed at
-  physics::Shot shot;
+  physics::CueStrike cue;             ///< the stroke: centre and level, or raised with the tip high
+  physics::Shot shot;                 ///< what `cue` gives the cue ball
   double score = 0;                   ///< ScoreSafety's
   int simulations = 0;
 };

@@ -563,10 +563,9 @@ void PlanRun::Fallback() {
   if (t > 0) c.cue_start = table.balls.back().position;
   candidates_.push_back(c);
   failed_verification_.push_back(0);
-  // The scan plays level centre-ball strokes; the robot plays them with its cue.
   ShotCandidate sc;
-  sc.cue = LevelStrikeFor(found->shot, config_.cue, config_.full.ball, config_.full.cloth.g);
-  sc.shot = physics::Strike(sc.cue, config_.cue, config_.full.ball, config_.full.cloth.g).shot;
+  sc.cue = found->cue;
+  sc.shot = found->shot;
   sc.score = found->score;
   ++answer_.simulations;
   if (auto ps = Verify(w, candidates_.back(), sc, failed_verification_.size() - 1)) shots_.push_back(std::move(*ps));

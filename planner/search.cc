@@ -113,6 +113,24 @@ class Search {
     for (const int i : TouchingCueBall(table, *ctx.table)) {
       touching_.push_back((table.balls[static_cast<size_t>(i)].position - c).normalized());
     }
+    // Where a level cue has no room along the candidate's line, only a tip high
+    // enough lets a raised cue clear within the robot's elevation: the tip's range
+    // starts there.
+    const double max_height = std::min(kMaxTipOffset, settings.limits.max_topspin_fraction / 2.5);
+    height_lo_ = -max_height;
+    height_hi_ = max_height;
+    const double nominal = cand.aim == AimMode::kHeading ? cand.aim_base : cand.estimate.aim.heading;
+    const CueClearance& room = settings.limits.cue;
+    if (std::isfinite(nominal) && CueMarginAt(table, cue_, nominal, 0, 0, room, *ctx.table) < 0) {
+      constexpr int kSteps = 18;
+      for (int i = 0; i <= kSteps; ++i) {
+        const double h = -max_height + 2 * max_height * i / kSteps;
+        if (CueElevation(table, cue_, nominal, h, room, *ctx.table)) {
+          height_lo_ = h;
+          break;
+        }
+      }
+    }
   }
 
   SearchResult Run() {
@@ -273,10 +291,9 @@ class Search {
     const physics::CueParams& cue = ctx_.cue_params();
     const physics::BallParams& ball = sim_.params().ball;
     const double g = sim_.params().cloth.g;
-    const double max_height = std::min(kMaxTipOffset, lim.max_topspin_fraction / 2.5);
     const double max_side = std::min(kMaxTipOffset, lim.max_sidespin_fraction / 2.5);
     Stroke k;
-    k.cue.height = (2 * u[1] - 1) * max_height;
+    k.cue.height = height_lo_ + u[1] * (height_hi_ - height_lo_);
     k.cue.side = (2 * u[2] - 1) * max_side;
     const double off2 = k.cue.height * k.cue.height + k.cue.side * k.cue.side;
     const double v = v_lo_ + u[0] * (v_hi_ - v_lo_);
@@ -399,6 +416,7 @@ class Search {
   physics::Interrupt interrupt_;
   ShotSetup setup_;
   std::vector<Vec2> touching_;
+  double height_lo_ = 0, height_hi_ = 0;  // the tip's range, fraction of R
   int cue_ = -1;
   double v_lo_ = 0, v_hi_ = 0;
   nlopt::opt* opt_ = nullptr;

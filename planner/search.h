@@ -75,8 +75,9 @@ struct RobotLimits {
   double min_speed = 0.3;
   double max_speed = 6.0;
   /// Largest |topspin| and |sidespin| as a fraction of the rolling spin v / R at
-  /// the shot's speed v (a tip offset of half the radius gives about 1.25).
-  double max_topspin_fraction = 1.0;
+  /// the shot's speed v (a level tip offset of half the radius gives 1.25; a raised
+  /// cue more per unit of speed). Topspin 1.25: a tip up to 0.45 R raised to 25 deg.
+  double max_topspin_fraction = 1.25;
   double max_sidespin_fraction = 0.5;
   /// Room the cue needs behind the cue ball, and how steep it may be.
   CueClearance cue;

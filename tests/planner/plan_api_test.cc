@@ -409,7 +409,7 @@ TEST(PlanConvertTest, EachKindOfShotInTheApisNames) {
             (std::set<std::string>{"speed", "headingDeg", "topspin", "sidespin", "cutDeg", "objectBall", "pocket",
                                    "potProbability", "pocketProbability", "positionValue", "nextBall",
                                    "cueBallEnd", "events", "kind", "route", "firstBall", "foulProbability",
-                                   "ballsEnd"}));
+                                   "ballsEnd", "swerveSpin", "cue"}));
   EXPECT_EQ(Text(ShotOf(json, 0), "kind"), "POT");
   EXPECT_EQ(Text(ShotOf(json, 0), "route"), "PLANT");
   EXPECT_EQ(Text(ShotOf(json, 0), "firstBall"), "r8");

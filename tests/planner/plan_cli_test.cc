@@ -64,8 +64,11 @@ TEST(CliPlanTest, JsonHasExactlyTheContractedNames) {
   EXPECT_EQ(Keys(s), (std::set<std::string>{"speed", "headingDeg", "topspin", "sidespin", "cutDeg",
                                             "objectBall", "pocket", "potProbability", "pocketProbability",
                                             "positionValue", "nextBall", "cueBallEnd", "events", "kind",
-                                            "route", "firstBall", "foulProbability", "ballsEnd"}));
+                                            "route", "firstBall", "foulProbability", "ballsEnd", "swerveSpin",
+                                            "cue"}));
   EXPECT_EQ(Keys(s.fields().at("cueBallEnd").struct_value()), (std::set<std::string>{"x", "y"}));
+  EXPECT_EQ(Keys(s.fields().at("cue").struct_value()),
+            (std::set<std::string>{"speed", "headingDeg", "tipSide", "tipHeight", "elevationDeg"}));
   EXPECT_EQ(s.fields().at("objectBall").string_value(), "red-1");
   EXPECT_EQ(s.fields().at("pocket").string_value(), "top-right");
   EXPECT_EQ(s.fields().at("kind").string_value(), "POT");
