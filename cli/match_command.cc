@@ -57,12 +57,23 @@ Players:
                    opponent's best pot probability after each safety of the player's,
                    mean and median; null: none played)
 Noise (standard deviations; the same options as snooker selfplay):
-  --noise-heading-deg X   cue heading, degrees (default 0.02)
-  --noise-speed X         cue speed, fraction of the speed (default 0.01)
-  --noise-spin X          topspin and sidespin, rad/s (default 2)
+  --noise-aim-deg X       the cue's aim, degrees (default 0.02)
+  --noise-cue-speed X     the cue's speed, fraction of the speed (default 0.01)
+  --noise-tip-mm X        where the tip meets the ball, per axis, mm (default 0.1)
+  --noise-elevation-deg X the cue's elevation, degrees (default 0.1)
+  --squirt-uncertainty X  the model's squirt, give or take this fraction (default 0.15)
+  --throw-uncertainty X   the model's throw, give or take this fraction (default 0.10)
+                          (both the planner's belief only: the world played
+                          here is the model itself)
+  --noise-heading-deg X   more noise on the cue ball's heading after the strike,
+                          degrees (default 0)
+  --noise-speed X         more on its speed, fraction of the speed (default 0)
+  --noise-spin X          more on its topspin and sidespin, rad/s (default 0)
   --noise-position-mm X   vision, each ball centre per axis, mm (default 0.2)
 Robot:
-  --cue-clearance-m X     clear bed the level cue needs behind the cue ball, m (0.10)
+  --cue-clearance-m X     clear bed the cue needs behind the cue ball, m (0.10)
+  --max-elevation-deg X   the steepest the cue may be raised, degrees (default 25;
+                          0: always level)
 Planner:
   --max-simulations N    per-plan cap on simulations (default: from the budget); set,
                          the whole match is a function of the seed
@@ -139,6 +150,10 @@ void PrintJson(const Parsed& p, const planner::MatchReport& r, std::ostream& out
     << ", \"maxSimulations\": " << o.max_simulations
     << ", \"noiseHeadingDeg\": " << Number(physics::RadToDeg(o.noise.heading))
     << ", \"noiseSpeed\": " << Number(o.noise.speed_fraction) << ", \"noiseSpin\": " << Number(o.noise.topspin)
+    << ", \"noiseAimDeg\": " << Number(physics::RadToDeg(o.noise.aim))
+    << ", \"noiseCueSpeed\": " << Number(o.noise.cue_speed_fraction)
+    << ", \"noiseTipMm\": " << Number(o.noise.tip_offset * 1e3)
+    << ", \"noiseElevationDeg\": " << Number(physics::RadToDeg(o.noise.elevation))
     << ", \"noisePositionMm\": " << Number(o.noise.position * 1e3) << ", \"maxShots\": " << o.max_shots_per_frame
     << ", \"framesCapped\": " << r.frames_capped << ", \"framesUndecided\": " << r.frames_undecided
     << ", \"blackRespots\": " << r.black_respots << ", \"simulationFailures\": " << r.simulation_failures;

@@ -32,7 +32,9 @@ namespace {
 constexpr const char* kHelp = R"(usage: snooker plan --table T.json|builtin:NAME [--on RED|YELLOW|GREEN|BROWN|BLUE|PINK|BLACK|COLOUR]
                     [--budget-ms N] [--shots K] [--seed S] [--json] [--svg out.svg] [--stream]
                     [--vision-tolerance-mm MM]
-                    [--noise-heading-deg X] [--noise-speed X] [--noise-spin X]
+                    [--noise-aim-deg X] [--noise-cue-speed X] [--noise-tip-mm X]
+                    [--noise-elevation-deg X] [--squirt-uncertainty X] [--throw-uncertainty X]
+                    [--max-elevation-deg X] [--noise-heading-deg X] [--noise-speed X] [--noise-spin X]
                     [--noise-position-mm X] [--min-speed X] [--max-speed X]
                     [--max-topspin X] [--max-sidespin X] [--cue-clearance-m X] [--pot-only]
                     [--max-simulations N] [--samples N] [--cue-in-hand]
@@ -82,15 +84,24 @@ a pot with its route (direct, plant, double, kick).
                    or back first, each with a warning; more is an error (default 1
                    here, the server's own with --server; 0: no repair)
 Noise (standard deviations; the same options as snooker selfplay):
-  --noise-heading-deg X   cue heading, degrees (default 0.02)
-  --noise-speed X         cue speed, fraction of the speed (default 0.01)
-  --noise-spin X          topspin and sidespin, rad/s (default 2)
+  --noise-aim-deg X       the cue's aim, degrees (default 0.02)
+  --noise-cue-speed X     the cue's speed, fraction of the speed (default 0.01)
+  --noise-tip-mm X        where the tip meets the ball, per axis, mm (default 0.1)
+  --noise-elevation-deg X the cue's elevation, degrees (default 0.1)
+  --squirt-uncertainty X  the model's squirt, give or take this fraction (default 0.15)
+  --throw-uncertainty X   the model's throw, give or take this fraction (default 0.10)
+  --noise-heading-deg X   more noise on the cue ball's heading after the strike,
+                          degrees (default 0)
+  --noise-speed X         more on its speed, fraction of the speed (default 0)
+  --noise-spin X          more on its topspin and sidespin, rad/s (default 0)
   --noise-position-mm X   vision, each ball centre per axis, mm (default 0.2)
 Robot limits:
   --min-speed X, --max-speed X     cue-ball speed range, m/s (default 0.3 to 6)
-  --max-topspin X                  largest |topspin|, fraction of the rolling spin (1)
+  --max-topspin X                  largest |topspin|, fraction of the rolling spin (1.25)
   --max-sidespin X                 largest |sidespin|, fraction of the rolling spin (0.5)
-  --cue-clearance-m X              clear bed the level cue needs behind the cue ball, m (0.10)
+  --cue-clearance-m X              clear bed the cue needs behind the cue ball, m (0.10)
+  --max-elevation-deg X            the steepest the cue may be raised, degrees (25; 0:
+                                   always level)
 Planner:
   --pot-only             ignore the position left (the comparison of docs/planner.md)
   --max-simulations N    cap on simulations (default: from the budget)
@@ -244,12 +255,19 @@ void SetRequestFields(Args& args, v1::PlanRequest* req) {
     noise->set_sidespin_sigma(x);
   });
   number("noise-position-mm", [&](double x) { noise->set_position_sigma_mm(x); });
+  number("noise-aim-deg", [&](double x) { noise->set_aim_sigma_deg(x); });
+  number("noise-cue-speed", [&](double x) { noise->set_cue_speed_sigma_fraction(x); });
+  number("noise-tip-mm", [&](double x) { noise->set_tip_offset_sigma_mm(x); });
+  number("noise-elevation-deg", [&](double x) { noise->set_elevation_sigma_deg(x); });
+  number("squirt-uncertainty", [&](double x) { noise->set_squirt_sigma_fraction(x); });
+  number("throw-uncertainty", [&](double x) { noise->set_throw_sigma_fraction(x); });
   v1::RobotLimits* limits = req->mutable_limits();
   number("min-speed", [&](double x) { limits->set_min_speed(x); });
   number("max-speed", [&](double x) { limits->set_max_speed(x); });
   number("max-topspin", [&](double x) { limits->set_max_topspin_fraction(x); });
   number("max-sidespin", [&](double x) { limits->set_max_sidespin_fraction(x); });
   number("cue-clearance-m", [&](double x) { limits->set_cue_clearance_m(x); });
+  number("max-elevation-deg", [&](double x) { limits->set_max_elevation_deg(x); });
   if (args.Switch("pot-only")) req->set_position_play(false);
   if (args.Switch("cue-in-hand")) req->set_cue_in_hand(true);
 }
@@ -259,7 +277,9 @@ void SetRequestFields(Args& args, v1::PlanRequest* req) {
 std::optional<int> ParsePlanFlags(const std::vector<std::string>& argv, std::ostream& out,
                                   std::ostream& err, PlanSettings* s) {
   std::set<std::string> valued = {"table", "on", "budget-ms", "shots", "seed", "svg",
-                                  "noise-heading-deg", "noise-speed", "noise-spin",
+                                  "noise-heading-deg", "noise-speed", "noise-spin", "noise-aim-deg",
+                                  "noise-cue-speed", "noise-tip-mm", "noise-elevation-deg", "squirt-uncertainty",
+                                  "throw-uncertainty", "max-elevation-deg",
                                   "noise-position-mm", "min-speed", "max-speed", "max-topspin",
                                   "max-sidespin", "cue-clearance-m", "max-simulations", "samples",
                                   "vision-tolerance-mm"};

@@ -14,6 +14,13 @@ std::string ReadPlayFlags(Args& args, const PlayFlags& defaults, PlayFlags* out)
   const auto spin = args.Number("noise-spin", defaults.noise.topspin);
   const auto position = args.Number("noise-position-mm", defaults.noise.position * 1e3);
   const auto clearance = args.Number("cue-clearance-m", defaults.limits.cue.length);
+  const auto aim = args.Number("noise-aim-deg", physics::RadToDeg(defaults.noise.aim));
+  const auto cue_speed = args.Number("noise-cue-speed", defaults.noise.cue_speed_fraction);
+  const auto tip = args.Number("noise-tip-mm", defaults.noise.tip_offset * 1e3);
+  const auto elevation = args.Number("noise-elevation-deg", physics::RadToDeg(defaults.noise.elevation));
+  const auto squirt = args.Number("squirt-uncertainty", defaults.noise.squirt_fraction);
+  const auto throws = args.Number("throw-uncertainty", defaults.noise.throw_fraction);
+  const auto max_elevation = args.Number("max-elevation-deg", physics::RadToDeg(defaults.limits.cue.max_elevation));
   const auto sims = args.Integer("max-simulations", defaults.max_simulations, lim::kMaxSimulations.lo,
                                  lim::kMaxSimulations.hi);
   const auto samples = args.Integer("samples", defaults.monte_carlo_samples, lim::kMonteCarloSamples.lo,
@@ -31,7 +38,14 @@ std::string ReadPlayFlags(Args& args, const PlayFlags& defaults, PlayFlags* out)
         range("noise-heading-deg", *heading, 0, physics::RadToDeg(lim::kHeadingSigma.hi)),
         range("noise-speed", *speed, 0, lim::kSpeedSigmaFraction.hi), range("noise-spin", *spin, 0, lim::kSpinSigma.hi),
         range("noise-position-mm", *position, 0, lim::kPositionSigma.hi * 1e3),
-        range("cue-clearance-m", *clearance, 0, lim::kCueClearance.hi)}) {
+        range("cue-clearance-m", *clearance, 0, lim::kCueClearance.hi),
+        range("noise-aim-deg", *aim, 0, physics::RadToDeg(lim::kHeadingSigma.hi)),
+        range("noise-cue-speed", *cue_speed, 0, lim::kSpeedSigmaFraction.hi),
+        range("noise-tip-mm", *tip, 0, lim::kTipOffsetSigma.hi * 1e3),
+        range("noise-elevation-deg", *elevation, 0, physics::RadToDeg(lim::kElevationSigma.hi)),
+        range("squirt-uncertainty", *squirt, 0, lim::kModelUncertainty.hi),
+        range("throw-uncertainty", *throws, 0, lim::kModelUncertainty.hi),
+        range("max-elevation-deg", *max_elevation, 0, physics::RadToDeg(lim::kMaxElevation.hi))}) {
     if (!e.empty()) return e;
   }
   *out = defaults;
@@ -41,6 +55,13 @@ std::string ReadPlayFlags(Args& args, const PlayFlags& defaults, PlayFlags* out)
   out->noise.topspin = out->noise.sidespin = *spin;
   out->noise.position = *position * 1e-3;
   out->limits.cue.length = *clearance;
+  out->limits.cue.max_elevation = physics::DegToRad(*max_elevation);
+  out->noise.aim = physics::DegToRad(*aim);
+  out->noise.cue_speed_fraction = *cue_speed;
+  out->noise.tip_offset = *tip * 1e-3;
+  out->noise.elevation = physics::DegToRad(*elevation);
+  out->noise.squirt_fraction = *squirt;
+  out->noise.throw_fraction = *throws;
   out->max_simulations = *sims;
   out->monte_carlo_samples = static_cast<int>(*samples);
   out->threads = static_cast<int>(*threads);

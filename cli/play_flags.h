@@ -21,9 +21,10 @@ struct PlayFlags {
 };
 
 /// The flags' names, for Args.
-inline constexpr const char* kPlayFlagNames[] = {"budget-ms",         "noise-heading-deg", "noise-speed",
-                                                 "noise-spin",        "noise-position-mm", "cue-clearance-m",
-                                                 "max-simulations",   "samples",           "threads"};
+inline constexpr const char* kPlayFlagNames[] = {
+    "budget-ms",     "noise-heading-deg", "noise-speed",     "noise-spin",         "noise-position-mm",
+    "noise-aim-deg", "noise-cue-speed",   "noise-tip-mm",    "noise-elevation-deg", "squirt-uncertainty",
+    "throw-uncertainty", "cue-clearance-m", "max-elevation-deg", "max-simulations", "samples", "threads"};
 
 /// Reads the flags (each absent one keeps `defaults`' value) into `out`; empty, or
 /// the first error naming the flag and its value.

@@ -36,12 +36,23 @@ re-spotted while reds remain.
                    "planMsP50", "planMsP99", "frames", "shots"} (points, points, share
                    of attempted pots that dropped, ms, ms, count, count)
 Noise (standard deviations; the same options as snooker plan):
-  --noise-heading-deg X   cue heading, degrees (default 0.02)
-  --noise-speed X         cue speed, fraction of the speed (default 0.01)
-  --noise-spin X          topspin and sidespin, rad/s (default 2)
+  --noise-aim-deg X       the cue's aim, degrees (default 0.02)
+  --noise-cue-speed X     the cue's speed, fraction of the speed (default 0.01)
+  --noise-tip-mm X        where the tip meets the ball, per axis, mm (default 0.1)
+  --noise-elevation-deg X the cue's elevation, degrees (default 0.1)
+  --squirt-uncertainty X  the model's squirt, give or take this fraction (default 0.15)
+  --throw-uncertainty X   the model's throw, give or take this fraction (default 0.10)
+                          (both the planner's belief only: the world played
+                          here is the model itself)
+  --noise-heading-deg X   more noise on the cue ball's heading after the strike,
+                          degrees (default 0)
+  --noise-speed X         more on its speed, fraction of the speed (default 0)
+  --noise-spin X          more on its topspin and sidespin, rad/s (default 0)
   --noise-position-mm X   vision, each ball centre per axis, mm (default 0.2)
 Robot:
-  --cue-clearance-m X     clear bed the level cue needs behind the cue ball, m (0.10)
+  --cue-clearance-m X     clear bed the cue needs behind the cue ball, m (0.10)
+  --max-elevation-deg X   the steepest the cue may be raised, degrees (default 25;
+                          0: always level)
 Planner:
   --pot-only             ignore the position left
   --one-ply              estimate the next shot only (no lookahead search)

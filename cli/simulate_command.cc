@@ -23,7 +23,7 @@
 namespace snooker::cli {
 namespace {
 
-constexpr const char* kHelp = R"(usage: snooker simulate --table T.json --shot S.json [--json] [--svg out.svg]
+constexpr const char* kHelp = R"(usage: snooker simulate --table T.json (--shot S.json | --cue C.json) [--json] [--svg out.svg]
                         [--tolerance X] [--no-impact-tables] [--max-events N]
                         [--vision-tolerance-mm MM] [--server HOST:PORT [--tls-ca CA.pem] [--tls-cert C --tls-key K]
                         [--tls-server-name N] [--deadline-ms MS]]
@@ -45,6 +45,14 @@ ball centres in metres.
                    rolling = speed / 0.02625); sidespin rad/s, the z component of the
                    spin: positive is counter-clockwise seen from above, what a tip
                    striking right of centre imparts (as the robot looks along the shot)
+  --cue C.json     instead of --shot, the stroke in the robot's terms, struck with the
+                   model's cue (GetModel's CueModel; a plan's "cue" block is one):
+                   {"speed": 1.1, "headingDeg": 90, "tipSide": 0, "tipHeight": 0.3,
+                   "elevationDeg": 0}: the cue's speed m/s; its direction, degrees
+                   counter-clockwise from +x; where the tip meets the ball, fractions
+                   of the radius, right and up as the robot looks along the cue; the
+                   cue's angle above the bed, degrees. A miscue (an offset beyond the
+                   tip's limit, 0.51) or a strike that would make the ball hop is an error
   --json           print the result as JSON: {"status", "durationS", "events": [{"time"
                    s, "kind", "balls", "cushion", "pocket", "motion"}], "finalBalls":
                    [{"id", "kind", "position", "pocketed", "pocket"}]}
@@ -111,7 +119,7 @@ void PrintReadable(const v1::SimulateResponse& r, std::ostream& out) {
 }  // namespace
 
 int RunSimulate(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
-  std::set<std::string> valued = {"table", "shot", "svg", "tolerance", "max-events",
+  std::set<std::string> valued = {"table", "shot", "cue", "svg", "tolerance", "max-events",
                                   "vision-tolerance-mm"};
   for (const std::string& flag : ClientFlags()) valued.insert(flag);
   Args args(argv, valued, {"json", "help", "no-impact-tables"});
@@ -120,7 +128,8 @@ int RunSimulate(const std::vector<std::string>& argv, std::ostream& out, std::os
     return kExitOk;
   }
   const auto table_path = args.Text("table", std::nullopt);
-  const auto shot_path = args.Text("shot", std::nullopt);
+  const bool by_cue = args.Has("cue") && !args.Has("shot");
+  const auto shot_path = args.Text(by_cue ? "cue" : "shot", std::nullopt);
   v1::SimulateRequest req;
   if (args.Has("tolerance")) {
     if (const auto t = args.Number("tolerance", std::nullopt)) req.mutable_options()->set_tolerance(*t);
@@ -145,7 +154,14 @@ int RunSimulate(const std::vector<std::string>& argv, std::ostream& out, std::os
     return kExitUsage;
   }
   if (const int rc = ReadJson(*table_path, req.mutable_table(), err); rc != kExitOk) return rc;
-  if (const int rc = ReadJson(*shot_path, req.mutable_shot(), err); rc != kExitOk) return rc;
+  if (args.Has("cue") && args.Has("shot")) {
+    err << "snooker simulate: give --shot or --cue, not both\n";
+    return kExitUsage;
+  }
+  if (const int rc = by_cue ? ReadJson(*shot_path, req.mutable_cue(), err) : ReadJson(*shot_path, req.mutable_shot(), err);
+      rc != kExitOk) {
+    return rc;
+  }
   const auto svg_path = args.Text("svg", "");
   req.mutable_options()->set_include_paths(!svg_path->empty());
   v1::SimulateResponse resp;

@@ -39,7 +39,7 @@ TEST(CliMatchTest, JsonHasTheContractedNames) {
                                           "planMsP50",  "planMsP99"};
   const std::set<std::string> more = {
       "playerA",      "playerB",       "seed",           "budgetMs",          "maxSimulations",
-      "noiseHeadingDeg", "noiseSpeed", "noiseSpin",      "noisePositionMm",   "maxShots",
+      "noiseHeadingDeg", "noiseSpeed", "noiseSpin", "noiseAimDeg", "noiseCueSpeed", "noiseTipMm", "noiseElevationDeg", "noisePositionMm",   "maxShots",
       "framesCapped", "framesUndecided", "blackRespots", "simulationFailures", "highestBreakA",
       "highestBreakB", "centuriesA",   "centuriesB",     "penaltyPointsA",    "penaltyPointsB",
       "shotsA",       "shotsB",        "stallsA",        "stallsB",           "planMsP50A",
