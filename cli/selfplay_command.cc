@@ -40,10 +40,10 @@ Noise (standard deviations; the same options as snooker plan):
   --noise-cue-speed X     the cue's speed, fraction of the speed (default 0.01)
   --noise-tip-mm X        where the tip meets the ball, per axis, mm (default 0.1)
   --noise-elevation-deg X the cue's elevation, degrees (default 0.1)
-  --squirt-uncertainty X  the model's squirt, give or take this fraction (default 0.15)
-  --throw-uncertainty X   the model's throw, give or take this fraction (default 0.10)
-                          (both the planner's belief only: the world played
-                          here is the model itself)
+  --squirt-uncertainty X  the model's squirt, give or take this fraction, as the
+  --throw-uncertainty X   planner believes it (default 0 each here: the world played
+                          is the model itself; snooker plan's 0.15 and 0.10 model a
+                          real table)
   --noise-heading-deg X   more noise on the cue ball's heading after the strike,
                           degrees (default 0)
   --noise-speed X         more on its speed, fraction of the speed (default 0)

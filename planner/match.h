@@ -59,7 +59,8 @@ struct MatchOptions {
   std::array<PlayerKind, 2> players{PlayerKind::kDefault, PlayerKind::kDirectPots};
   /// Planning budget per shot, s (both players).
   double time_budget = 0.08;
-  NoiseModel noise;
+  /// The world is the model: the cue's noise, no model uncertainty (ModelWorldNoise).
+  NoiseModel noise = ModelWorldNoise();
   RobotLimits limits;
   int threads = 2;
   /// Per-plan simulation cap (0: from the budget).

@@ -60,6 +60,16 @@ struct NoiseModel {
   double position = 0.2e-3;
 };
 
+/// NoiseModel's defaults for a simulated world that is the model itself (self-play,
+/// matches): the cue's noise, and no model uncertainty (the planner is told the
+/// truth: there, squirt and throw are exactly the model's).
+inline NoiseModel ModelWorldNoise() {
+  NoiseModel n;
+  n.squirt_fraction = 0;
+  n.throw_fraction = 0;
+  return n;
+}
+
 /// The noise of the cue ball just after the strike, in the terms of the fast
 /// estimates (heading, speed, topspin, sidespin): `noise`'s own terms plus what the
 /// cue's noise gives a centre-ball strike at `speed` (m/s): the aim and the squirt

@@ -29,7 +29,8 @@ struct SelfPlayOptions {
   std::uint64_t seed = 1;
   /// Planning budget per shot, s.
   double time_budget = 0.08;
-  NoiseModel noise;
+  /// The world is the model: the cue's noise, no model uncertainty (ModelWorldNoise).
+  NoiseModel noise = ModelWorldNoise();
   RobotLimits limits;
   bool position_play = true;
   /// Search the next shot of the best pots (two-ply); false: estimate it only.

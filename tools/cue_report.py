@@ -1,0 +1,107 @@
+#!/usr/bin/env python3
+"""Writes docs/cue.md: the cue strike against Alciatore's proofs, squirt and swerve
+tables, the planner against a cushion (tools/cue_report), the planner's side usage on
+seeded tables (snooker plan --json, now and, when a binary of the level-cue planner
+is given, before) and self-play with the robot's cue.
+
+usage: cue_report.py TOOL SNOOKER DATA_DIR OUT_MD COMMAND COMMIT [BEFORE_SNOOKER]
+Environment: TABLES (default 120), SELFPLAY_FRAMES (default 0: keep the saved run).
+"""
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+from report_machine import machine
+
+R = 0.02625
+
+
+def run(args):
+    return subprocess.run(args, check=True, capture_output=True, text=True).stdout
+
+
+def side_usage(snooker, tables, level_cue):
+    rows = []
+    for k, path in enumerate(tables):
+        out = json.loads(run([snooker, "plan", "--table", path, "--json", "--shots", "1", "--seed", "1",
+                              "--budget-ms", "60000", "--max-simulations", "2400"]))
+        if not out["shots"]:
+            continue
+        s = out["shots"][0]
+        if s.get("kind", "POT") != "POT":
+            continue
+        if level_cue:  # the level cue of the ball-terms planner: w R / v = 5/2 b
+            side = s["sidespin"] * R / (2.5 * s["speed"]) if s["speed"] > 0 else 0.0
+            height, elevation = s["topspin"] * R / (2.5 * s["speed"]) if s["speed"] > 0 else 0.0, 0.0
+        else:
+            side, height, elevation = s["cue"]["tipSide"], s["cue"]["tipHeight"], s["cue"]["elevationDeg"]
+        rows.append({"table": k, "cutDeg": s["cutDeg"], "tipSide": side, "tipHeight": height,
+                     "elevationDeg": elevation, "positionValue": s["positionValue"],
+                     "potProbability": s["potProbability"], "nextBall": s["nextBall"]})
+    return rows
+
+
+def quantiles(xs):
+    if not xs:
+        return "-", "-", "-"
+    xs = sorted(xs)
+    q = lambda p: xs[min(len(xs) - 1, int(p * len(xs)))]
+    return f"{statistics.median(xs):.3f}", f"{q(0.9):.3f}", f"{xs[-1]:.3f}"
+
+
+def usage_rows(name, rows):
+    straight = [abs(r["tipSide"]) for r in rows if abs(r["cutDeg"]) < 5]
+    every = [abs(r["tipSide"]) for r in rows]
+    big = sum(1 for x in every if x >= 0.45 * 0.2)
+    out = []
+    for label, xs in (("cut under 5 deg", straight), ("every pot", every)):
+        m, p90, mx = quantiles(xs)
+        out.append(f"| {name} | {label} | {len(xs)} | {m} | {p90} | {mx} |")
+    return out, big, len(every)
+
+
+def main():
+    tool, snooker, data, out_md, command, commit = sys.argv[1:7]
+    before = sys.argv[7] if len(sys.argv) > 7 else ""
+    n = int(os.environ.get("TABLES", "120"))
+    frames = int(os.environ.get("SELFPLAY_FRAMES", "0"))
+    strike = run([tool, "strike"])
+    cushion = run([tool, "cushion"])
+    with tempfile.TemporaryDirectory() as tmp:
+        run([tool, "tables", tmp, str(n), "1"])
+        tables = [os.path.join(tmp, f"table-{k}.json") for k in range(n)]
+        after = side_usage(snooker, tables, False)
+        json.dump(after, open(os.path.join(data, "cue-side-after.json"), "w"), indent=1)
+        if before:
+            json.dump(side_usage(before, tables, True), open(os.path.join(data, "cue-side-before.json"), "w"), indent=1)
+    before_rows = json.load(open(os.path.join(data, "cue-side-before.json")))
+    if frames > 0:
+        sp = run([snooker, "selfplay", "--frames", str(frames), "--seed", "1", "--budget-ms", "80",
+                  "--noise-position-mm", "0.2", "--json"])
+        open(os.path.join(data, "cue-selfplay.json"), "w").write(sp)
+    sp_after = json.load(open(os.path.join(data, "cue-selfplay.json")))
+    sp_before = json.load(open(os.path.join(data, "frame-play-selfplay.json")))
+
+    lines_before, big_b, all_b = usage_rows("before: level cue, cue-ball noise", before_rows)
+    lines_after, big_a, all_a = usage_rows("now: the robot's cue and its noise", after)
+    straight_side = [r for r in after if abs(r["cutDeg"]) < 5 and abs(r["tipSide"]) > 0.1]
+    text = open(os.path.join(os.path.dirname(__file__), "cue_report_text.md")).read()
+    doc = text.format(
+        command=command, commit=commit, strike=strike.strip(), cushion=cushion.strip(), tables=n,
+        usage="\n".join(lines_before + lines_after), big_before=big_b, all_before=all_b, big_after=big_a,
+        all_after=all_a,
+        straight_side="\n".join(
+            f"| {r['table']} | {r['cutDeg']:.1f} | {r['tipSide']:.3f} | {r['tipHeight']:.3f} | {r['positionValue']:.2f} |"
+            for r in straight_side) or "| - | - | - | - | - |",
+        sp_frames_b=sp_before["frames"], sp_break_b=sp_before["meanBreak"], sp_rate_b=100 * sp_before["potRate"],
+        sp_frames_a=sp_after["frames"], sp_break_a=sp_after["meanBreak"], sp_rate_a=100 * sp_after["potRate"],
+        sp_p50_a=sp_after["planMsP50"], sp_p99_a=sp_after["planMsP99"],
+        sp_p50_b=sp_before["planMsP50"], sp_p99_b=sp_before["planMsP99"], machine=machine())
+    open(out_md, "w").write(doc)
+
+
+if __name__ == "__main__":
+    main()
