@@ -611,6 +611,19 @@ void ModelToProto(const physics::SimParams& sim, const physics::TableModel& tabl
   c->set_miscue_limit(physics::MiscueLimit(cue));
   c->set_squirt_at_045_deg(physics::RadToDeg(physics::SquirtAngle(0.45, cue, sim.ball)));
   c->set_centre_speed_ratio(physics::Strike(physics::CueStrike{1, 0, 0, 0, 0}, cue, sim.ball, sim.cloth.g).shot.speed);
+  auto& sources = *c->mutable_sources();
+  sources["mass_kg"] = "a 19 oz snooker cue (17-19 oz are usual)";
+  sources["tip_radius_m"] = "a dime-shaped dome on a 9.5 mm tip";
+  sources["tip_restitution"] = "leather tips on playing cues, 0.71-0.75 measured (Alciatore)";
+  sources["tip_friction"] = "a chalked tip: miscues beyond about half the radius (Alciatore)";
+  sources["end_mass_kg"] =
+      "a snooker shaft: TP A.31's squirt at 0.45 R between TP B.1's measured 1.8 deg (low-deflection) and 2.5 "
+      "deg (standard)";
+  sources["bed_restitution"] = "a ball's bounce on slate and cloth, an estimate used only for the hop limit";
+  sources["max_hop_m"] = "the model has no flight: under a tenth of the radius";
+  sources["miscue_limit"] = "sin(atan(tip_friction))";
+  sources["squirt_at_045_deg"] = "TP A.31 at the end mass";
+  sources["centre_speed_ratio"] = "TP A.30 with the tip's restitution: (1 + e) / (1 + m / M)";
   v1::SimulationDefaults* d = response->mutable_simulation();
   d->set_max_events(sim.max_events);
   d->set_max_time_s(sim.max_time);

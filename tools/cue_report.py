@@ -79,10 +79,15 @@ def main():
             json.dump(side_usage(before, tables, True), open(os.path.join(data, "cue-side-before.json"), "w"), indent=1)
     before_rows = json.load(open(os.path.join(data, "cue-side-before.json")))
     if frames > 0:
-        sp = run([snooker, "selfplay", "--frames", str(frames), "--seed", "1", "--budget-ms", "80",
-                  "--noise-position-mm", "0.2", "--json"])
-        open(os.path.join(data, "cue-selfplay.json"), "w").write(sp)
+        base = [snooker, "selfplay", "--frames", str(frames), "--seed", "1", "--budget-ms", "80",
+                "--noise-position-mm", "0.2", "--json"]
+        open(os.path.join(data, "cue-selfplay.json"), "w").write(run(base))
+        # The cue's noise at the level-cue planner's heading noise: aim 0.014 deg and
+        # 0.07 mm of tip placement (0.014 deg of squirt) make 0.020 deg together.
+        open(os.path.join(data, "cue-selfplay-equal-heading.json"), "w").write(
+            run(base + ["--noise-aim-deg", "0.014", "--noise-tip-mm", "0.07"]))
     sp_after = json.load(open(os.path.join(data, "cue-selfplay.json")))
+    sp_equal = json.load(open(os.path.join(data, "cue-selfplay-equal-heading.json")))
     sp_before = json.load(open(os.path.join(data, "frame-play-selfplay.json")))
 
     lines_before, big_b, all_b = usage_rows("before: level cue, cue-ball noise", before_rows)
@@ -99,6 +104,8 @@ def main():
         sp_frames_b=sp_before["frames"], sp_break_b=sp_before["meanBreak"], sp_rate_b=100 * sp_before["potRate"],
         sp_frames_a=sp_after["frames"], sp_break_a=sp_after["meanBreak"], sp_rate_a=100 * sp_after["potRate"],
         sp_p50_a=sp_after["planMsP50"], sp_p99_a=sp_after["planMsP99"],
+        sp_frames_e=sp_equal["frames"], sp_break_e=sp_equal["meanBreak"], sp_rate_e=100 * sp_equal["potRate"],
+        sp_p50_e=sp_equal["planMsP50"], sp_p99_e=sp_equal["planMsP99"],
         sp_p50_b=sp_before["planMsP50"], sp_p99_b=sp_before["planMsP99"], machine=machine())
     open(out_md, "w").write(doc)
 

@@ -124,6 +124,43 @@ TEST(CueStrikeApiTest, ACueBallAgainstACushionIsPlayedWithARaisedCue) {
   }
 }
 
+// A ball 1 cm behind the cue ball, on the line of a straight pot into the right
+// middle pocket: the cue is raised over it.
+TEST(CueStrikeApiTest, ABallCloseBehindIsClearedWithARaisedCue) {
+  const double y = Table().pocket(physics::PocketId::kMiddleRight).mouth_centre.y();
+  const double r = physics::BallParams{}.radius;
+  v1::PlanRequest req = PlanOn({{"cue", v1::CUE, 0.5, y}, {"red-1", v1::RED, 1.2, y},
+                                {"yellow", v1::YELLOW, 0.5 - 2 * r - 0.01, y}});
+  req.set_max_simulations(20000);
+  req.set_ball_on(v1::BALL_ON_RED);
+  v1::PlanResponse resp;
+  ASSERT_TRUE(Plan(req, &resp).ok());
+  ASSERT_GT(resp.shots_size(), 0) << resp.reason();
+  bool raised_pot = false;
+  for (const v1::PlannedShot& s : resp.shots()) {
+    if (s.kind() != v1::POT || s.pocket() != "middle-right" || s.route() != v1::DIRECT) continue;
+    EXPECT_GT(s.cue().elevation_deg(), 0);
+    EXPECT_EQ(SimulateWith(req, s, true).pocketed, std::vector<std::string>{"red-1@middle-right"});
+    raised_pot = true;
+  }
+  EXPECT_TRUE(raised_pot) << resp.shots(0).ShortDebugString().substr(0, 300);
+}
+
+TEST(CueStrikeApiTest, GetModelReportsTheCueWithItsSources) {
+  v1::GetModelResponse m;
+  ASSERT_TRUE(GetModel(v1::GetModelRequest{}, &m, CallLimits{}).ok());
+  EXPECT_NEAR(m.cue().squirt_at_045_deg(), 2.18, 0.01);
+  EXPECT_GE(m.cue().squirt_at_045_deg(), 1.8);
+  EXPECT_LE(m.cue().squirt_at_045_deg(), 2.5);
+  EXPECT_NEAR(m.cue().miscue_limit(), 0.514, 1e-3);
+  EXPECT_NEAR(m.cue().centre_speed_ratio(), (1 + m.cue().tip_restitution()) / (1 + m.ball().mass_kg() / m.cue().mass_kg()),
+              1e-12);
+  for (const char* field : {"mass_kg", "tip_radius_m", "tip_restitution", "tip_friction", "end_mass_kg",
+                            "bed_restitution", "max_hop_m", "miscue_limit", "squirt_at_045_deg", "centre_speed_ratio"}) {
+    EXPECT_FALSE(m.cue().sources().at(field).empty()) << field;
+  }
+}
+
 TEST(CueStrikeApiTest, AMiscueOrAHopIsRefusedNamingIt) {
   v1::SimulateRequest r;
   testing_requests::AddBall(&r, "cue", v1::CUE, 0.9, 1.0);
