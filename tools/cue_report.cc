@@ -119,8 +119,8 @@ void CushionCases() {
   const physics::TableModel& table = physics::DefaultTable();
   const double c = table.cushion_contact_distance();
   const double y = table.pocket(physics::PocketId::kMiddleRight).mouth_centre.y();
-  std::printf("| cue ball | red | best shot | P(pot) | cue elevation, deg | tip height | "
-              "level cue only: best shot | P(pot) |\n|---|---|---|---:|---:|---:|---|---:|\n");
+  std::printf("| cue ball | red | best shot | best pot offered: P(pot) | its cue elevation, deg | its tip height | "
+              "level cue only: best shot | best pot offered: P(pot) |\n|---|---|---|---:|---:|---:|---|---:|\n");
   for (double gap : {0.0, 0.02, 0.05}) {
     for (double dy : {0.0, -0.13, 0.25}) {
       PlanRequest r;
@@ -128,7 +128,13 @@ void CushionCases() {
       r.time_budget = 10;
       r.max_simulations = 20000;
       r.seed = 1;
-      r.max_shots = 1;
+      r.max_shots = 5;
+      auto best_pot = [](const PlanAnswer& a) -> const PlannedShot* {
+        for (const PlannedShot& s : a.shots) {
+          if (s.kind == ShotKind::kPot) return &s;
+        }
+        return nullptr;
+      };
       auto describe = [](const PlanAnswer& a) {
         if (a.shots.empty()) return std::string("none");
         const PlannedShot& s = a.shots.front();
@@ -139,12 +145,18 @@ void CushionCases() {
       const PlanAnswer raised = Planner::Default().Plan(r);
       r.limits.cue.max_elevation = 0;
       const PlanAnswer level = Planner::Default().Plan(r);
-      const PlannedShot* s = raised.shots.empty() ? nullptr : &raised.shots.front();
-      std::printf("| %s | (0.9, %+.2f from the pocket's line) | %s | %.2f | %.0f | %.2f | %s | %.2f |\n",
+      const PlannedShot* pot = best_pot(raised);
+      const PlannedShot* level_pot = best_pot(level);
+      char p[32] = "none", e[32] = "-", h[32] = "-", lp[32] = "none";
+      if (pot != nullptr) {
+        std::snprintf(p, sizeof p, "%.2f", pot->pot_probability);
+        std::snprintf(e, sizeof e, "%.0f", physics::RadToDeg(pot->cue.elevation));
+        std::snprintf(h, sizeof h, "%.2f", pot->cue.height);
+      }
+      if (level_pot != nullptr) std::snprintf(lp, sizeof lp, "%.2f", level_pot->pot_probability);
+      std::printf("| %s | (0.9, %+.2f from the pocket's line) | %s | %s | %s | %s | %s | %s |\n",
                   gap == 0 ? "frozen to the left cushion" : (std::to_string(static_cast<int>(gap * 100)) + " cm off it").c_str(),
-                  dy, describe(raised).c_str(), s ? s->pot_probability : 0.0,
-                  s ? physics::RadToDeg(s->cue.elevation) : 0.0, s ? s->cue.height : 0.0, describe(level).c_str(),
-                  level.shots.empty() ? 0.0 : level.shots.front().pot_probability);
+                  dy, describe(raised).c_str(), p, e, h, describe(level).c_str(), lp);
     }
   }
 }
