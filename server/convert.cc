@@ -355,7 +355,7 @@ std::optional<physics::Shot> ShotFromCue(const v1::CueStrike& cue, std::vector<F
   const physics::CueStrike k{cue.speed(), physics::DegToRad(NormalizedHeadingDeg(cue.heading_deg())), cue.tip_side(),
                              cue.tip_height(), physics::DegToRad(cue.elevation_deg())};
   const physics::StrikeResult res = physics::Strike(k, model, sim.ball, sim.cloth.g);
-  if (res.status == physics::StrikeStatus::kMiscue) {
+  if (res.status == physics::StrikeStatus::kMiscue || res.status == physics::StrikeStatus::kInvalid) {
     errors->push_back({"cue", "tip offset " + FormatNumber(std::hypot(cue.tip_side(), cue.tip_height())),
                        "a miscue: beyond the tip's limit of " + FormatNumber(physics::MiscueLimit(model)) + " of R"});
     return std::nullopt;

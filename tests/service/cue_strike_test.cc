@@ -170,7 +170,13 @@ TEST(CueStrikeApiTest, AMiscueOrAHopIsRefusedNamingIt) {
   ApiStatus st = Simulate(r, &resp);
   EXPECT_FALSE(st.ok());
   EXPECT_NE(st.message.find("miscue"), std::string::npos) << st.message;
+  r.mutable_cue()->set_tip_side(0.8);
+  r.mutable_cue()->set_tip_height(0.8);  // off the ball altogether
+  st = Simulate(r, &resp);
+  EXPECT_FALSE(st.ok());
+  EXPECT_NE(st.message.find("miscue"), std::string::npos) << st.message;
   r.mutable_cue()->set_tip_side(0);
+  r.mutable_cue()->set_tip_height(0);
   r.mutable_cue()->set_speed(4.0);
   r.mutable_cue()->set_elevation_deg(30);
   st = Simulate(r, &resp);
