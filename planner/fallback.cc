@@ -77,8 +77,10 @@ std::optional<FallbackShot> FindLegalStroke(const TableState& table, int cue, Ba
           })) {
         continue;
       }
-      // Level and central where the cue clears, else raised, the tip high.
-      const auto elevation = CueElevation(table, cue, aim.heading, kMaxTipOffset, lim.cue, *ctx.table);
+      // Level and central where the cue clears, else raised, the tip as high as the
+      // request's topspin limit allows.
+      const double high = std::min(kMaxTipOffset, lim.max_topspin_fraction / 2.5);
+      const auto elevation = CueElevation(table, cue, aim.heading, high, lim.cue, *ctx.table);
       if (!elevation) continue;
       for (const double v : {options.soft, options.firm}) {
         if (simulations >= options.max_simulations || interrupt.Due()) {
@@ -90,12 +92,21 @@ std::optional<FallbackShot> FindLegalStroke(const TableState& table, int cue, Ba
         physics::CueStrike k;
         k.heading = aim.heading;
         k.elevation = *elevation;
-        k.height = *elevation > 0 ? kMaxTipOffset : 0.0;
+        k.height = *elevation > 0 ? high : 0.0;
         k.speed = std::clamp(v, lim.min_speed, lim.max_speed) *
                   (1 + ball_params.mass / cue_params.mass + 2.5 * k.height * k.height) / (1 + cue_params.tip_restitution);
-        const physics::StrikeResult struck = physics::Strike(k, cue_params, ball_params, sim.params().cloth.g);
-        if (struck.status != physics::StrikeStatus::kOk) continue;
+        physics::StrikeResult struck = physics::Strike(k, cue_params, ball_params, sim.params().cloth.g);
+        if (struck.status == physics::StrikeStatus::kHop) {
+          // Raised, the fastest stroke that keeps the ball on the bed (the hop goes as v^2).
+          k.speed *= 0.98 * std::sqrt(cue_params.max_hop / struck.hop);
+          struck = physics::Strike(k, cue_params, ball_params, sim.params().cloth.g);
+        }
         const physics::Shot& shot = struck.shot;
+        const double rolling = shot.speed / ball_params.radius;
+        if (struck.status != physics::StrikeStatus::kOk || std::abs(shot.topspin) > lim.max_topspin_fraction * rolling ||
+            shot.speed < lim.min_speed || shot.speed > lim.max_speed) {
+          continue;  // a raised cue spins the ball more per unit of speed
+        }
         const ShotSetup setup{&table, cue, ball, physics::PocketId::kBaulkLeft, on, ShotKind::kSafety, -1,
                               TouchingBallOn(table, on, *ctx.table)};
         ++simulations;
