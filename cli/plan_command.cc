@@ -148,7 +148,10 @@ void PrintReadable(const v1::PlanResponse& r, std::ostream& out) {
     out << "    shot: speed " << std::setprecision(4) << s.speed() << " m/s, heading "
         << s.heading_deg() << " deg, topspin " << std::setprecision(2) << s.topspin()
         << " rad/s, sidespin " << s.sidespin() << " rad/s; cut " << std::setprecision(3)
-        << s.cut_deg() << " deg\n    cue ball stops at (" << std::setprecision(3)
+        << s.cut_deg() << " deg\n    cue: speed " << std::setprecision(4) << s.cue().speed() << " m/s, heading "
+        << s.cue().heading_deg() << " deg, tip " << std::setprecision(2) << s.cue().tip_side() << " R right, "
+        << s.cue().tip_height() << " R up, elevation " << std::setprecision(1) << s.cue().elevation_deg()
+        << " deg\n    cue ball stops at (" << std::setprecision(3)
         << s.cue_ball_end().x() << ", " << s.cue_ball_end().y() << ") m; " << s.events_size()
         << " events\n";
   }
