@@ -95,6 +95,16 @@ def main():
         # 0.07 mm of tip placement (0.014 deg of squirt) make 0.020 deg together.
         open(os.path.join(data, "cue-selfplay-equal-heading.json"), "w").write(
             run(base + ["--noise-aim-deg", "0.014", "--noise-tip-mm", "0.07"]))
+    match_frames = int(os.environ.get("MATCH_FRAMES", "0"))
+    if match_frames > 0:
+        # The stall count's match at the frame-play reference noise (on the cue ball
+        # alone, the cue's own noise 0), with the robot's cue.
+        open(os.path.join(data, "cue-match-direct-pots.json"), "w").write(run(
+            [snooker, "match", "--frames", str(match_frames), "--seed", "1", "--player-a", "default",
+             "--player-b", "direct-pots", "--budget-ms", "80", "--noise-heading-deg", "0.02", "--noise-speed",
+             "0.01", "--noise-spin", "2", "--noise-aim-deg", "0", "--noise-cue-speed", "0", "--noise-tip-mm", "0",
+             "--noise-elevation-deg", "0", "--noise-position-mm", "0.2", "--json"]))
+    m = json.load(open(os.path.join(data, "cue-match-direct-pots.json")))
     sp_after = json.load(open(os.path.join(data, "cue-selfplay.json")))
     sp_equal = json.load(open(os.path.join(data, "cue-selfplay-equal-heading.json")))
     sp_before = json.load(open(os.path.join(data, "frame-play-selfplay.json")))
@@ -115,6 +125,9 @@ def main():
         command=command, commit=commit, strike=strike.strip(), cushion=cushion.strip(), tables=n,
         usage="\n".join(lines_before + lines_after), big_before=big_b, all_before=all_b, big_after=big_a,
         all_after=all_a, verdict=verdict,
+        m_frames=m["frames"], m_won=m["framesWonA"], m_lost=m["framesWonB"], m_stalls=m["stallsA"],
+        m_stalls_b=m["stallsB"], m_fouls=m["foulsA"], m_shots=m["shotsA"], m_break=m["meanBreakA"],
+        m_break_b=m["meanBreakB"], m_p50=m["planMsP50A"], m_p99=m["planMsP99A"],
         straight_side="\n".join(
             f"| {r['table']} | {r['cutDeg']:.1f} | {r['tipSide']:.3f} | {r['tipHeight']:.3f} | "
             f"{r['potProbability']:.2f} | {r['positionValue']:.2f} | {r['capped']['kind']} | "
