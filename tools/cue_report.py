@@ -105,6 +105,13 @@ def main():
              "0.01", "--noise-spin", "2", "--noise-aim-deg", "0", "--noise-cue-speed", "0", "--noise-tip-mm", "0",
              "--noise-elevation-deg", "0", "--noise-position-mm", "0.2", "--json"]))
     m = json.load(open(os.path.join(data, "cue-match-direct-pots.json")))
+    if frames > 0:
+        # At docs/frame-play.md's reference noise, on the cue ball alone.
+        open(os.path.join(data, "cue-selfplay-reference-noise.json"), "w").write(run(
+            base + ["--noise-heading-deg", "0.02", "--noise-speed", "0.01", "--noise-spin", "2",
+                    "--noise-aim-deg", "0", "--noise-cue-speed", "0", "--noise-tip-mm", "0",
+                    "--noise-elevation-deg", "0"]))
+    sp_ref = json.load(open(os.path.join(data, "cue-selfplay-reference-noise.json")))
     sp_after = json.load(open(os.path.join(data, "cue-selfplay.json")))
     sp_equal = json.load(open(os.path.join(data, "cue-selfplay-equal-heading.json")))
     sp_before = json.load(open(os.path.join(data, "frame-play-selfplay.json")))
@@ -136,6 +143,8 @@ def main():
         sp_frames_b=sp_before["frames"], sp_break_b=sp_before["meanBreak"], sp_rate_b=100 * sp_before["potRate"],
         sp_frames_a=sp_after["frames"], sp_break_a=sp_after["meanBreak"], sp_rate_a=100 * sp_after["potRate"],
         sp_p50_a=sp_after["planMsP50"], sp_p99_a=sp_after["planMsP99"],
+        sp_frames_r=sp_ref["frames"], sp_break_r=sp_ref["meanBreak"], sp_rate_r=100 * sp_ref["potRate"],
+        sp_p50_r=sp_ref["planMsP50"], sp_p99_r=sp_ref["planMsP99"],
         sp_frames_e=sp_equal["frames"], sp_break_e=sp_equal["meanBreak"], sp_rate_e=100 * sp_equal["potRate"],
         sp_p50_e=sp_equal["planMsP50"], sp_p99_e=sp_equal["planMsP99"],
         sp_p50_b=sp_before["planMsP50"], sp_p99_b=sp_before["planMsP99"], machine=machine())
