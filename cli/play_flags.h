@@ -26,6 +26,26 @@ inline constexpr const char* kPlayFlagNames[] = {
     "noise-aim-deg", "noise-cue-speed",   "noise-tip-mm",    "noise-elevation-deg", "squirt-uncertainty",
     "throw-uncertainty", "cue-clearance-m", "max-elevation-deg", "max-simulations", "samples", "threads"};
 
+/// The help lines of the noise and robot flags, after each command's "Noise" line.
+inline constexpr const char* kPlayFlagsHelp = R"(  --noise-aim-deg X       the cue's aim, degrees (default 0.02)
+  --noise-cue-speed X     the cue's speed, fraction of the speed (default 0.01)
+  --noise-tip-mm X        where the tip meets the ball, per axis, mm (default 0.1)
+  --noise-elevation-deg X the cue's elevation, degrees (default 0.1)
+  --squirt-uncertainty X  the model's squirt, give or take this fraction, as the
+  --throw-uncertainty X   planner believes it (default 0 each here: the world played
+                          is the model itself; snooker plan's 0.15 and 0.10 model a
+                          real table)
+  --noise-heading-deg X   more noise on the cue ball's heading after the strike,
+                          degrees (default 0)
+  --noise-speed X         more on its speed, fraction of the speed (default 0)
+  --noise-spin X          more on its topspin and sidespin, rad/s (default 0)
+  --noise-position-mm X   vision, each ball centre per axis, mm (default 0.2)
+Robot:
+  --cue-clearance-m X     clear bed the cue needs behind the cue ball, m (0.10)
+  --max-elevation-deg X   the steepest the cue may be raised, degrees (default 25;
+                          0: always level)
+)";
+
 /// Reads the flags (each absent one keeps `defaults`' value) into `out`; empty, or
 /// the first error naming the flag and its value.
 std::string ReadPlayFlags(Args& args, const PlayFlags& defaults, PlayFlags* out);

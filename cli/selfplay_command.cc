@@ -16,7 +16,7 @@
 namespace snooker::cli {
 namespace {
 
-constexpr const char* kHelp = R"(usage: snooker selfplay --frames N --seed S [--budget-ms N] [--json]
+constexpr const char* kHelpHead = R"(usage: snooker selfplay --frames N --seed S [--budget-ms N] [--json]
                         [--noise-heading-deg X] [--noise-speed X] [--noise-spin X]
                         [--noise-position-mm X] [--cue-clearance-m X] [--pot-only] [--one-ply] [--max-simulations N]
                         [--samples N] [--threads N] [--progress] [--records out.jsonl]
@@ -36,24 +36,8 @@ re-spotted while reds remain.
                    "planMsP50", "planMsP99", "frames", "shots"} (points, points, share
                    of attempted pots that dropped, ms, ms, count, count)
 Noise (standard deviations; the same options as snooker plan):
-  --noise-aim-deg X       the cue's aim, degrees (default 0.02)
-  --noise-cue-speed X     the cue's speed, fraction of the speed (default 0.01)
-  --noise-tip-mm X        where the tip meets the ball, per axis, mm (default 0.1)
-  --noise-elevation-deg X the cue's elevation, degrees (default 0.1)
-  --squirt-uncertainty X  the model's squirt, give or take this fraction, as the
-  --throw-uncertainty X   planner believes it (default 0 each here: the world played
-                          is the model itself; snooker plan's 0.15 and 0.10 model a
-                          real table)
-  --noise-heading-deg X   more noise on the cue ball's heading after the strike,
-                          degrees (default 0)
-  --noise-speed X         more on its speed, fraction of the speed (default 0)
-  --noise-spin X          more on its topspin and sidespin, rad/s (default 0)
-  --noise-position-mm X   vision, each ball centre per axis, mm (default 0.2)
-Robot:
-  --cue-clearance-m X     clear bed the cue needs behind the cue ball, m (0.10)
-  --max-elevation-deg X   the steepest the cue may be raised, degrees (default 25;
-                          0: always level)
-Planner:
+)";
+constexpr const char* kHelpTail = R"(Planner:
   --pot-only             ignore the position left
   --one-ply              estimate the next shot only (no lookahead search)
   --max-simulations N    per-plan cap on simulations (default: from the budget)
@@ -73,7 +57,7 @@ int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::os
   valued.insert(std::begin(kPlayFlagNames), std::end(kPlayFlagNames));
   Args args(argv, valued, {"json", "help", "pot-only", "one-ply", "progress"});
   if (args.error().empty() && args.Switch("help")) {
-    out << kHelp;
+    out << kHelpHead << kPlayFlagsHelp << kHelpTail;
     return kExitOk;
   }
   planner::SelfPlayOptions o;

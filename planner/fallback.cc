@@ -93,8 +93,8 @@ std::optional<FallbackShot> FindLegalStroke(const TableState& table, int cue, Ba
         k.heading = aim.heading;
         k.elevation = *elevation;
         k.height = *elevation > 0 ? high : 0.0;
-        k.speed = std::clamp(v, lim.min_speed, lim.max_speed) *
-                  (1 + ball_params.mass / cue_params.mass + 2.5 * k.height * k.height) / (1 + cue_params.tip_restitution);
+        k.speed = physics::CueSpeedFor(std::clamp(v, lim.min_speed, lim.max_speed), 0.0, k.height, cue_params,
+                                       ball_params);
         physics::StrikeResult struck = physics::Strike(k, cue_params, ball_params, sim.params().cloth.g);
         if (struck.status == physics::StrikeStatus::kHop) {
           // Raised, the fastest stroke that keeps the ball on the bed (the hop goes as v^2).
@@ -102,11 +102,7 @@ std::optional<FallbackShot> FindLegalStroke(const TableState& table, int cue, Ba
           struck = physics::Strike(k, cue_params, ball_params, sim.params().cloth.g);
         }
         const physics::Shot& shot = struck.shot;
-        const double rolling = shot.speed / ball_params.radius;
-        if (struck.status != physics::StrikeStatus::kOk || std::abs(shot.topspin) > lim.max_topspin_fraction * rolling ||
-            shot.speed < lim.min_speed || shot.speed > lim.max_speed) {
-          continue;  // a raised cue spins the ball more per unit of speed
-        }
+        if (struck.status != physics::StrikeStatus::kOk || !WithinLimits(shot, lim, ball_params.radius)) continue;
         const ShotSetup setup{&table, cue, ball, physics::PocketId::kBaulkLeft, on, ShotKind::kSafety, -1,
                               TouchingBallOn(table, on, *ctx.table)};
         ++simulations;

@@ -295,9 +295,7 @@ class Search {
     Stroke k;
     k.cue.height = height_lo_ + u[1] * (height_hi_ - height_lo_);
     k.cue.side = (2 * u[2] - 1) * max_side;
-    const double off2 = k.cue.height * k.cue.height + k.cue.side * k.cue.side;
-    const double v = v_lo_ + u[0] * (v_hi_ - v_lo_);
-    k.cue.speed = v * (1 + ball.mass / cue.mass + 2.5 * off2) / (1 + cue.tip_restitution);
+    k.cue.speed = physics::CueSpeedFor(v_lo_ + u[0] * (v_hi_ - v_lo_), k.cue.side, k.cue.height, cue, ball);
     if (k.cue.speed < lim.min_cue_speed || k.cue.speed > lim.max_cue_speed) return std::nullopt;
     // Aim the ball for a level strike, then raise the cue if it must be, and aim
     // again with that strike's spins.
@@ -336,12 +334,8 @@ class Search {
   // A strike the robot can play and whose spins keep within the request's limits
   // (a raised cue spins the ball more per unit of speed than a level one).
   bool Playable(const physics::StrikeResult& res) const {
-    const RobotLimits& lim = settings_.limits;
-    const double rolling = res.shot.speed / ctx_.table->ball_radius();
     return res.status == physics::StrikeStatus::kOk &&
-           std::abs(res.shot.topspin) <= lim.max_topspin_fraction * rolling &&
-           std::abs(res.shot.sidespin) <= lim.max_sidespin_fraction * rolling &&
-           res.shot.speed >= lim.min_speed && res.shot.speed <= lim.max_speed;
+           WithinLimits(res.shot, settings_.limits, ctx_.table->ball_radius());
   }
 
   // The heading (and cut on the aim ball) for the fourth search variable u in [0, 1].
@@ -440,6 +434,13 @@ const char* ToString(LocalAlgorithm a) {
     case LocalAlgorithm::kNone: return "none";
   }
   return "unknown";
+}
+
+bool WithinLimits(const physics::Shot& shot, const RobotLimits& limits, double radius) {
+  const double rolling = shot.speed / radius;
+  return std::abs(shot.topspin) <= limits.max_topspin_fraction * rolling &&
+         std::abs(shot.sidespin) <= limits.max_sidespin_fraction * rolling && shot.speed >= limits.min_speed &&
+         shot.speed <= limits.max_speed;
 }
 
 SpinClass SpinClassOf(const physics::Shot& shot, double radius) {

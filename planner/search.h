@@ -87,6 +87,11 @@ struct RobotLimits {
   double max_cue_speed = 5.0;
 };
 
+/// A struck shot within the robot's ball-term limits: its speed in [min_speed,
+/// max_speed], its topspin and sidespin within their fractions of the rolling spin
+/// (a raised cue spins the ball more per unit of speed than a level one).
+bool WithinLimits(const physics::Shot& shot, const RobotLimits& limits, double radius);
+
 /// Local optimiser of the second stage.
 enum class LocalAlgorithm : std::uint8_t { kBobyqa, kSubplex, kCobyla, kNone };
 const char* ToString(LocalAlgorithm a);

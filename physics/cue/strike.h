@@ -116,6 +116,14 @@ struct StrikeResult {
 StrikeResult Strike(const CueStrike& strike, const CueParams& cue, const BallParams& ball,
                     double gravity);
 
+/// The cue speed whose impulse along the cue gives the ball `ball_speed` along it
+/// (TP A.30 with the tip's restitution, inverted), for tip offsets `side` and
+/// `height` (fractions of R). m/s.
+inline double CueSpeedFor(double ball_speed, double side, double height, const CueParams& cue,
+                          const BallParams& ball) {
+  return ball_speed * (1 + ball.mass / cue.mass + 2.5 * (side * side + height * height)) / (1 + cue.tip_restitution);
+}
+
 /// Largest contact offset sqrt(side^2 + height^2) without a miscue, fraction of R.
 double MiscueLimit(const CueParams& cue);
 
