@@ -764,8 +764,20 @@ double PlannerConfig::SearchWeight(int rank) const {
   return std::max(min_search_weight, std::pow(0.5, rank / search_weight_band));
 }
 
+PlannerConfig PlannerConfig::WithModel(const physics::Model& m) const {
+  PlannerConfig c = *this;
+  c.full = m.Apply(full);
+  c.search = m.Apply(search);
+  c.cue = m.cue;
+  return c;
+}
+
 Planner::Planner(const Config& config) : config_(config) {
-  if (config_.table == &physics::DefaultTable()) {
+  // The shared pocket and throw models hold for the default table and the default
+  // physics (the cue plays no part in them).
+  physics::Model physics_only = config_.model();
+  physics_only.cue = physics::CueParams{};
+  if (config_.table == &physics::DefaultTable() && physics::SameModel(physics_only, physics::Model{})) {
     pockets_ = &PocketModel::Default();
     throws_ = &ThrowModel::Default();
   } else {

@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "physics/core/shot.h"
+#include "physics/model/model.h"
 #include "physics/sim/fidelity.h"
 #include "physics/sim/simulate.h"
 #include "planner/candidates.h"
@@ -261,6 +262,11 @@ struct PlannerConfig {
   double min_search_weight = 0.25;
   /// The weight of the candidate of this rank (0: the best prior).
   double SearchWeight(int rank) const;
+  /// This configuration planning with `model`: the physical parameters of both
+  /// fidelity tiers and the cue replaced, every numerical setting kept.
+  PlannerConfig WithModel(const physics::Model& model) const;
+  /// The physical model it plans with (taken from `full` and `cue`).
+  physics::Model model() const { return physics::ModelOf(full, cue); }
   /// Safeties are searched only when no pot's fast estimate reaches this: a table
   /// with a near-certain pot is not one to play safe on.
   double safety_below = 0.85;

@@ -32,6 +32,8 @@ STAGES = {
     "physics/events": ["physics/core", "physics/motion", "physics/table"],
     "physics/sim": ["physics/core", "physics/table", "physics/motion", "physics/impact",
                     "physics/events"],
+    "physics/model": ["physics/core", "physics/impact", "physics/sim", "physics/cue", "physics/table",
+                      "physics/motion", "physics/events", "physics/ode"],
     "planner": ["physics", "planner"],
     "server": ["physics", "planner", "server", "snooker/v1"],
     "cli": ["physics", "planner", "server", "cli", "snooker/v1"],

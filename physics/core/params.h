@@ -38,6 +38,10 @@ enum class BallBallFrictionLaw {
   /// mu_bb = 9.951e-3 + 0.108 exp(-1.088 s), s the slip speed at A in m/s
   /// (Marlow 1994, quoted in paper section 2.4.2), evaluated along the impact.
   kMarlow,
+  /// mu_bb = a + b exp(-c s) with a = `mu_bb`, b = `slip_gain`, c = `slip_decay`:
+  /// the family both laws above belong to (constant: b = 0; Marlow: its three
+  /// numbers), for a law fitted to a table's measured throw (calibration).
+  kExponential,
 };
 
 /// Ball-ball contact.
@@ -47,14 +51,37 @@ struct BallBallParams {
   /// Energetic coefficient of restitution (Stronge). Paper: 0.89.
   double e = 0.89;
   BallBallFrictionLaw friction_law = BallBallFrictionLaw::kConstant;
+  /// kExponential's b (dimensionless) and c (s/m).
+  double slip_gain = 0;
+  double slip_decay = 0;
 };
+
+/// The ball-ball friction law as mu(s) = a + b exp(-c s), whichever law is chosen.
+struct FrictionCurve {
+  double a = 0, b = 0, c = 0;
+};
+
+inline FrictionCurve FrictionCurveOf(const BallBallParams& p) {
+  switch (p.friction_law) {
+    case BallBallFrictionLaw::kMarlow: return {9.951e-3, 0.108, 1.088};
+    case BallBallFrictionLaw::kExponential: return {p.mu_bb, p.slip_gain, p.slip_decay};
+    case BallBallFrictionLaw::kConstant: break;
+  }
+  return {p.mu_bb, 0, 0};
+}
 
 /// Ball-ball friction coefficient at slip speed `s` (m/s).
 inline double BallBallFriction(const BallBallParams& p, double s) {
-  if (p.friction_law == BallBallFrictionLaw::kMarlow) {
-    return 9.951e-3 + 0.108 * std::exp(-1.088 * s);
-  }
-  return p.mu_bb;
+  if (p.friction_law == BallBallFrictionLaw::kConstant) return p.mu_bb;
+  const FrictionCurve f = FrictionCurveOf(p);
+  return f.a + f.b * std::exp(-f.c * s);
+}
+
+/// d mu / d s at slip speed `s` (s/m): 0 for the constant law.
+inline double BallBallFrictionSlope(const BallBallParams& p, double s) {
+  if (p.friction_law == BallBallFrictionLaw::kConstant) return 0;
+  const FrictionCurve f = FrictionCurveOf(p);
+  return -f.b * f.c * std::exp(-f.c * s);
 }
 
 /// Checks parameters where they enter the library. Returns an empty string when

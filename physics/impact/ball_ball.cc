@@ -25,8 +25,15 @@ bool OptionsValid(const ImpulseSolverOptions& o) {
 // messages: this runs on every call.
 bool InUnit(double x) { return std::isfinite(x) && x >= 0 && x <= 1; }
 bool ParamsValid(const BallParams& ball, const BallBallParams& contact, double mu_s) {
+  if (contact.friction_law == BallBallFrictionLaw::kExponential &&
+      !(InUnit(contact.slip_gain) && contact.mu_bb + contact.slip_gain <= 1 &&
+        std::isfinite(contact.slip_decay) && contact.slip_decay >= 0 && contact.slip_decay <= 100)) {
+    return false;
+  }
   return std::isfinite(ball.mass) && ball.mass > 0 && std::isfinite(ball.radius) &&
-         ball.radius > 0 && InUnit(contact.mu_bb) && InUnit(contact.e) && InUnit(mu_s);
+         ball.radius > 0 && InUnit(contact.mu_bb) && InUnit(contact.e) && InUnit(mu_s) &&
+         static_cast<unsigned>(contact.friction_law) <=
+             static_cast<unsigned>(BallBallFrictionLaw::kExponential);
 }
 
 void PutVec(std::ostringstream& out, const char* name, const Vec3& v) {

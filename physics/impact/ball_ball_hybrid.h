@@ -225,7 +225,7 @@ class BallBallHybrid {
  private:
   bool SlidingActiveA() const {
     return mode_.law[kA] == Law::kSlide &&
-           (p_.contact.friction_law == BallBallFrictionLaw::kMarlow || p_.contact.mu_bb > 0);
+           (p_.contact.friction_law != BallBallFrictionLaw::kConstant || p_.contact.mu_bb > 0);
   }
   void SnapSlipToZero(int c, State* x) const;
   void SettleA(State* x);

@@ -155,14 +155,14 @@ struct Forces {
 inline Vec2 FrictionA(const State& x, const Mode& m, const Model& p) {
   if (m.law[kA] == Law::kStick) return Vec2::Zero();
   const Vec2 u = SlipA(x, p.radius);
-  const bool marlow = p.contact.friction_law == BallBallFrictionLaw::kMarlow;
+  const bool constant = p.contact.friction_law == BallBallFrictionLaw::kConstant;
   if (m.frozen[kA]) {
-    return -(marlow ? BallBallFriction(p.contact, u.norm()) : p.contact.mu_bb) * m.hold[kA];
+    return -(constant ? p.contact.mu_bb : BallBallFriction(p.contact, u.norm())) * m.hold[kA];
   }
   const double s2 = u.squaredNorm();
   if (!(s2 > 0)) return Vec2::Zero();
   const double s = std::sqrt(s2);
-  return -((marlow ? BallBallFriction(p.contact, s) : p.contact.mu_bb) / s) * u;
+  return -((constant ? p.contact.mu_bb : BallBallFriction(p.contact, s)) / s) * u;
 }
 
 /// Direction of a sliding (kSlide) contact's slip in mode m: held if frozen, the
@@ -250,8 +250,8 @@ inline Vec2 FrictionARate(const State& x, const State& dx, const Mode& m, const 
   const Vec2 du = SlipA(dx, p.radius);
   const double ds = uh.dot(du);
   Vec2 rate = -BallBallFriction(p.contact, s) * (du - ds * uh) / s;  // turning of u/|u|
-  if (p.contact.friction_law == BallBallFrictionLaw::kMarlow) {  // d mu/ds along the way
-    rate -= -0.108 * 1.088 * std::exp(-1.088 * s) * ds * uh;
+  if (p.contact.friction_law != BallBallFrictionLaw::kConstant) {  // d mu/ds along the way
+    rate -= BallBallFrictionSlope(p.contact, s) * ds * uh;
   }
   return rate;
 }

@@ -392,6 +392,52 @@ TEST(AdaptiveTest, MarlowFrictionFollowsTheSlipSpeedAlongTheImpact) {
   EXPECT_GT(std::abs(slip(r.out) - slip(k.out)), 0.01);  // the laws really differ
 }
 
+// The exponential family mu = a + b exp(-c s) follows the same closed form for any
+// (a, b, c), and its two named members are the constant and Marlow laws exactly.
+TEST(AdaptiveTest, ExponentialFrictionLawFollowsItsClosedFormAndHoldsBothNamedLaws) {
+  constexpr double a = 0.02, b = 0.09, c = 2.5;
+  const BallParams ball;
+  const ImpactState in = PaperIncidentState(1.0, 0.0, 60.0, 0.0);
+  const double p_final = (1 + 0.89) * ball.mass * 1.0 / 2;
+  auto slip = [&](const ImpactState& s) {
+    return std::abs(s.c.v.x() - ball.radius * s.c.w.z() - s.o.v.x() - ball.radius * s.o.w.z());
+  };
+  BallBallParams law{.mu_bb = a, .e = 0.89, .friction_law = BallBallFrictionLaw::kExponential};
+  law.slip_gain = b;
+  law.slip_decay = c;
+  const ImpactResult r = ResolveImpact(in, ball, law, 0.21, Adaptive(1e-12));
+  ASSERT_EQ(r.status, ImpactStatus::kOk);
+  auto g = [&](double s) { return (s + std::log(a + b * std::exp(-c * s)) / c) / a; };
+  EXPECT_NEAR(g(slip(in)) - g(slip(r.out)), 7 * p_final / ball.mass, 1e-8);
+
+  BallBallParams as_marlow = law;
+  as_marlow.mu_bb = 9.951e-3, as_marlow.slip_gain = 0.108, as_marlow.slip_decay = 1.088;
+  const BallBallParams marlow{.mu_bb = 0.05, .e = 0.89, .friction_law = BallBallFrictionLaw::kMarlow};
+  const ImpactState cut = PaperIncidentState(1.3, 20.0, -15.0, 0.5);
+  EXPECT_LT(MaxDifference(ResolveImpact(cut, ball, as_marlow, 0.21, Adaptive(1e-12)).out,
+                          ResolveImpact(cut, ball, marlow, 0.21, Adaptive(1e-12)).out, ball.radius),
+            1e-12);
+  BallBallParams as_constant = law;
+  as_constant.mu_bb = 0.05, as_constant.slip_gain = 0, as_constant.slip_decay = 3;
+  EXPECT_LT(MaxDifference(ResolveImpact(cut, ball, as_constant, 0.21, Adaptive(1e-12)).out,
+                          ResolveImpact(cut, ball, {}, 0.21, Adaptive(1e-12)).out, ball.radius),
+            1e-12);
+}
+
+TEST(AdaptiveTest, ExponentialFrictionLawOutOfRangeIsRejectedByName) {
+  const ImpactState in = PaperIncidentState(1.0, 0.0, 0.0, 0.3);
+  BallBallParams law{.mu_bb = 0.5, .e = 0.89, .friction_law = BallBallFrictionLaw::kExponential};
+  law.slip_gain = 0.6;  // mu(0) = 1.1
+  law.slip_decay = 1;
+  EXPECT_EQ(ResolveImpact(in, {}, law, 0.21, Adaptive(1e-10)).status, ImpactStatus::kInvalidInput);
+  EXPECT_NE(ValidateImpact(in, {}, law, 0.21, Adaptive(1e-10)).find("slip_gain = 0.6"), std::string::npos);
+  law.slip_gain = 0.1;
+  law.slip_decay = -1;
+  EXPECT_NE(ValidateImpact(in, {}, law, 0.21, Adaptive(1e-10)).find("slip_decay = -1"), std::string::npos);
+  law.slip_decay = 1;
+  EXPECT_EQ(ValidateImpact(in, {}, law, 0.21, Adaptive(1e-10)), "");
+}
+
 TEST(AdaptiveTest, ToleranceOutOfRangeIsRejected) {
   const ImpactState in = PaperIncidentState(1.0, 0.0, 0.0, 0.2);
   for (double tol : {0.0, 1e-20, 0.5, std::nan("")}) {
