@@ -6,6 +6,7 @@
 #include <map>
 
 #include "cli/args.h"
+#include "cli/model_file.h"
 #include "cli/commands.h"
 #include "cli/json.h"
 #include "server/api.h"
@@ -41,7 +42,12 @@ and spin (-wT cos th, wT sin th, wS); the object ball is at rest.
   --mu-bb X          ball-ball friction coefficient, 0 to 1 (default 0.05)
   --restitution E    energetic coefficient of restitution, 0 to 1 (default 0.89)
   --mu-s X           ball-cloth sliding friction coefficient, 0 to 1 (default 0.21)
-  --friction-law L   constant (mu_bb) or marlow (slip-speed dependent, Marlow 1994)
+  --friction-law L   constant (mu_bb), marlow (slip-speed dependent, Marlow 1994)
+                     or exponential (mu_bb + b exp(-c s), s the slip speed in m/s)
+  --slip-gain B      the exponential law's b, >= 0 with mu_bb + b <= 1
+  --slip-decay C     the exponential law's c, 0 to 100 s/m
+  --model FILE       take the parameters not given here from this model file
+                     (JSON of snooker.v1.PhysicsModel; default: the paper's)
   --json             print one JSON object instead of a table:
                      {"cue": {"velocity": {x,y,z} m/s, "angularVelocity": {x,y,z} rad/s,
                      "slipEnd": {"velocity": {x,y} m/s, "speed" m/s, "exitAngleDeg" deg,
@@ -62,6 +68,8 @@ const std::map<std::string, std::string>& FlagOfField() {
       {"parameters.mu_bb", "--mu-bb"},
       {"parameters.restitution", "--restitution"},
       {"parameters.mu_s", "--mu-s"},
+      {"parameters.slip_gain", "--slip-gain"},
+      {"parameters.slip_decay", "--slip-decay"},
       {"solver.steps", "--steps"},
       {"solver.tolerance", "--tolerance"},
   };
@@ -123,7 +131,7 @@ void PrintTable(const v1::CollideRequest& req, const v1::CollideResponse& r, std
 int RunCollide(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
   Args args(argv,
             {"speed", "topspin", "sidespin", "cut-deg", "steps", "tolerance", "mu-bb",
-             "restitution", "mu-s", "friction-law"},
+             "restitution", "mu-s", "friction-law", "slip-gain", "slip-decay", "model"},
             {"json", "help"});
   if (args.error().empty() && args.Switch("help")) {
     out << kHelp;
@@ -161,14 +169,28 @@ int RunCollide(const std::vector<std::string>& argv, std::ostream& out, std::ost
   if (args.Has("mu-s")) {
     if (const auto x = args.Number("mu-s", std::nullopt)) p->set_mu_s(*x);
   }
-  if (const auto law = args.Text("friction-law", "constant")) {
-    if (*law == "marlow") {
+  if (args.Has("slip-gain")) {
+    if (const auto x = args.Number("slip-gain", std::nullopt)) p->set_slip_gain(*x);
+  }
+  if (args.Has("slip-decay")) {
+    if (const auto x = args.Number("slip-decay", std::nullopt)) p->set_slip_decay(*x);
+  }
+  if (args.Has("friction-law")) {
+    const auto law = args.Text("friction-law", std::nullopt);
+    if (law && *law == "marlow") {
       p->set_friction_law(v1::BALL_BALL_FRICTION_LAW_MARLOW);
-    } else if (*law != "constant") {
-      err << "snooker collide: --friction-law '" << *law << "' is not constant or marlow\n";
+    } else if (law && *law == "exponential") {
+      p->set_friction_law(v1::BALL_BALL_FRICTION_LAW_EXPONENTIAL);
+    } else if (law && *law == "constant") {
+      p->set_friction_law(v1::BALL_BALL_FRICTION_LAW_CONSTANT);
+    } else if (law) {
+      err << "snooker collide: --friction-law '" << *law << "' is not constant, marlow or exponential\n";
       return kExitUsage;
     }
   }
+  bool model_ok = true;
+  const std::optional<physics::Model> model = ModelFlag(args, "snooker collide", err, &model_ok);
+  if (!model_ok) return kExitUsage;
   if (!args.error().empty()) {
     err << "snooker collide: " << args.error() << "\n(see snooker collide --help)\n";
     return kExitUsage;
@@ -184,7 +206,9 @@ int RunCollide(const std::vector<std::string>& argv, std::ostream& out, std::ost
     return kExitUsage;
   }
   v1::CollideResponse resp;
-  const server::ApiStatus status = server::Collide(req, &resp);
+  server::CallLimits limits;
+  if (model) limits.model = &*model;
+  const server::ApiStatus status = server::Collide(req, &resp, limits);
   if (!status.ok()) {
     err << "snooker collide: " << status.message << "\n";
     return status.code == server::ApiStatus::Code::kInvalidArgument ? kExitUsage : kExitFailure;

@@ -21,5 +21,6 @@ int RunDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
 int RunPlan(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int RunSelfPlay(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int RunMatch(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int RunModel(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 }  // namespace snooker::cli

@@ -17,6 +17,7 @@ commands:
   plan       plan the shots that pot a ball on and leave the cue ball well
   selfplay   the planner plays breaks alone: mean break, pot rate, planning time
   match      two players play whole frames by the rules: frames, points, breaks, fouls
+  model      the physical model in use (ball, cloth, ball-ball, cushion, cue)
   serve      run the gRPC service (snooker.v1.ShotPlanner)
   loadtest   load-test a server on this machine: throughput, latency, errors
   demo       start the service and use it on built-in examples
@@ -38,6 +39,7 @@ int Run(int argc, char** argv) {
   if (command == "plan") return RunPlan(args, std::cout, std::cerr);
   if (command == "selfplay") return RunSelfPlay(args, std::cout, std::cerr);
   if (command == "match") return RunMatch(args, std::cout, std::cerr);
+  if (command == "model") return RunModel(args, std::cout, std::cerr);
   if (command == "serve") return RunServe(args, std::cout, std::cerr);
   if (command == "loadtest") return RunLoadTest(args, std::cout, std::cerr);
   if (command == "demo") return RunDemo(args, std::cout, std::cerr);

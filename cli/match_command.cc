@@ -72,6 +72,7 @@ Match:
 struct Parsed {
   planner::MatchOptions options;
   double budget_ms = 80;
+  std::optional<physics::Model> model;  // the planners' (--model)
 };
 
 // The options from the flags; an error message naming the flag and value otherwise.
@@ -105,6 +106,8 @@ std::string Parse(Args& args, Parsed* p) {
   o.monte_carlo_samples = play.monte_carlo_samples;
   o.threads = play.threads;
   o.max_shots_per_frame = static_cast<int>(*shots);
+  o.world = play.world;
+  p->model = play.model;
   return planner::MatchOptionsError(o);
 }
 
@@ -229,7 +232,9 @@ int RunMatch(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   }
   // After each safety: the opponent's best pot probability, by the planner's own
   // fast estimate (outlook.h; from the D when the cue ball is in hand).
-  const planner::Planner& planner = planner::Planner::Default();
+  std::optional<planner::Planner> own;
+  if (p.model) own.emplace(planner::PlannerConfig{}.WithModel(*p.model));
+  const planner::Planner& planner = own ? *own : planner::Planner::Default();
   planner::PlanRequest seen;
   seen.noise = p.options.noise;
   seen.limits = p.options.limits;

@@ -14,6 +14,7 @@
 #include <string_view>
 
 #include "cli/args.h"
+#include "cli/model_file.h"
 #include "cli/client.h"
 #include "cli/commands.h"
 #include "cli/json.h"
@@ -203,6 +204,7 @@ struct PlanSettings {
   bool json = false;
   bool stream = false;
   std::string svg_path;  // empty: no drawing
+  std::optional<physics::Model> model;  // --model: plan with it (here only)
 };
 
 // --on into the request's ball_on. False after saying why on `err`.
@@ -285,12 +287,19 @@ std::optional<int> ParsePlanFlags(const std::vector<std::string>& argv, std::ost
                                   "throw-uncertainty", "max-elevation-deg",
                                   "noise-position-mm", "min-speed", "max-speed", "max-topspin",
                                   "max-sidespin", "cue-clearance-m", "max-simulations", "samples",
-                                  "vision-tolerance-mm"};
+                                  "vision-tolerance-mm", "model"};
   for (const std::string& flag : ClientFlags()) valued.insert(flag);
   Args args(argv, valued, {"json", "help", "pot-only", "stream", "cue-in-hand"});
   if (args.error().empty() && args.Switch("help")) {
-    out << kHelp << "\n" << ClientFlagsHelp();
+    out << kHelp << kModelFlagHelp << "\n" << ClientFlagsHelp();
     return kExitOk;
+  }
+  bool model_ok = true;
+  s->model = ModelFlag(args, "snooker plan", err, &model_ok);
+  if (!model_ok) return kExitUsage;
+  if (s->model && args.Has("server")) {
+    err << "snooker plan: --model is for a local plan; a server plans with its own model (serve --model)\n";
+    return kExitUsage;
   }
   const auto table_path = args.Text("table", std::nullopt);
   if (args.Has("on") && !SetBallOn(args, &s->request, err)) return kExitUsage;
@@ -361,6 +370,11 @@ int PlanOnServer(const PlanSettings& s, v1::PlanResponse* resp, std::ostream& ou
 int PlanHere(const PlanSettings& s, v1::PlanResponse* resp, std::ostream& out, std::ostream& err) {
   server::PlanControl control;
   control.vision_tolerance_mm = s.vision_tolerance_mm;
+  std::optional<planner::Planner> own;
+  if (s.model) {
+    own.emplace(planner::PlannerConfig{}.WithModel(*s.model));
+    control.planner = &*own;
+  }
   if (s.stream) {
     control.on_progress = [&](const v1::PlanResponse& best) { PrintProgress(best, s.json, out, err); };
   }

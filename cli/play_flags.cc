@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "cli/model_file.h"
 #include "planner/limits.h"
 
 namespace snooker::cli {
@@ -65,6 +66,14 @@ std::string ReadPlayFlags(Args& args, const PlayFlags& defaults, PlayFlags* out)
   out->max_simulations = *sims;
   out->monte_carlo_samples = static_cast<int>(*samples);
   out->threads = static_cast<int>(*threads);
+  for (const char* flag : {"model", "world"}) {
+    if (!args.Has(flag)) continue;
+    physics::Model m;
+    if (std::string e = LoadModelFile(*args.Text(flag, std::nullopt), &m); !e.empty()) {
+      return std::string("--") + flag + " " + e;
+    }
+    (std::string(flag) == "model" ? out->model : out->world) = m;
+  }
   return "";
 }
 

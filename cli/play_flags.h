@@ -4,9 +4,11 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "cli/args.h"
+#include "physics/model/model.h"
 #include "planner/planner.h"
 
 namespace snooker::cli {
@@ -18,13 +20,18 @@ struct PlayFlags {
   std::int64_t max_simulations = 0;
   int monte_carlo_samples = 48;
   int threads = 2;
+  /// --model FILE: the planner's physical model (none: the default).
+  std::optional<physics::Model> model;
+  /// --world FILE: the table the shots are played on (none: the planner's model).
+  std::optional<physics::Model> world;
 };
 
 /// The flags' names, for Args.
 inline constexpr const char* kPlayFlagNames[] = {
     "budget-ms",     "noise-heading-deg", "noise-speed",     "noise-spin",         "noise-position-mm",
     "noise-aim-deg", "noise-cue-speed",   "noise-tip-mm",    "noise-elevation-deg", "squirt-uncertainty",
-    "throw-uncertainty", "cue-clearance-m", "max-elevation-deg", "max-simulations", "samples", "threads"};
+    "throw-uncertainty", "cue-clearance-m", "max-elevation-deg", "max-simulations", "samples", "threads",
+    "model",         "world"};
 
 /// The help lines of the noise and robot flags, after each command's "Noise" line.
 inline constexpr const char* kPlayFlagsHelp = R"(  --noise-aim-deg X       the cue's aim, degrees (default 0.02)
@@ -44,6 +51,12 @@ Robot:
   --cue-clearance-m X     clear bed the cue needs behind the cue ball, m (0.10)
   --max-elevation-deg X   the steepest the cue may be raised, degrees (default 25;
                           0: always level)
+Models:
+  --model FILE            the planner's physical model: a model file (JSON of
+                          snooker.v1.PhysicsModel; fields left out keep the default)
+  --world FILE            the table the shots are played on, a model file: the
+                          planner plans with its model and the world answers
+                          (sim-to-real; default: the planner's model)
 )";
 
 /// Reads the flags (each absent one keeps `defaults`' value) into `out`; empty, or

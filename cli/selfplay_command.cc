@@ -84,11 +84,14 @@ int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::os
   o.max_simulations = play.max_simulations;
   o.monte_carlo_samples = play.monte_carlo_samples;
   o.threads = play.threads;
+  o.world = play.world;
+  std::optional<planner::Planner> own;
+  if (play.model) own.emplace(planner::PlannerConfig{}.WithModel(*play.model));
   struct Progress {
     std::ostream* err;
   } progress{&err};
   const planner::SelfPlayReport r = planner::RunSelfPlay(
-      planner::Planner::Default(), o,
+      own ? *own : planner::Planner::Default(), o,
       args.Switch("progress")
           ? +[](int f, const planner::FrameRecord& rec, void* ctx) {
               *static_cast<Progress*>(ctx)->err << "frame " << f + 1 << ": " << rec.reds

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "cli/args.h"
+#include "cli/model_file.h"
 #include "cli/commands.h"
 #include "cli/read_file.h"
 #include "server/convert.h"
@@ -23,7 +24,7 @@ std::string Help() {
        "                     [--tls-client-ca CA.pem] | --insecure] [--max-call-ms MS]\n"
        "                     [--shutdown-grace-ms MS] [--workers N] [--max-queued N]\n"
        "                     [--max-plans N] [--default-budget-ms MS] [--max-budget-ms MS]\n"
-       "                     [--vision-tolerance-mm MM]\n\n"
+       "                     [--vision-tolerance-mm MM] [--model FILE]\n\n"
        "Serves snooker.v1.ShotPlanner (proto/snooker/v1/service.proto) with the gRPC\n"
        "health service and reflection until SIGINT or SIGTERM. One line per call on\n"
        "stderr: method, peer, status, latency, simulations, request and response bytes.\n\n"
@@ -69,7 +70,10 @@ std::string Help() {
        "                           moved apart or back with a warning; more is an error\n"
        "                           (default "
     << num(lim::kDefaultVisionToleranceMm) << ", " << num(lim::kVisionToleranceMm.lo) << " to "
-    << num(lim::kVisionToleranceMm.hi) << "; 0: no repair)\n";
+    << num(lim::kVisionToleranceMm.hi) << "; 0: no repair)\n"
+    << "  --model FILE             simulate and plan with this physical model (a model file,\n"
+       "                           JSON of snooker.v1.PhysicsModel; GetModel reports it;\n"
+       "                           default: the default model)\n";
   return h.str();
 }
 
@@ -94,7 +98,7 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   Args args(argv,
             {"address", "max-call-ms", "shutdown-grace-ms", "workers", "max-queued", "tls-cert",
              "tls-key", "tls-client-ca", "max-plans", "default-budget-ms", "max-budget-ms",
-             "vision-tolerance-mm"},
+             "vision-tolerance-mm", "model"},
             {"help", "insecure"});
   if (args.error().empty() && args.Switch("help")) {
     out << Help();
@@ -132,6 +136,9 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
     err << "snooker serve: " << args.error() << "\n(see snooker serve --help)\n";
     return kExitUsage;
   }
+  bool model_ok = true;
+  options.model = ModelFlag(args, "snooker serve", err, &model_ok);
+  if (!model_ok) return kExitUsage;
   options.address = *address;
   options.max_call = std::chrono::milliseconds(*max_call);
   options.shutdown_grace = std::chrono::milliseconds(*grace);

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "cli/args.h"
+#include "cli/model_file.h"
 #include "cli/client.h"
 #include "cli/commands.h"
 #include "cli/json.h"
@@ -120,13 +121,16 @@ void PrintReadable(const v1::SimulateResponse& r, std::ostream& out) {
 
 int RunSimulate(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
   std::set<std::string> valued = {"table", "shot", "cue", "svg", "tolerance", "max-events",
-                                  "vision-tolerance-mm"};
+                                  "vision-tolerance-mm", "model"};
   for (const std::string& flag : ClientFlags()) valued.insert(flag);
   Args args(argv, valued, {"json", "help", "no-impact-tables"});
   if (args.error().empty() && args.Switch("help")) {
-    out << kHelp << "\n" << ClientFlagsHelp();
+    out << kHelp << kModelFlagHelp << "\n" << ClientFlagsHelp();
     return kExitOk;
   }
+  bool model_ok = true;
+  const std::optional<physics::Model> model = ModelFlag(args, "snooker simulate", err, &model_ok);
+  if (!model_ok) return kExitUsage;
   const auto table_path = args.Text("table", std::nullopt);
   const bool by_cue = args.Has("cue") && !args.Has("shot");
   const auto shot_path = args.Text(by_cue ? "cue" : "shot", std::nullopt);
@@ -153,6 +157,10 @@ int RunSimulate(const std::vector<std::string>& argv, std::ostream& out, std::os
     err << "snooker simulate: " << args.error() << "\n(see snooker simulate --help)\n";
     return kExitUsage;
   }
+  if (model && args.Has("server")) {
+    err << "snooker simulate: --model is for a local run; a server simulates with its own model (serve --model)\n";
+    return kExitUsage;
+  }
   if (const int rc = ReadJson(*table_path, req.mutable_table(), err); rc != kExitOk) return rc;
   if (args.Has("cue") && args.Has("shot")) {
     err << "snooker simulate: give --shot or --cue, not both\n";
@@ -176,6 +184,7 @@ int RunSimulate(const std::vector<std::string>& argv, std::ostream& out, std::os
   } else {
     server::CallLimits limits;
     limits.vision_tolerance_mm = *vision;
+    if (model) limits.model = &*model;
     const server::ApiStatus status = server::Simulate(req, &resp, limits);
     if (!status.ok()) {
       err << "snooker simulate: " << status.message << "\n";

@@ -209,7 +209,8 @@ class MatchRunner {
       : planner_(planner),
         o_(o),
         model_(*planner.config().table),
-        sim_(model_, physics::FidelityParams(physics::Fidelity::kDefault)) {
+        world_(o.world.value_or(planner.config().model())),
+        sim_(model_, world_.Apply(physics::FidelityParams(physics::Fidelity::kDefault))) {
     vision_.table = &model_;
     vision_.noise = o.noise;
   }
@@ -224,6 +225,7 @@ class MatchRunner {
   const Planner& planner_;
   const MatchOptions& o_;
   const physics::TableModel& model_;
+  const physics::Model world_;  // the table the strokes are played on
   physics::Simulator sim_;
   PotContext vision_;
   MatchReport report_;
@@ -286,10 +288,8 @@ void MatchRunner::Play(FrameState& f, const TurnChoice& c, Rng& rng, FrameSummar
   s.nominated = c.nominated;
   const TableState table = StrokeTable(f, c.cue_start);
   s.touching = TouchingCueBall(table, model_);
-  // The robot's cue with its execution noise; the world is the model itself.
-  const PlannerConfig& config = planner_.config();
-  const PlayedStroke played =
-      SampleStroke(c.cue, config.cue, config.full.ball, config.full.cloth.g, o_.noise, false, rng);
+  // The robot's cue, with its execution noise, striking in the world.
+  const PlayedStroke played = SampleStroke(c.cue, world_.cue, world_.ball, world_.cloth.g, o_.noise, false, rng);
   const Played out = Simulate(sim_, table, table.cue_index(), played.shot);
   if (out.status == physics::SimStatus::kAtRest) {
     s.first_hit = out.first_hit;
@@ -444,6 +444,9 @@ std::string MatchOptionsError(const MatchOptions& o) {
   settings.max_simulations = o.max_simulations;
   settings.monte_carlo_samples = o.monte_carlo_samples;
   if (const std::vector<FieldError> e = ValidateSettings(settings); !e.empty()) add(Describe(e));
+  if (o.world) {
+    if (const std::string e = physics::ValidateModel(*o.world); !e.empty()) add("world: " + e);
+  }
   return errors;
 }
 

@@ -70,6 +70,9 @@ struct MatchOptions {
   int max_shots_per_frame = kFrameShotCap;
   /// Evaluates the table a safety leaves for the opponent; unset: not measured.
   TableOutlook outlook;
+  /// The world the strokes are played in (sim-to-real: a table unlike the
+  /// planner's model); none: the planner's own model.
+  std::optional<physics::Model> world;
 };
 
 /// Empty when `options` can be played; otherwise the bad values, named.

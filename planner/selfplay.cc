@@ -64,7 +64,9 @@ SelfPlayReport RunSelfPlay(const Planner& planner, const SelfPlayOptions& o,
                            void (*on_frame)(int, const FrameRecord&, void*), void* context) {
   SelfPlayReport report;
   const physics::TableModel& model = *planner.config().table;
-  ShotSimulator truth_sim(model, planner.config().full);
+  // The world: the planner's own model unless another is given.
+  const physics::Model world = o.world.value_or(planner.config().model());
+  ShotSimulator truth_sim(model, world.Apply(planner.config().full));
   PotContext vision_ctx;
   vision_ctx.table = &model;
   vision_ctx.noise = o.noise;
@@ -113,10 +115,8 @@ SelfPlayReport RunSelfPlay(const Planner& planner, const SelfPlayOptions& o,
         rec.end = ToString(plan.kind);
         break;
       }
-      // The robot's cue with its execution noise; the world is the model itself.
-      const physics::Shot played = SampleStroke(plan.cue, planner.config().cue, planner.config().full.ball,
-                                                planner.config().full.cloth.g, o.noise, false, rng)
-                                       .shot;
+      // The robot's cue, with its execution noise, striking in the world.
+      const physics::Shot played = SampleStroke(plan.cue, world.cue, world.ball, world.cloth.g, o.noise, false, rng).shot;
       const ShotSetup setup{&truth, truth.cue_index(), plan.object_ball, plan.pocket, *on, plan.kind,
                             plan.route == PotRoute::kPlant ? plan.first_ball : -1};
       const ShotOutcome& out = truth_sim.Run(setup, played, {}, ShotSimulator::Mode::kFull, no_interrupt);

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,9 @@ struct SelfPlayOptions {
   int max_reds = 10;
   /// Cap on shots in one frame (a cleared 10-red table takes 26).
   int max_shots_per_frame = 64;
+  /// The world the shots are played in (sim-to-real: a table unlike the planner's
+  /// model); none: the planner's own model.
+  std::optional<physics::Model> world;
 };
 
 struct FrameRecord {

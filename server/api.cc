@@ -86,9 +86,10 @@ ApiStatus Collide(const v1::CollideRequest& request, v1::CollideResponse* respon
   const std::vector<FieldError> errors = ValidateCollideRequest(request);
   if (!errors.empty()) return ApiStatus::Invalid(Describe(errors));
 
-  const physics::BallParams ball = BallParamsFrom(request.parameters());
-  const physics::ClothParams cloth = ClothParamsFrom(request.parameters());
-  const physics::BallBallParams contact = BallBallParamsFrom(request.parameters());
+  const physics::Model& model = limits.physics_model();
+  const physics::BallParams ball = BallParamsFrom(request.parameters(), model);
+  const physics::ClothParams cloth = ClothParamsFrom(request.parameters(), model);
+  const physics::BallBallParams contact = BallBallParamsFrom(request.parameters(), model);
   const physics::ImpulseSolverOptions options = SolverOptionsFrom(request.solver());
   const double cut = physics::DegToRad(request.cut_angle_deg());
   const physics::ImpactState in = physics::PaperIncidentState(
@@ -165,13 +166,13 @@ ApiStatus Simulate(const v1::SimulateRequest& request, v1::SimulateResponse* res
   // A stroke in the robot's terms is struck into the cue ball's shot first.
   v1::Shot shot = request.shot();
   if (request.has_cue() && errors.empty()) {
-    if (const auto struck = ShotFromCue(request.cue(), &errors)) ToProto(*struck, &shot);
+    if (const auto struck = ShotFromCue(request.cue(), &errors, limits.physics_model())) ToProto(*struck, &shot);
   }
   if (!errors.empty()) return ApiStatus::Invalid(Describe(errors));
   const v1::TableState& state = check.repaired ? *check.repaired : request.table();
   const bool paths = request.options().include_paths();
   const std::vector<physics::BallState> balls = BallStatesFrom(state, shot);
-  physics::Simulator sim(table, SimParamsFrom(request.options()));
+  physics::Simulator sim(table, SimParamsFrom(request.options(), limits.physics_model()));
   physics::RunOptions run;
   run.record_events = true;
   run.record_paths = paths;
@@ -284,7 +285,7 @@ ApiStatus GetModel(const v1::GetModelRequest& /*request*/, v1::GetModelResponse*
                    const CallLimits& limits) {
   const physics::TableModel& table = physics::DefaultTable();
   ToProto(table, response->mutable_table());
-  ModelToProto(physics::SimParams{}, table, kDefaultPathSampleS, response);  // what Simulate uses for unset options
+  ModelToProto(limits.physics_model(), table, kDefaultPathSampleS, response);  // what Simulate uses for unset options
   *response->mutable_service() =
       limits.service != nullptr ? *limits.service : DefaultServiceLimits(limits);
   return ApiStatus::Ok();

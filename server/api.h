@@ -10,6 +10,7 @@
 
 #include <cstddef>
 
+#include "physics/model/model.h"
 #include "physics/sim/simulate.h"
 #include "server/plan_api.h"  // Plan (planner)
 #include "physics/table/table.h"
@@ -38,6 +39,13 @@ struct CallLimits {
   /// What GetModel reports as the server's bounds (workers, queue, ...); nullptr:
   /// the defaults of server/limits.h and the fields above.
   const v1::ServiceLimits* service = nullptr;
+  /// The physical model calls simulate with (a model file's, `--model`); nullptr:
+  /// the default model. A Collide request's own parameters still override it.
+  const physics::Model* model = nullptr;
+  const physics::Model& physics_model() const {
+    static const physics::Model kDefault;
+    return model != nullptr ? *model : kDefault;
+  }
 };
 
 /// One ball-ball collision (Mathavan et al. 2014) and the slip phases after it.
@@ -53,9 +61,10 @@ ApiStatus Collide(const v1::CollideRequest& request, v1::CollideResponse* respon
 ApiStatus Simulate(const v1::SimulateRequest& request, v1::SimulateResponse* response,
                    const CallLimits& limits = {});
 
-/// The model the server works with: the default table's geometry, the default
-/// ball, cloth, ball-ball and cushion parameters, the simulation defaults, and the
-/// server's bounds (limits.service, or the defaults).
+/// The model the server works with: the default table's geometry, its physical
+/// model (limits.model: ball, cloth, ball-ball, cushion, cue; also in model-file
+/// form), the simulation defaults, and the server's bounds (limits.service, or the
+/// defaults).
 ApiStatus GetModel(const v1::GetModelRequest& request, v1::GetModelResponse* response,
                    const CallLimits& limits = {});
 

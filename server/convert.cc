@@ -1,5 +1,7 @@
 #include "server/convert.h"
 
+#include "server/model_convert.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -13,6 +15,7 @@
 
 #include "physics/table/placement_repair.h"
 #include "server/limits.h"
+#include "server/model_convert.h"
 
 namespace snooker::server {
 namespace {
@@ -141,6 +144,13 @@ std::vector<FieldError> ValidateCollideRequest(const v1::CollideRequest& r) {
                 physics::limits::kSpinDecel, "rad/s^2");
   CheckEnum(&errors, p.friction_law(), v1::BallBallFrictionLaw_IsValid(p.friction_law()),
             "parameters.friction_law", v1::BallBallFrictionLaw_descriptor());
+  CheckOptional(&errors, p, &P::has_slip_gain, &P::slip_gain, "parameters.slip_gain",
+                physics::limits::kFrictionCoefficient);
+  CheckOptional(&errors, p, &P::has_slip_decay, &P::slip_decay, "parameters.slip_decay", physics::Range{0, 100},
+                "s/m");
+  if (p.has_slip_gain() && p.slip_gain() + (p.has_mu_bb() ? p.mu_bb() : physics::BallBallParams{}.mu_bb) > 1) {
+    errors.push_back({"parameters.slip_gain", Num(p.slip_gain()), "must be at most 1 - mu_bb (mu(0) <= 1)"});
+  }
   using S = v1::ImpulseSolverOptions;
   const S& s = r.solver();
   CheckEnum(&errors, s.integrator(), v1::ImpulseIntegrator_IsValid(s.integrator()),
@@ -342,7 +352,8 @@ std::optional<double> VisionTolerance(std::optional<double> requested_mm, double
   return *requested_mm * 1e-3;
 }
 
-std::optional<physics::Shot> ShotFromCue(const v1::CueStrike& cue, std::vector<FieldError>* errors) {
+std::optional<physics::Shot> ShotFromCue(const v1::CueStrike& cue, std::vector<FieldError>* errors,
+                                         const physics::Model& physics_model) {
   const std::size_t before = errors->size();
   CheckRange(errors, cue.speed(), "cue.speed", physics::Range{0, 10}, "m/s");
   CheckRange(errors, cue.heading_deg(), "cue.heading_deg", slim::kHeadingDeg, "deg");
@@ -350,8 +361,8 @@ std::optional<physics::Shot> ShotFromCue(const v1::CueStrike& cue, std::vector<F
   CheckRange(errors, cue.tip_height(), "cue.tip_height", physics::Range{-1, 1}, "of R");
   CheckRange(errors, cue.elevation_deg(), "cue.elevation_deg", physics::Range{0, 59.999}, "deg");
   if (errors->size() > before) return std::nullopt;
-  const physics::SimParams sim;
-  const physics::CueParams model;
+  const physics::SimParams sim = physics_model.Apply(physics::SimParams{});
+  const physics::CueParams& model = physics_model.cue;
   const physics::CueStrike k{cue.speed(), physics::DegToRad(NormalizedHeadingDeg(cue.heading_deg())), cue.tip_side(),
                              cue.tip_height(), physics::DegToRad(cue.elevation_deg())};
   const physics::StrikeResult res = physics::Strike(k, model, sim.ball, sim.cloth.g);
@@ -437,8 +448,8 @@ std::vector<physics::BallState> BallStatesFrom(const v1::TableState& table, cons
   return balls;
 }
 
-physics::SimParams SimParamsFrom(const v1::SimulationOptions& o) {
-  physics::SimParams p;
+physics::SimParams SimParamsFrom(const v1::SimulationOptions& o, const physics::Model& model) {
+  physics::SimParams p = model.Apply(physics::SimParams{});
   if (o.has_max_events()) p.max_events = o.max_events();
   if (o.has_max_time_s()) p.max_time = o.max_time_s();
   if (o.has_tolerance()) p.ball_ball_solver.tolerance = p.cushion_solver.tolerance = o.tolerance();
@@ -446,27 +457,32 @@ physics::SimParams SimParamsFrom(const v1::SimulationOptions& o) {
   return p;
 }
 
-physics::BallParams BallParamsFrom(const v1::CollisionParameters& p) {
-  physics::BallParams b;
+physics::BallParams BallParamsFrom(const v1::CollisionParameters& p, const physics::Model& base) {
+  physics::BallParams b = base.ball;
   if (p.has_mass_kg()) b.mass = p.mass_kg();
   if (p.has_radius_m()) b.radius = p.radius_m();
   return b;
 }
 
-physics::ClothParams ClothParamsFrom(const v1::CollisionParameters& p) {
-  physics::ClothParams c;
+physics::ClothParams ClothParamsFrom(const v1::CollisionParameters& p, const physics::Model& base) {
+  physics::ClothParams c = base.cloth;
   if (p.has_mu_s()) c.mu_s = p.mu_s();
   if (p.has_gravity()) c.g = p.gravity();
   if (p.has_spin_decel()) c.spin_decel = p.spin_decel();
   return c;
 }
 
-physics::BallBallParams BallBallParamsFrom(const v1::CollisionParameters& p) {
-  physics::BallBallParams c;
+physics::BallBallParams BallBallParamsFrom(const v1::CollisionParameters& p, const physics::Model& base) {
+  physics::BallBallParams c = base.ball_ball;
   if (p.has_mu_bb()) c.mu_bb = p.mu_bb();
   if (p.has_restitution()) c.e = p.restitution();
-  if (p.friction_law() == v1::BALL_BALL_FRICTION_LAW_MARLOW) {
-    c.friction_law = physics::BallBallFrictionLaw::kMarlow;
+  if (p.has_slip_gain()) c.slip_gain = p.slip_gain();
+  if (p.has_slip_decay()) c.slip_decay = p.slip_decay();
+  switch (p.friction_law()) {
+    case v1::BALL_BALL_FRICTION_LAW_CONSTANT: c.friction_law = physics::BallBallFrictionLaw::kConstant; break;
+    case v1::BALL_BALL_FRICTION_LAW_MARLOW: c.friction_law = physics::BallBallFrictionLaw::kMarlow; break;
+    case v1::BALL_BALL_FRICTION_LAW_EXPONENTIAL: c.friction_law = physics::BallBallFrictionLaw::kExponential; break;
+    default: break;  // unspecified: the base model's law
   }
   return c;
 }
@@ -574,8 +590,9 @@ void ToProto(const physics::TableModel& table, v1::TableGeometry* g) {
   for (const physics::Vec2& red : table.reds()) ToProto(red, g->add_red_triangle());
 }
 
-void ModelToProto(const physics::SimParams& sim, const physics::TableModel& table, double path_sample_s,
+void ModelToProto(const physics::Model& physics_model, const physics::TableModel& table, double path_sample_s,
                   v1::GetModelResponse* response) {
+  const physics::SimParams sim = physics_model.Apply(physics::SimParams{});
   v1::BallModel* ball = response->mutable_ball();
   ball->set_mass_kg(sim.ball.mass);
   ball->set_radius_m(sim.ball.radius);
@@ -588,8 +605,9 @@ void ModelToProto(const physics::SimParams& sim, const physics::TableModel& tabl
   v1::BallBallModel* bb = response->mutable_ball_ball();
   bb->set_mu_bb(sim.ball_ball.mu_bb);
   bb->set_restitution(sim.ball_ball.e);
-  bb->set_friction_law(sim.ball_ball.friction_law == physics::BallBallFrictionLaw::kMarlow ? "marlow"
-                                                                                           : "constant");
+  bb->set_friction_law(FrictionLawName(sim.ball_ball.friction_law));
+  bb->set_slip_gain(sim.ball_ball.slip_gain);
+  bb->set_slip_decay(sim.ball_ball.slip_decay);
   v1::CushionModel* cushion = response->mutable_cushion();
   cushion->set_mu_w(sim.cushion.mu_w);
   cushion->set_mu_s(sim.cushion.mu_s);
@@ -599,7 +617,7 @@ void ModelToProto(const physics::SimParams& sim, const physics::TableModel& tabl
     cushion->add_restitution(sim.cushion.restitution_curve.e[static_cast<std::size_t>(i)]);
   }
   cushion->set_constant_restitution(sim.cushion.e_e);
-  const physics::CueParams cue;
+  const physics::CueParams& cue = physics_model.cue;
   v1::CueModel* c = response->mutable_cue();
   c->set_mass_kg(cue.mass);
   c->set_tip_radius_m(cue.tip_radius);
@@ -631,6 +649,7 @@ void ModelToProto(const physics::SimParams& sim, const physics::TableModel& tabl
   d->set_path_sample_s(path_sample_s);
   d->set_rest_speed(sim.rest_speed);
   d->set_impact_tables(sim.impact_tables);
+  server::ModelToProto(physics_model, response->mutable_physics());
 }
 
 }  // namespace snooker::server

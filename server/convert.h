@@ -14,6 +14,7 @@
 #include "physics/core/shot.h"
 #include "physics/core/params.h"
 #include "physics/cue/strike.h"
+#include "physics/model/model.h"
 #include "physics/sim/simulate.h"
 #include "physics/table/table.h"
 #include "snooker/v1/collide.pb.h"
@@ -51,10 +52,11 @@ std::string QuoteId(std::string_view id);
 
 std::vector<FieldError> ValidateCollideRequest(const v1::CollideRequest& request);
 
-/// Library parameters from the request; unset fields take the paper's defaults.
-physics::BallParams BallParamsFrom(const v1::CollisionParameters& p);
-physics::ClothParams ClothParamsFrom(const v1::CollisionParameters& p);
-physics::BallBallParams BallBallParamsFrom(const v1::CollisionParameters& p);
+/// Library parameters from the request; unset fields take `base`'s values (the
+/// default model: the paper's).
+physics::BallParams BallParamsFrom(const v1::CollisionParameters& p, const physics::Model& base = {});
+physics::ClothParams ClothParamsFrom(const v1::CollisionParameters& p, const physics::Model& base = {});
+physics::BallBallParams BallBallParamsFrom(const v1::CollisionParameters& p, const physics::Model& base = {});
 physics::ImpulseSolverOptions SolverOptionsFrom(const v1::ImpulseSolverOptions& o);
 
 /// What CheckTable found, and what it changed.
@@ -100,13 +102,16 @@ double NormalizedHeadingDeg(double heading_deg);
 
 /// The shot in library units (heading normalised, in rad).
 physics::Shot ShotFrom(const v1::Shot& shot);
-/// The shot a CueStrike gives the cue ball (the default cue, physics/cue/strike.h),
-/// or nullopt with the reasons in `errors` (a value out of range, a miscue, a hop).
-std::optional<physics::Shot> ShotFromCue(const v1::CueStrike& cue, std::vector<FieldError>* errors);
+/// The shot a CueStrike gives the cue ball (`model`'s cue and ball,
+/// physics/cue/strike.h), or nullopt with the reasons in `errors` (a value out of
+/// range, a miscue, a hop).
+std::optional<physics::Shot> ShotFromCue(const v1::CueStrike& cue, std::vector<FieldError>* errors,
+                                         const physics::Model& model = {});
 void ToProto(const physics::Shot& shot, v1::Shot* out);
 
-/// Simulation parameters from the request's options (defaults where unset).
-physics::SimParams SimParamsFrom(const v1::SimulationOptions& options);
+/// Simulation parameters from the request's options (defaults where unset), with
+/// `model`'s physics.
+physics::SimParams SimParamsFrom(const v1::SimulationOptions& options, const physics::Model& model = {});
 
 /// Index of the CUE ball in a table state, or -1.
 int CueIndex(const v1::TableState& table);
@@ -128,9 +133,10 @@ void ToProto(const physics::Vec3& v, v1::Vec3* out);
 void ToProto(const physics::TableModel& table, v1::TableGeometry* out);
 
 /// The physics model in API form (GetModel): ball, cloth, ball-ball, cushion (its
-/// contact height the table's) and the simulation defaults, with `path_sample_s`
-/// the paths' default sampling interval, s.
-void ModelToProto(const physics::SimParams& sim, const physics::TableModel& table, double path_sample_s,
+/// contact height the table's), the cue, the simulation defaults, with
+/// `path_sample_s` the paths' default sampling interval, s, and the same model in
+/// model-file form (`physics`).
+void ModelToProto(const physics::Model& model, const physics::TableModel& table, double path_sample_s,
                   v1::GetModelResponse* out);
 
 }  // namespace snooker::server

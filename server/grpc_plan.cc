@@ -217,6 +217,7 @@ ApiStatus ShotPlannerService::RunPlan(PlanCall& call, v1::PlanResponse* response
   control.vision_tolerance_mm = options_.vision_tolerance_mm;
   control.default_budget_ms = options_.default_plan_budget_ms;
   control.max_budget_ms = options_.max_plan_budget_ms;
+  control.planner = planner_.get();
   ApiStatus st = server::Plan(request, response, control);
   work->simulations = response->simulations();
   return service_detail::DeadlineIfClientLate(std::move(st), call);

@@ -208,6 +208,9 @@ ShotPlannerService::ShotPlannerService(const ServiceOptions& options)
   service_limits_.set_max_plans(options.max_plans);
   service_limits_.set_workers(pool_.threads());
   service_limits_.set_max_queued(options.max_queued);
+  if (options_.model) {
+    planner_ = std::make_unique<planner::Planner>(planner::PlannerConfig{}.WithModel(*options_.model));
+  }
 }
 
 ShotPlannerService::~ShotPlannerService() { pool_.Stop(); }
@@ -269,6 +272,7 @@ void ShotPlannerService::Run(const std::shared_ptr<Call>& call) {
     limits.default_plan_budget_ms = options_.default_plan_budget_ms;
     limits.max_plan_budget_ms = options_.max_plan_budget_ms;
     limits.service = &service_limits_;
+    limits.model = model();
     status = service_detail::Guarded([&]() -> ApiStatus {
       std::string bytes;
       if (!Flatten(*call->request, &bytes)) return ApiStatus::Invalid("cannot read the request's bytes");

@@ -31,6 +31,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <ostream>
 #include <string>
 
@@ -66,6 +67,9 @@ struct ServiceOptions {
   double max_plan_budget_ms = limits::kDefaultMaxPlanBudgetMs;
   /// Plans in the server at once (running or waiting); more are refused at once.
   int max_plans = limits::kDefaultMaxPlans;
+  /// The physical model every call simulates and plans with (`--model FILE`);
+  /// none: the default model.
+  std::optional<physics::Model> model;
 };
 
 /// Empty when the options are within their ranges (server/limits.h); otherwise
@@ -157,6 +161,9 @@ class ShotPlannerService final : public ShotPlannerRawService {
 
   ServiceOptions options_;
   v1::ServiceLimits service_limits_;  // what GetModel reports
+  /// The planner of options_.model (nullptr: the default planner, shared).
+  std::unique_ptr<planner::Planner> planner_;
+  const physics::Model* model() const { return options_.model ? &*options_.model : nullptr; }
   std::atomic<std::int64_t> received_{0}, finished_{0}, running_{0}, plans_{0};
   std::atomic<std::int64_t> progress_messages_{0}, progress_dropped_{0};
   std::array<std::atomic<std::int64_t>, 17> by_status_{};

@@ -63,7 +63,7 @@ ApiStatus Plan(const v1::PlanRequest& request, v1::PlanResponse* response, const
     *repaired.mutable_table() = std::move(*check.repaired);
     planned = &repaired;
   }
-  const planner::Planner& planner = planner::Planner::Default();
+  const planner::Planner& planner = control.planner != nullptr ? *control.planner : planner::Planner::Default();
   planner::PlanRequest p = PlanRequestFrom(*planned, control.default_budget_ms);
   p.deadline = control.deadline;
   p.cancel = control.cancel;

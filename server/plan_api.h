@@ -33,6 +33,8 @@ struct PlanControl {
   /// A request's time budget when it sets none, and the largest it may ask for, ms.
   double default_budget_ms = limits::kDefaultPlanBudgetMs;
   double max_budget_ms = limits::kPlanBudgetMs.hi;
+  /// The planner (its physical model: `--model`); nullptr: planner::Planner::Default().
+  const planner::Planner* planner = nullptr;
 };
 
 /// Builds the planner and its pocket and throw tables (a few thousand simulations,

@@ -1,0 +1,24 @@
+// The physical model (physics/model/model.h) in API form (physics_model.proto): the
+// model file that `--model FILE` reads and `snooker model` / `snooker calibrate`
+// write, and GetModel's `physics`.
+#pragma once
+
+#include <string>
+
+#include "physics/model/model.h"
+#include "snooker/v1/physics_model.pb.h"
+
+namespace snooker::server {
+
+/// Sets in `*model` every field `file` gives (the rest keeps its value) and checks
+/// the result. Returns "" when valid, otherwise a sentence naming each bad field and
+/// value ("cloth.mu_s = -1 (must be in [0, 1])"); `*model` is then unspecified.
+std::string ModelFromProto(const v1::PhysicsModel& file, physics::Model* model);
+
+/// Every field of `model` (the restitution curve's knots when it has one).
+void ModelToProto(const physics::Model& model, v1::PhysicsModel* out);
+
+/// "constant", "marlow" or "exponential".
+const char* FrictionLawName(physics::BallBallFrictionLaw law);
+
+}  // namespace snooker::server
