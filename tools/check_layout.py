@@ -2,8 +2,9 @@
 """Checks the tree's shape, each a test of its own:
 
   deps       which folder may include which (the architecture, physics <- planner <-
-             server <- cli, and the physics stages of physics/CMakeLists.txt);
-  functions  no function in physics/, planner/, server/ or cli/ longer than
+             server <- cli and physics <- calibration, and the physics stages of
+             physics/CMakeLists.txt);
+  functions  no function in physics/, planner/, calibration/, server/ or cli/ longer than
              MAX_FUNCTION_LINES (a longer one is phases that want names); needs
              Universal Ctags;
   text       product files (code, proto, README, docs) carry no issue numbers or
@@ -35,6 +36,7 @@ STAGES = {
     "physics/model": ["physics/core", "physics/impact", "physics/sim", "physics/cue", "physics/table",
                       "physics/motion", "physics/events", "physics/ode"],
     "planner": ["physics", "planner"],
+    "calibration": ["physics", "calibration"],
     "server": ["physics", "planner", "server", "snooker/v1"],
     "cli": ["physics", "planner", "server", "cli", "snooker/v1"],
 }
@@ -42,6 +44,7 @@ STAGES = {
 FORBIDDEN_SYSTEM = {
     "physics": ["grpc", "grpcpp/", "google/protobuf/", "nlopt"],
     "planner": ["grpc", "grpcpp/", "google/protobuf/"],
+    "calibration": ["grpc", "grpcpp/", "google/protobuf/"],
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 SYSTEM_INCLUDE = re.compile(r'^\s*#\s*include\s+<([^>]+)>', re.M)
@@ -57,7 +60,7 @@ def rules_for(path):
 
 def check_deps(root):
     problems, checked = [], 0
-    for top in ("physics", "planner", "server", "cli"):
+    for top in ("physics", "planner", "calibration", "server", "cli"):
         for dirpath, _, files in os.walk(os.path.join(root, top)):
             for name in sorted(files):
                 if not name.endswith((".h", ".cc")):
@@ -90,7 +93,7 @@ def check_deps(root):
 
 
 
-CODE_FOLDERS = ("physics", "planner", "server", "cli")
+CODE_FOLDERS = ("physics", "planner", "calibration", "server", "cli")
 MAX_FUNCTION_LINES = 120
 
 
