@@ -434,9 +434,15 @@ struct Search {
   Evaluator& eval;
   std::vector<double> best;
   double best_cost = kInf;
+  const physics::Interrupt* interrupt = nullptr;
+  bool interrupted = false;
 
   static double Objective(unsigned n, const double* u, double* /*grad*/, void* data) {
     Search& s = *static_cast<Search*>(data);
+    if (s.interrupt != nullptr && s.interrupt->Due()) {
+      s.interrupted = true;
+      throw nlopt::forced_stop();  // NLopt ends the search and optimize() rethrows it
+    }
     std::vector<double> values(n);
     for (unsigned k = 0; k < n; ++k) {
       const ParameterSpec& p = s.eval.params[k].spec;
@@ -480,6 +486,8 @@ std::string RunSearch(Search* search, const std::vector<double>& start, const Fi
     }
   } catch (const nlopt::roundoff_limited&) {
     return "roundoff";  // as far as doubles allow: the best point stands
+  } catch (const nlopt::forced_stop&) {
+    return "interrupted";
   } catch (const std::exception& e) {
     return std::string("search failed: ") + e.what();
   }
@@ -506,7 +514,7 @@ std::string RunStages(Search* search, Residuals* residuals, bool tracked, const 
     const double used = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     status = RunSearch(search, search->best, stage, seconds - used);
     left -= search->eval.count - before;
-    if (status == "time cap" || status.rfind("search failed", 0) == 0) break;
+    if (status == "time cap" || status == "interrupted" || status.rfind("search failed", 0) == 0) break;
   }
   residuals->set_horizon(kInf);
   return status;
@@ -584,8 +592,15 @@ FitResult Fit(const Observations& observations, std::span<const Group> groups, c
     out.error = "the data do not identify " + unidentified;
     return out;
   }
-  Search search{eval, v0, SumOfSquares(r0)};
+  Search search{eval, v0, SumOfSquares(r0), &options.interrupt};
   out.status = RunStages(&search, &residuals, !observations.shots.empty(), options, options.max_seconds - elapsed());
+  if (search.interrupted) {
+    out.interrupted = true;
+    out.error = "interrupted (the caller's deadline or cancellation) after " + std::to_string(eval.count) +
+                " evaluations";
+    out.evaluations = eval.count;
+    return out;
+  }
   const std::vector<double> r1 = eval(search.best);
   out.model = WithValues(m0, params, search.best);
   for (std::size_t k = 0; k < params.size(); ++k) {

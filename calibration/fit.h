@@ -84,6 +84,7 @@
 #include "calibration/predict.h"
 #include "physics/model/model.h"
 #include "physics/sim/sim_params.h"
+#include "physics/sim/simulate.h"
 
 namespace snooker::calibration {
 
@@ -132,7 +133,7 @@ struct FitOptions {
   /// identifiability check, and at the optimum; at most 2 p evaluations each for
   /// p parameters) and one evaluation per stage come on top of max_evaluations;
   /// max_seconds caps the search, not the final Jacobian.
-  int max_evaluations = 400;
+  int max_evaluations = 4000;
   double max_seconds = 120;
   /// Stop when a step changes every scaled parameter by less than this (of its
   /// range).
@@ -148,6 +149,9 @@ struct FitOptions {
   double position_outlier_scale = 5.0;
   /// Numerical settings of every prediction (the physics is the model's).
   physics::SimParams numerics = CalibrationNumerics();
+  /// The caller's deadline and cancellation, checked before every evaluation of
+  /// the search: once due, the fit ends with FitResult::interrupted.
+  physics::Interrupt interrupt;
 };
 
 /// A failed prediction's residual, in sigmas.
@@ -189,6 +193,9 @@ struct FitResult {
   double reduced_chi_square = 0;
   int evaluations = 0;  ///< prediction sets computed, the Jacobians' included
   double seconds = 0;
+  /// The interrupt (FitOptions::interrupt) ended the fit; `error` says so and no
+  /// model is fitted.
+  bool interrupted = false;
 };
 
 /// Fits the parameters of `groups` to `observations` from `start` (see above).

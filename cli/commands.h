@@ -22,5 +22,7 @@ int RunPlan(const std::vector<std::string>& args, std::ostream& out, std::ostrea
 int RunSelfPlay(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int RunMatch(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int RunModel(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int RunCalibrate(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int RunRecord(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 }  // namespace snooker::cli

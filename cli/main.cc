@@ -18,6 +18,8 @@ commands:
   selfplay   the planner plays breaks alone: mean break, pot rate, planning time
   match      two players play whole frames by the rules: frames, points, breaks, fouls
   model      the physical model in use (ball, cloth, ball-ball, cushion, cue)
+  record     tracked shots made in a model of a table, with vision noise
+  calibrate  fit the physical model to observations of a table
   serve      run the gRPC service (snooker.v1.ShotPlanner)
   loadtest   load-test a server on this machine: throughput, latency, errors
   demo       start the service and use it on built-in examples
@@ -40,6 +42,8 @@ int Run(int argc, char** argv) {
   if (command == "selfplay") return RunSelfPlay(args, std::cout, std::cerr);
   if (command == "match") return RunMatch(args, std::cout, std::cerr);
   if (command == "model") return RunModel(args, std::cout, std::cerr);
+  if (command == "record") return RunRecord(args, std::cout, std::cerr);
+  if (command == "calibrate") return RunCalibrate(args, std::cout, std::cerr);
   if (command == "serve") return RunServe(args, std::cout, std::cerr);
   if (command == "loadtest") return RunLoadTest(args, std::cout, std::cerr);
   if (command == "demo") return RunDemo(args, std::cout, std::cerr);

@@ -7,6 +7,7 @@
 #include <thread>
 #include <vector>
 
+#include "server/calibrate_api.h"
 #include "server/convert.h"
 #include "server/decode.h"
 #include "server/service_detail.h"
@@ -129,6 +130,7 @@ using service_detail::IsCancelled;
 std::int64_t SimulationsOf(const v1::CollideResponse&) { return 0; }
 std::int64_t SimulationsOf(const v1::SimulateResponse&) { return 1; }
 std::int64_t SimulationsOf(const v1::GetModelResponse&) { return 0; }
+std::int64_t SimulationsOf(const v1::CalibrateResponse& r) { return r.evaluations(); }
 
 // Parse, run, serialise: one method of the service on raw bytes.
 template <typename Request, typename Response,
@@ -152,6 +154,8 @@ constexpr ShotPlannerService::Method kSimulate{
     "Simulate", &RunMethod<v1::SimulateRequest, v1::SimulateResponse, &server::Simulate>};
 constexpr ShotPlannerService::Method kGetModel{
     "GetModel", &RunMethod<v1::GetModelRequest, v1::GetModelResponse, &server::GetModel>};
+constexpr ShotPlannerService::Method kCalibrate{
+    "Calibrate", &RunMethod<v1::CalibrateRequest, v1::CalibrateResponse, &server::Calibrate>};
 
 }  // namespace
 
@@ -231,6 +235,12 @@ grpc::ServerUnaryReactor* ShotPlannerService::GetModel(grpc::CallbackServerConte
                                                        const grpc::ByteBuffer* request,
                                                        grpc::ByteBuffer* response) {
   return Accept(kGetModel, context, request, response);
+}
+
+grpc::ServerUnaryReactor* ShotPlannerService::Calibrate(grpc::CallbackServerContext* context,
+                                                        const grpc::ByteBuffer* request,
+                                                        grpc::ByteBuffer* response) {
+  return Accept(kCalibrate, context, request, response);
 }
 
 grpc::ServerUnaryReactor* ShotPlannerService::Accept(const Method& method,

@@ -92,8 +92,8 @@ struct CallCounts {
 
 using ShotPlannerRawService = v1::ShotPlanner::WithRawCallbackMethod_Collide<
     v1::ShotPlanner::WithRawCallbackMethod_Simulate<v1::ShotPlanner::WithRawCallbackMethod_GetModel<
-        v1::ShotPlanner::WithRawCallbackMethod_Plan<
-            v1::ShotPlanner::WithRawCallbackMethod_PlanStream<v1::ShotPlanner::Service>>>>>;
+        v1::ShotPlanner::WithRawCallbackMethod_Plan<v1::ShotPlanner::WithRawCallbackMethod_PlanStream<
+            v1::ShotPlanner::WithRawCallbackMethod_Calibrate<v1::ShotPlanner::Service>>>>>>;
 
 class ShotPlannerService final : public ShotPlannerRawService {
  public:
@@ -114,6 +114,8 @@ class ShotPlannerService final : public ShotPlannerRawService {
                                  grpc::ByteBuffer* response) override;
   grpc::ServerWriteReactor<grpc::ByteBuffer>* PlanStream(grpc::CallbackServerContext* context,
                                                          const grpc::ByteBuffer* request) override;
+  grpc::ServerUnaryReactor* Calibrate(grpc::CallbackServerContext* context, const grpc::ByteBuffer* request,
+                                      grpc::ByteBuffer* response) override;
 
   CallCounts counts() const;
   /// Runs what is queued and joins the workers. Call after grpc::Server::Shutdown

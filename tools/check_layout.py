@@ -37,8 +37,8 @@ STAGES = {
                       "physics/motion", "physics/events", "physics/ode"],
     "planner": ["physics", "planner"],
     "calibration": ["physics", "calibration"],
-    "server": ["physics", "planner", "server", "snooker/v1"],
-    "cli": ["physics", "planner", "server", "cli", "snooker/v1"],
+    "server": ["physics", "planner", "calibration", "server", "snooker/v1"],
+    "cli": ["physics", "planner", "calibration", "server", "cli", "snooker/v1"],
 }
 # System headers a folder must not use: the libraries never see gRPC or Protobuf.
 FORBIDDEN_SYSTEM = {
