@@ -53,6 +53,16 @@ TEST(ImpactTableTest, DefaultTablesAreBuiltForTheSimulatorsParameters) {
   marlow.friction_law = BallBallFrictionLaw::kMarlow;
   EXPECT_FALSE(DefaultBallBallTable()->Matches(sim.ball, marlow, sim.cloth.mu_s));
   EXPECT_FALSE(DefaultBallBallTable()->Matches(sim.ball, sim.ball_ball, 0.3));
+  // A fitted friction law depends on the slip speed: the table (one speed, scaled)
+  // cannot answer it, even when its constant part is the table's mu_bb.
+  BallBallParams fitted = sim.ball_ball;
+  fitted.friction_law = BallBallFrictionLaw::kExponential;
+  fitted.slip_gain = 0.1;
+  fitted.slip_decay = 0.6;
+  EXPECT_FALSE(DefaultBallBallTable()->Matches(sim.ball, fitted, sim.cloth.mu_s));
+  BallBallParams restitution = sim.ball_ball;
+  restitution.e = 0.9;
+  EXPECT_FALSE(DefaultBallBallTable()->Matches(sim.ball, restitution, sim.cloth.mu_s));
 }
 
 TEST(ImpactTableTest, CushionTableAgreesWithTheSolver) {
