@@ -221,14 +221,19 @@ def selfplay_section(data, frames_note):
         if os.path.exists(path):
             runs.append((world, model, load(data, file)))
     w = load(data, "sim-to-real-world.json")
+    if not frames_note and runs:
+        frames_note = (f"{runs[0][2]['frames']} frames each, seed 1 (saved runs in docs/data/calibration-selfplay-*.json; "
+                       f"`FRAMES={runs[0][2]['frames']} scripts/calibration-report` measures them again).")
     out = ["", "## Sim-to-real: the planner on a table unlike its model", "",
            "The world: the throw law fitted above (mu = "
            f"{w['ballBall']['muBb']:.3g} + {w['ballBall']['slipGain']:.4f} exp(-{w['ballBall']['slipDecay']:.4f} s)), "
            f"the cloth 20 % slower (mu_s {w['cloth']['muS']:.3f}, mu_r {w['cloth']['muR']:.5f}) and a stiffer "
            f"shaft (end mass {1000 * w['cue']['endMassKg']:.0f} g against 6 g: more squirt) "
-           "(`docs/data/sim-to-real-world.json`). Self-play (`snooker selfplay --frames N --seed 1 [--model M] "
-           "[--world W]`): the planner plans with its model, the strokes, with the cue's default noise, are "
-           f"played in the world. {frames_note}", "",
+           "(`docs/data/sim-to-real-world.json`). Self-play (`snooker selfplay --frames N --seed 1 --budget-ms 2000 "
+           "--max-simulations 4800 [--model M] [--world W]`: the default budget's 4800 simulations as a cap that "
+           "binds first, so that every model gets the same work and the frames are the same on any machine): the "
+           "planner plans with its model, the strokes, with the cue's default noise, are played in the world. "
+           f"Planning times are those of the measuring run, on a machine shared with other work. {frames_note}", "",
            "| world | planner's model | frames | shots | pot rate | mean break | plan p50 / p99 (ms) |",
            "|---|---|---|---|---|---|---|"]
     for world, model, r in runs:
