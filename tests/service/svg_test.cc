@@ -4,7 +4,7 @@
 // of the table named; every ball that moved in the best shot with its path, each
 // alternative's object ball with its own; every path's halo contrasting with the
 // cloth and its colour with its halo; the same bytes from the same answer. With no
-// shot, the table, its balls and why. The cue ball placed from
+// shot, or a plan that fails, the table, its balls and why. The cue ball placed from
 // hand drawn where the shot places it; each shot in words.
 #include "cli/svg.h"
 
@@ -308,6 +308,24 @@ TEST(PlanPictureNoShotTest, TheTableItsBallsAndWhy) {
   EXPECT_TRUE(Contains(AllTexts(doc, "label"), "no shot")) << doc;
   EXPECT_EQ(Legend(doc), "no shot: " + XmlText(plan.reason()));
   std::remove(table.c_str());
+  std::remove(svg.c_str());
+}
+
+// A plan that fails (no pink on the table) keeps its exit status and message, and
+// still draws the table with the message.
+TEST(PlanPictureNoShotTest, AFailedPlanIsDrawnWithItsMessage) {
+  const std::string svg = testing::TempDir() + "picture_failed_" + std::to_string(getpid()) + ".svg";
+  const RunResult r = RunCli("plan --table builtin:red --on PINK --max-simulations 50 --svg " + svg);
+  const RunResult without = RunCli("plan --table builtin:red --on PINK --max-simulations 50");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.exit_code, without.exit_code);
+  EXPECT_EQ(r.err, without.err);
+  const std::string doc = ReadAll(svg);
+  ASSERT_NE(doc, "");
+  std::string said = without.err.substr(std::string("snooker plan: ").size());
+  while (!said.empty() && said.back() == '\n') said.pop_back();
+  EXPECT_EQ(Legend(doc), "no shot: " + XmlText(said));
+  for (const char* id : {"cue", "red-1", "black", "red-2"}) EXPECT_TRUE(Contains(AllTexts(doc, "id"), id)) << id;
   std::remove(svg.c_str());
 }
 
