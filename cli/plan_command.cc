@@ -75,7 +75,7 @@ a pot with its route (direct, plant, double, kick).
                    "ballsEnd": [{"ball", "position", "pocket"}]}], "reason",
                    "simulations", "evaluations", "elapsedMs", "final", "warnings"};
                    a shot's first four fields are a simulate shot file
-  --svg out.svg    draw the plan: every ball's path of the
+  --svg out.svg    draw the plan (docs/plan-pictures.md): every ball's path of the
                    best shot (simulated again with the model in use), its ghost
                    ball, aim point, target pocket with P(pot) and next ball; each
                    alternative's object-ball path, dashed; the shots numbered on the
