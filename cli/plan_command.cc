@@ -10,7 +10,9 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <memory>
 #include <set>
+#include <sstream>
 #include <string_view>
 
 #include "cli/args.h"
@@ -73,9 +75,11 @@ a pot with its route (direct, plant, double, kick).
                    "ballsEnd": [{"ball", "position", "pocket"}]}], "reason",
                    "simulations", "evaluations", "elapsedMs", "final", "warnings"};
                    a shot's first four fields are a simulate shot file
-  --svg out.svg    draw the best shot (every ball's path, the cue ball placed from
-                   hand where it is) and the cue ball's path of each alternative
-                   (dashed) over the table; with no shot, the table and why
+  --svg out.svg    draw the plan (docs/plan-pictures.md): every ball's path of the
+                   best shot (simulated again with the model in use), its ghost
+                   ball, aim point, target pocket with P(pot) and next ball; each
+                   alternative's object-ball path, dashed; the shots numbered on the
+                   table and listed beside it; with no shot, the table and why
   --stream         print the best shot so far each time the search improves on it
                    ("progress" lines, or one JSON object per line with --json: final
                    false, potProbability the fast estimate), then the answer; with
@@ -176,15 +180,8 @@ void PrintProgress(const v1::PlanResponse& r, bool json, std::ostream& out, std:
   out << std::flush;
 }
 
-// The drawing of the plan (PlanSvg) in `path`.
-bool WriteSvg(const std::string& path, const v1::TableState& table, const v1::PlanResponse& plan,
-              std::ostream& err) {
-  std::string why;
-  const std::string doc = PlanSvg(table, plan, &why);
-  if (doc.empty()) {
-    err << "snooker plan: " << why << "\n";
-    return false;
-  }
+// `doc` in `path`. False after saying why on `err`.
+bool WriteFile(const std::string& path, const std::string& doc, std::ostream& err) {
   std::ofstream f(path);
   f << doc;
   if (!f) {
@@ -386,6 +383,34 @@ int PlanHere(const PlanSettings& s, v1::PlanResponse* resp, std::ostream& out, s
   return kExitOk;
 }
 
+// How the drawing simulates each shot again: as `snooker simulate` would, with the
+// model the plan used (the server's Simulate with --server, server::Simulate with
+// --model's or the default model here).
+SimulateFn DrawingSimulator(const PlanSettings& s) {
+  if (!s.client.target.empty()) {
+    std::shared_ptr<v1::ShotPlanner::Stub> stub = v1::ShotPlanner::NewStub(MakeChannel(s.client));
+    const std::chrono::milliseconds deadline = s.client.deadline;
+    return [stub, deadline](const v1::SimulateRequest& request, v1::SimulateResponse* response) {
+      grpc::ClientContext context;
+      context.set_deadline(std::chrono::system_clock::now() + deadline);
+      const grpc::Status st = stub->Simulate(&context, request, response);
+      if (st.ok()) return server::ApiStatus::Ok();
+      return server::ApiStatus{server::ApiStatus::Code::kInternal,
+                               std::string(StatusCodeName(st.error_code())) + ": " + st.error_message()};
+    };
+  }
+  const std::optional<physics::Model> model = s.model;
+  return [model](const v1::SimulateRequest& request, v1::SimulateResponse* response) {
+    server::CallLimits limits;
+    if (model) limits.model = &*model;
+    return server::Simulate(request, response, limits);
+  };
+}
+
+double DrawnBallRadius(const PlanSettings& s) {
+  return s.model ? s.model->ball.radius : physics::BallParams{}.radius;
+}
+
 // The answer: drawn with --svg, and printed (JSON with --json).
 int WriteAnswer(const PlanSettings& s, const v1::PlanResponse& resp, std::ostream& out, std::ostream& err) {
   if (!s.svg_path.empty()) {
@@ -396,7 +421,13 @@ int WriteAnswer(const PlanSettings& s, const v1::PlanResponse& resp, std::ostrea
         if (b.id() == w.ball_id()) *b.mutable_position() = w.to();
       }
     }
-    if (!WriteSvg(s.svg_path, drawn, resp, err)) return kExitFailure;
+    std::string why;
+    const std::string doc = PlanSvg(drawn, resp, DrawingSimulator(s), DrawnBallRadius(s), &why);
+    if (doc.empty()) {
+      err << "snooker plan: " << why << "\n";
+      return kExitFailure;
+    }
+    if (!WriteFile(s.svg_path, doc, err)) return kExitFailure;
   }
   if (s.json) {
     if (!PrintJson(resp, "snooker plan", out, err)) return kExitFailure;
@@ -406,14 +437,32 @@ int WriteAnswer(const PlanSettings& s, const v1::PlanResponse& resp, std::ostrea
   return kExitOk;
 }
 
+// A plan that failed (`said`: what the command said on stderr) drawn as the table,
+// its balls and why, with --svg; the exit code stays the failure's.
+void DrawFailure(const PlanSettings& s, const std::string& said, std::ostream& err) {
+  if (s.svg_path.empty()) return;
+  std::string why = said;
+  constexpr std::string_view kPrefix = "snooker plan: ";
+  if (why.compare(0, kPrefix.size(), kPrefix) == 0) why.erase(0, kPrefix.size());
+  while (!why.empty() && why.back() == '\n') why.pop_back();
+  WriteFile(s.svg_path,
+            TableSvg(physics::DefaultTable(), s.request.table(), DrawnBallRadius(s), "no shot: " + why), err);
+}
+
 }  // namespace
 
 int RunPlan(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
   PlanSettings s;
   if (const std::optional<int> stop = ParsePlanFlags(argv, out, err, &s)) return *stop;
   v1::PlanResponse resp;
-  const int rc = s.client.target.empty() ? PlanHere(s, &resp, out, err) : PlanOnServer(s, &resp, out, err);
-  if (rc != kExitOk) return rc;
+  // What the plan says on stderr, kept to draw a failure with.
+  std::ostringstream said;
+  const int rc = s.client.target.empty() ? PlanHere(s, &resp, out, said) : PlanOnServer(s, &resp, out, said);
+  err << said.str();
+  if (rc != kExitOk) {
+    DrawFailure(s, said.str(), err);
+    return rc;
+  }
   return WriteAnswer(s, resp, out, err);
 }
 

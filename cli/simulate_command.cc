@@ -57,7 +57,9 @@ ball centres in metres.
   --json           print the result as JSON: {"status", "durationS", "events": [{"time"
                    s, "kind", "balls", "cushion", "pocket", "motion"}], "finalBalls":
                    [{"id", "kind", "position", "pocketed", "pocket"}]}
-  --svg out.svg    also draw the table with each ball's path
+  --svg out.svg    also draw the table: each ball where it starts (with its id),
+                   its path and where it stops, and beside the table the status
+                   and the balls potted
   --tolerance X    impact integrators' local error tolerance, 1e-15 to 0.1
                    (default 1e-7; tighter also turns the impact tables off)
   --no-impact-tables
@@ -200,7 +202,7 @@ int RunSimulate(const std::vector<std::string>& argv, std::ostream& out, std::os
       }
     }
     std::ofstream f(*svg_path);
-    f << ShotSvg(physics::DefaultTable(), drawn, resp, physics::BallParams{}.radius);
+    f << ShotSvg(physics::DefaultTable(), drawn, resp, model ? model->ball.radius : physics::BallParams{}.radius);
     if (!f) {
       err << "snooker simulate: cannot write '" << *svg_path << "'\n";
       return kExitFailure;

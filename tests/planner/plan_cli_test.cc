@@ -116,10 +116,12 @@ TEST(CliPlanTest, ReadableAnswerAndSvg) {
   std::remove(svg.c_str());
 }
 
-// The text of an SVG document's <text> elements, joined by spaces, unescaped.
+// The text of the panel beside the table (an SVG document's <text class="line">
+// elements), joined by spaces, unescaped.
 std::string SvgText(const std::string& svg) {
   std::string text;
-  for (size_t at = svg.find("<text"); at != std::string::npos; at = svg.find("<text", at + 1)) {
+  const std::string mark = "<text class=\"line\"";
+  for (size_t at = svg.find(mark); at != std::string::npos; at = svg.find(mark, at + 1)) {
     const size_t begin = svg.find('>', at) + 1, end = svg.find("</text>", begin);
     if (end == std::string::npos) break;
     text += (text.empty() ? "" : " ") + svg.substr(begin, end - begin);
@@ -156,7 +158,7 @@ TEST(CliPlanTest, WithNoShotTheSvgShowsTheTableAndWhy) {
   EXPECT_NE(doc.find("<svg"), std::string::npos) << doc;
   EXPECT_NE(doc.find("</svg>"), std::string::npos) << doc;
   EXPECT_EQ(doc.find("<polyline"), std::string::npos) << doc;      // no shot drawn
-  EXPECT_NE(doc.find("<title>cue</title>"), std::string::npos) << doc;  // the ball, where it is
+  EXPECT_NE(doc.find("<title>cue (start)</title>"), std::string::npos) << doc;  // the ball, where it is
   EXPECT_EQ(SvgText(doc), "no shot: " + reason) << doc;
   std::remove(table.c_str());
   std::remove(svg.c_str());
