@@ -42,6 +42,7 @@ bool StartsWith(std::string_view s, std::string_view prefix) { return s.substr(0
 
 // "ipv4:127.0.0.1:51000" or "ipv6:[::1]:51000", as gRPC names its peers.
 std::string PeerOf(const httplib::Request& req) {
+  if (req.remote_addr.empty()) return "unknown";  // a request line that did not parse
   const bool v6 = req.remote_addr.find(':') != std::string::npos;
   return (v6 ? "ipv6:[" + req.remote_addr + "]" : "ipv4:" + req.remote_addr) + ":" +
          std::to_string(req.remote_port);
@@ -540,16 +541,17 @@ void HttpServer::Impl::Stream(const httplib::Request& req, httplib::Response& re
 }
 
 void HttpServer::Impl::Log(const httplib::Request& req, const httplib::Response& res) {
-  if (t_logged || log == nullptr) {
-    t_logged = false;
-    return;
-  }
+  const Clock::time_point arrival = std::exchange(t_arrival, Clock::time_point{});
+  if (std::exchange(t_logged, false) || log == nullptr) return;
   std::ostringstream line;
   line.precision(3);
   line << std::fixed << "snooker: http method=" << Printable(req.method, 16) << " path=" << Printable(req.path)
-       << " peer=" << PeerOf(req) << " status=" << res.status
-       << " latency_ms=" << std::chrono::duration<double, std::milli>(Clock::now() - t_arrival).count()
-       << " response_bytes=" << res.body.size() << "\n";
+       << " peer=" << PeerOf(req) << " status=" << res.status;
+  // A request that did not parse never reached the router, which notes the arrival.
+  if (arrival != Clock::time_point{}) {
+    line << " latency_ms=" << std::chrono::duration<double, std::milli>(Clock::now() - arrival).count();
+  }
+  line << " response_bytes=" << res.body.size() << "\n";
   std::lock_guard<std::mutex> lock(log_mu);
   *log << line.str() << std::flush;
 }
