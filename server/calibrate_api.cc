@@ -17,6 +17,8 @@ namespace snooker::server {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// FittedParameter.uncertainty of a parameter the data do not determine.
+constexpr double kUndetermined = -1;
 
 std::string Index(const char* list, int i) { return std::string(list) + "[" + std::to_string(i) + "]"; }
 
@@ -195,7 +197,9 @@ void ResponseFrom(const calibration::FitResult& fit, const std::vector<calibrati
     p->set_unit(UnitOf(e.name));
     p->set_start(e.start);
     p->set_value(e.fitted);
-    p->set_uncertainty(e.uncertainty);
+    // The library's NaN (J^T J singular at the optimum: the data do not determine
+    // the parameter there) as calibrate.proto's -1: an answer has finite numbers.
+    p->set_uncertainty(std::isfinite(e.uncertainty) ? e.uncertainty : kUndetermined);
     if (i < specs.size()) {
       const double room = 1e-6 * (specs[i].hi - specs[i].lo);
       p->set_at_bound(e.fitted <= specs[i].lo + room || e.fitted >= specs[i].hi - room);
