@@ -1,6 +1,7 @@
 #include "calibration/fit.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -187,6 +188,9 @@ class Residuals {
 
   std::size_t size() const { return kinds_.size(); }
   Kind kind(std::size_t i) const { return kinds_[i]; }
+  /// The interrupt (FitOptions::interrupt) came due during an evaluation: its
+  /// residuals from then on are kFailedResidual, and every later one's too.
+  bool stopped() const { return stopped_.load(std::memory_order_relaxed); }
   /// Sightings later than this (s) count as zero residuals (the staged search).
   void set_horizon(double t) { horizon_ = t; }
   double Sigma(Kind k) const {
@@ -205,7 +209,7 @@ class Residuals {
     std::vector<double> r(kinds_.size(), kFailedResidual);
     std::vector<std::string> errors(1 + o_.shots.size());
     std::size_t at = 0;
-    for (std::size_t i = 0; i < o_.throws.size(); ++i, ++at) {
+    for (std::size_t i = 0; i < o_.throws.size() && !Due(); ++i, ++at) {
       const ThrowPrediction p = PredictThrow(o_.throws[i], m, options_.numerics);
       if (p.error.empty()) {
         r[at] = (p.throw_angle - o_.throws[i].measured_throw) / options_.throw_sigma;
@@ -213,7 +217,7 @@ class Residuals {
         errors[0] = "throw[" + std::to_string(i) + "]: " + p.error;
       }
     }
-    for (std::size_t i = 0; i < o_.rebounds.size(); ++i) {
+    for (std::size_t i = 0; i < o_.rebounds.size() && !Due(); ++i) {
       const CushionObservation& ob = o_.rebounds[i];
       const ReboundPrediction p = PredictRebound(ob, m, options_.numerics);
       const bool ok = p.error.empty();
@@ -237,6 +241,15 @@ class Residuals {
   }
 
  private:
+  // Checked before every prediction (a clock read against at least a microsecond of
+  // work), so that a call's deadline ends even one evaluation of many observations.
+  bool Due() const {
+    if (stopped()) return true;
+    if (!options_.interrupt.Due()) return false;
+    stopped_.store(true, std::memory_order_relaxed);
+    return true;
+  }
+
   // Shot i's residuals from its prediction (kFailedResidual where it has none).
   void Shot(std::size_t i, const Model& m, std::vector<double>* r, std::string* error) const {
     const TrackedShot& s = o_.shots[i];
@@ -265,7 +278,7 @@ class Residuals {
     const std::size_t threads = std::clamp<std::size_t>(static_cast<std::size_t>(std::max(1, options_.threads)),
                                                         1, std::max<std::size_t>(1, n));
     auto work = [&](std::size_t t) {
-      for (std::size_t i = t; i < n; i += threads) Shot(i, m, r, &(*errors)[1 + i]);
+      for (std::size_t i = t; i < n && !Due(); i += threads) Shot(i, m, r, &(*errors)[1 + i]);
     };
     std::vector<std::thread> pool;
     for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work, t);
@@ -278,6 +291,7 @@ class Residuals {
   std::vector<Kind> kinds_;
   std::vector<std::size_t> shot_offsets_;
   double horizon_ = kInf;
+  mutable std::atomic<bool> stopped_{false};
 };
 
 // The position residuals through the Cauchy loss (FitOptions::position_outlier_scale).
@@ -342,6 +356,7 @@ Eigen::MatrixXd Jacobian(Evaluator& eval, const std::vector<double>& at, const s
       r_up = eval(up);
       r_down = eval(down);
     }
+    if (eval.residuals.stopped()) return j;  // interrupted: the caller ends the fit
     const double width = (up[k] - down[k]) / s.scale;
     for (std::size_t i = 0; i < r0.size(); ++i) {
       j(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = (r_up[i] - r_down[i]) / width;
@@ -449,6 +464,10 @@ struct Search {
       values[k] = p.lo + std::clamp(u[k], 0.0, 1.0) * (p.hi - p.lo);
     }
     const double cost = SumOfSquares(s.eval(values));
+    if (s.eval.residuals.stopped()) {
+      s.interrupted = true;
+      throw nlopt::forced_stop();
+    }
     if (cost < s.best_cost) {
       s.best_cost = cost;
       s.best = values;
@@ -581,26 +600,34 @@ FitResult Fit(const Observations& observations, std::span<const Group> groups, c
     v0.push_back(std::clamp(*p.ref(m, p.index), p.spec.lo, p.spec.hi));
   }
   Evaluator eval{residuals, params, m0, options.position_outlier_scale};
+  // The interrupt ends the fit wherever it comes due: the start's Jacobian, the
+  // search, the optimum's Jacobian.
+  auto interrupted = [&] {
+    out.interrupted = true;
+    out.error = "interrupted (the caller's deadline or cancellation) after " + std::to_string(eval.count) +
+                " evaluations";
+    out.evaluations = eval.count;
+    out.model = start;
+    out.parameters.clear();
+    return out;
+  };
   std::string failed;
   const std::vector<double> r0 = eval(v0, &failed);
+  if (residuals.stopped()) return interrupted();
   if (!failed.empty()) {
     out.error = "start model: a prediction failed: " + failed;
     return out;
   }
-  const std::string unidentified = Unidentified(Jacobian(eval, v0, r0), params);
+  const Eigen::MatrixXd j0 = Jacobian(eval, v0, r0);
+  if (residuals.stopped()) return interrupted();
+  const std::string unidentified = Unidentified(j0, params);
   if (!unidentified.empty()) {
     out.error = "the data do not identify " + unidentified;
     return out;
   }
   Search search{eval, v0, SumOfSquares(r0), &options.interrupt};
   out.status = RunStages(&search, &residuals, !observations.shots.empty(), options, options.max_seconds - elapsed());
-  if (search.interrupted) {
-    out.interrupted = true;
-    out.error = "interrupted (the caller's deadline or cancellation) after " + std::to_string(eval.count) +
-                " evaluations";
-    out.evaluations = eval.count;
-    return out;
-  }
+  if (search.interrupted || residuals.stopped()) return interrupted();
   const std::vector<double> r1 = eval(search.best);
   out.model = WithValues(m0, params, search.best);
   for (std::size_t k = 0; k < params.size(); ++k) {
@@ -610,6 +637,7 @@ FitResult Fit(const Observations& observations, std::span<const Group> groups, c
   out.reduced_chi_square = n > p ? SumOfSquares(r1) / static_cast<double>(n - p) : 0;
   Uncertainties(Jacobian(eval, search.best, r1), out.reduced_chi_square, params, &out);
   Summarise(residuals, eval.Raw(v0), eval.Raw(search.best), &out);
+  if (residuals.stopped()) return interrupted();
   out.evaluations = eval.count;
   out.seconds = elapsed();
   return out;

@@ -149,8 +149,9 @@ struct FitOptions {
   double position_outlier_scale = 5.0;
   /// Numerical settings of every prediction (the physics is the model's).
   physics::SimParams numerics = CalibrationNumerics();
-  /// The caller's deadline and cancellation, checked before every evaluation of
-  /// the search: once due, the fit ends with FitResult::interrupted.
+  /// The caller's deadline and cancellation, checked before every prediction (each
+  /// throw, rebound and tracked shot of every evaluation, the Jacobians' included):
+  /// once due, the fit ends with FitResult::interrupted, within one prediction.
   physics::Interrupt interrupt;
 };
 

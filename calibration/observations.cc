@@ -1,5 +1,7 @@
 #include "calibration/observations.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -144,43 +146,102 @@ void CheckSightings(const TrackedShot& s, Problems* p) {
   }
 }
 
-bool SameThrowInput(const ThrowObservation& a, const ThrowObservation& b) {
-  return a.cut == b.cut && a.cue_ball_speed == b.cue_ball_speed && a.object_ball_speed == b.object_ball_speed &&
-         a.topspin == b.topspin && a.sidespin == b.sidespin;
+// An observation's input as a key: identical inputs, identical keys. Only
+// observations whose values are all finite take part (Validate names the others),
+// so that the keys are totally ordered.
+// The keys end with the measurement, which is not part of the input.
+using ThrowKey = std::array<double, 8>;
+using ReboundKey = std::array<double, 5>;
+constexpr std::size_t kThrowInputs = 7, kReboundInputs = 4;
+
+ThrowKey KeyOf(const ThrowObservation& o) {
+  // Which speed is given is part of the input.
+  return {o.cut,
+          o.cue_ball_speed ? 1.0 : 0.0,
+          o.cue_ball_speed.value_or(0),
+          o.object_ball_speed ? 1.0 : 0.0,
+          o.object_ball_speed.value_or(0),
+          o.topspin,
+          o.sidespin,
+          o.measured_throw};
+}
+ReboundKey KeyOf(const CushionObservation& o) { return {o.speed, o.angle, o.topspin, o.sidespin, o.rebound_speed}; }
+
+template <typename Key>
+bool Finite(const Key& k) {
+  return std::all_of(k.begin(), k.end(), [](double x) { return std::isfinite(x); });
 }
 
-bool SameReboundInput(const CushionObservation& a, const CushionObservation& b) {
-  return a.speed == b.speed && a.angle == b.angle && a.topspin == b.topspin && a.sidespin == b.sidespin;
-}
-
-// Identical inputs, measurements further apart than the stated tolerances. The
-// pairs are few (a calibration has hundreds of points at most): a plain double loop.
-void CheckContradictions(const Observations& o, Problems* p) {
-  for (std::size_t i = 0; i < o.throws.size(); ++i) {
-    for (std::size_t j = i + 1; j < o.throws.size(); ++j) {
-      const ThrowObservation &a = o.throws[i], &b = o.throws[j];
-      if (!SameThrowInput(a, b) || std::abs(a.measured_throw - b.measured_throw) <= kThrowContradiction) continue;
-      std::ostringstream m;
-      m << "throw[" << i << "] and throw[" << j << "] contradict: the same input, measured_throw = "
-        << a.measured_throw << " and " << b.measured_throw << " rad (at most 0.0524 rad, 3 deg, apart)";
-      p->Add(m.str());
-    }
+// The indices of the observations with finite keys, in groups of identical inputs
+// (the first `inputs` values of the key), each group in index order, the groups in
+// the order of their first index. Sorting, not comparing every pair: a request may
+// hold a hundred thousand observations.
+template <typename Observation>
+std::vector<std::vector<std::size_t>> SameInputGroups(const std::vector<Observation>& all, std::size_t inputs) {
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (Finite(KeyOf(all[i]))) order.push_back(i);
   }
-  for (std::size_t i = 0; i < o.rebounds.size(); ++i) {
-    for (std::size_t j = i + 1; j < o.rebounds.size(); ++j) {
-      const CushionObservation &a = o.rebounds[i], &b = o.rebounds[j];
-      if (!SameReboundInput(a, b)) continue;
-      std::ostringstream m;
-      if (std::abs(a.rebound_speed - b.rebound_speed) > kReboundSpeedContradiction) {
-        m << "rebound[" << i << "] and rebound[" << j << "] contradict: the same input, rebound_speed = "
-          << a.rebound_speed << " and " << b.rebound_speed << " m/s (at most 0.25 m/s apart)";
-      } else if (a.rebound_angle && b.rebound_angle &&
-                 std::abs(*a.rebound_angle - *b.rebound_angle) > kReboundAngleContradiction) {
-        m << "rebound[" << i << "] and rebound[" << j << "] contradict: the same input, rebound_angle = "
-          << *a.rebound_angle << " and " << *b.rebound_angle << " rad (at most 0.0873 rad, 5 deg, apart)";
-      }
-      if (m.tellp() > 0) p->Add(m.str());
+  auto input_less = [&](std::size_t a, std::size_t b) {
+    const auto ka = KeyOf(all[a]), kb = KeyOf(all[b]);
+    return std::lexicographical_compare(ka.begin(), ka.begin() + static_cast<std::ptrdiff_t>(inputs), kb.begin(),
+                                        kb.begin() + static_cast<std::ptrdiff_t>(inputs));
+  };
+  std::stable_sort(order.begin(), order.end(), input_less);  // stable: index order within a group
+  std::vector<std::vector<std::size_t>> groups;
+  for (std::size_t i = 0; i < order.size();) {
+    std::size_t j = i + 1;
+    while (j < order.size() && !input_less(order[i], order[j])) ++j;
+    if (j - i >= 2) groups.emplace_back(order.begin() + static_cast<std::ptrdiff_t>(i),
+                                        order.begin() + static_cast<std::ptrdiff_t>(j));
+    i = j;
+  }
+  std::sort(groups.begin(), groups.end());
+  return groups;
+}
+
+// The observations of a group with the smallest and the largest `value`, in index
+// order.
+template <typename Value>
+std::pair<std::size_t, std::size_t> Extremes(const std::vector<std::size_t>& group, Value value) {
+  auto less = [&](std::size_t a, std::size_t b) { return value(a) < value(b); };
+  // The first of each: with measurements alternating, the earliest pair.
+  const std::size_t lo = *std::min_element(group.begin(), group.end(), less);
+  const std::size_t hi = *std::max_element(group.begin(), group.end(), less);
+  return std::minmax(lo, hi);
+}
+
+// Identical inputs whose measurements are further apart than the stated
+// tolerances: one message per group of identical inputs, naming its two most
+// different measurements.
+void CheckContradictions(const Observations& o, Problems* p) {
+  for (const std::vector<std::size_t>& group : SameInputGroups(o.throws, kThrowInputs)) {
+    auto measured = [&](std::size_t i) { return o.throws[i].measured_throw; };
+    const auto [i, j] = Extremes(group, measured);
+    if (std::abs(measured(i) - measured(j)) <= kThrowContradiction) continue;
+    std::ostringstream m;
+    m << "throw[" << i << "] and throw[" << j << "] contradict: the same input, measured_throw = " << measured(i)
+      << " and " << measured(j) << " rad (at most 0.0524 rad, 3 deg, apart)";
+    p->Add(m.str());
+  }
+  for (const std::vector<std::size_t>& group : SameInputGroups(o.rebounds, kReboundInputs)) {
+    auto speed = [&](std::size_t i) { return o.rebounds[i].rebound_speed; };
+    std::vector<std::size_t> with_angle;
+    for (std::size_t i : group) {
+      if (o.rebounds[i].rebound_angle && std::isfinite(*o.rebounds[i].rebound_angle)) with_angle.push_back(i);
     }
+    auto angle = [&](std::size_t i) { return *o.rebounds[i].rebound_angle; };
+    std::ostringstream m;
+    if (const auto [i, j] = Extremes(group, speed); std::abs(speed(i) - speed(j)) > kReboundSpeedContradiction) {
+      m << "rebound[" << i << "] and rebound[" << j << "] contradict: the same input, rebound_speed = " << speed(i)
+        << " and " << speed(j) << " m/s (at most 0.25 m/s apart)";
+    } else if (with_angle.size() >= 2) {
+      if (const auto [k, l] = Extremes(with_angle, angle); std::abs(angle(k) - angle(l)) > kReboundAngleContradiction) {
+        m << "rebound[" << k << "] and rebound[" << l << "] contradict: the same input, rebound_angle = " << angle(k)
+          << " and " << angle(l) << " rad (at most 0.0873 rad, 5 deg, apart)";
+      }
+    }
+    if (m.tellp() > 0) p->Add(m.str());
   }
 }
 

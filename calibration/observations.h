@@ -118,13 +118,14 @@ inline constexpr double kThrowContradiction = 3.0 * physics::kPi / 180;  ///< ra
 inline constexpr double kReboundSpeedContradiction = 0.25;                ///< m/s
 inline constexpr double kReboundAngleContradiction = 5.0 * physics::kPi / 180;  ///< rad
 
-/// Empty when the set can be fitted from; otherwise one message per bad
+/// O(n log n) in the observations. Empty when the set can be fitted from; otherwise one message per bad
 /// observation, "; "-separated, each naming it and its bad value:
 /// "throw[3].object_ball_speed = nan (must be a finite number in (0, 10] m/s)".
 /// Refused: no observation at all; a single throw or a single rebound (a kind that
 /// is given needs at least 2 points); values out of range or not finite; a throw
 /// without exactly one speed; identical inputs whose measurements contradict each
-/// other (above); a tracked shot with no sightings, times not increasing, a
+/// other (above; one message per input, naming its two most different
+/// measurements); a tracked shot with no sightings, times not increasing, a
 /// position count that is not the ball count, a seen ball off the table, balls
 /// overlapping or outside the playing area at the start, or a bad strike.
 std::string Validate(const Observations& observations);

@@ -45,8 +45,9 @@ at the optimum) and the residuals before and after, and writes the fitted model.
                           200 tracked shots converges in about 2000)
   --json                  print the answer as JSON (snooker.v1.CalibrateResponse):
                           "model", "parameters" [{"name", "unit", "start", "value",
-                          "uncertainty", "atBound"}], "residuals" [{"kind", "unit",
-                          "count", "rmsBefore", "rmsAfter"}], "evaluations"
+                          "uncertainty" (-1: not determined), "atBound"}],
+                          "residuals" [{"kind", "unit", "count", "rmsBefore",
+                          "rmsAfter"}], "evaluations"
   --out MODEL.json        write the fitted model as a model file (--model FILE of
                           every other command reads it)
   --help                  this text
@@ -104,9 +105,14 @@ bool ReadObservations(const std::vector<std::string>& files, v1::Observations* a
 void PrintFit(const v1::CalibrateResponse& r, std::ostream& out) {
   out << std::setprecision(5) << "parameter" << std::string(24, ' ') << "start        fitted       uncertainty\n";
   for (const v1::FittedParameter& p : r.parameters()) {
-    out << std::left << std::setw(33) << p.name() << std::setw(13) << p.start() << std::setw(13) << p.value() << "+- "
-        << p.uncertainty() << (p.unit().empty() ? "" : " " + p.unit()) << (p.at_bound() ? "  (at its bound)" : "")
-        << std::right << "\n";
+    out << std::left << std::setw(33) << p.name() << std::setw(13) << p.start() << std::setw(13) << p.value();
+    // -1: the data do not determine it at the optimum (calibrate.proto).
+    if (p.uncertainty() < 0) {
+      out << "undetermined";
+    } else {
+      out << "+- " << p.uncertainty() << (p.unit().empty() ? "" : " " + p.unit());
+    }
+    out << (p.at_bound() ? "  (at its bound)" : "") << std::right << "\n";
   }
   out << "\nresiduals (rms)                  before       after\n";
   for (const v1::ResidualSummary& s : r.residuals()) {

@@ -14,11 +14,14 @@
 //    valid placement.
 // A broken property aborts (libFuzzer then saves the input as a crash-* file).
 //
-// A method is one entry of kMethods (0 Collide, 1 Simulate, 2 GetModel, 3 Plan).
-// Plans run with a tiny budget (at most kPlanBudgetMs, and a cap on simulations
-// and samples) so that thousands of inputs run a minute; their answers must be
-// final, inside the request's limits, with probabilities in [0, 1] and the vision
-// repair within its tolerance.
+// A method is one entry of kMethods (0 Collide, 1 Simulate, 2 GetModel, 3 Plan,
+// 4 Calibrate). Plans run with a tiny budget (at most kPlanBudgetMs, and a cap on
+// simulations and samples) so that thousands of inputs run a minute; their answers
+// must be final, inside the request's limits, with probabilities in [0, 1] and the
+// vision repair within its tolerance. Calibrations run capped too (kCalibrateEvaluations,
+// a few observations of each kind, at most 2 tracked shots): each fitted value
+// within its bound, each uncertainty >= 0 or the documented -1, the model a
+// valid model file.
 #include <fuzzer/FuzzedDataProvider.h>
 #include <google/protobuf/descriptor.h>
 #include <google/protobuf/message.h>
@@ -34,9 +37,12 @@
 
 #include "physics/core/limits.h"
 #include "physics/table/table.h"
+#include "calibration/fit.h"
 #include "server/api.h"
+#include "server/calibrate_api.h"
 #include "server/decode.h"
 #include "server/limits.h"
+#include "server/model_convert.h"
 #include "server/plan_api.h"
 #include "planner/planner.h"
 
@@ -114,9 +120,71 @@ void Tame(v1::CollideRequest* r) {
   }
 }
 
+// A calibration's caps here: its evaluations, and the observations of each kind
+// (a fit evaluates every observation some tens of times).
+constexpr int kCalibrateEvaluations = 20;
+constexpr int kCalibrateObservations = 12;
+constexpr int kCalibrateTracked = 2;
+constexpr int kCalibrateSightings = 8;
+void Tame(v1::CalibrateRequest* r) {
+  if (!r->has_max_evaluations() ||
+      (r->max_evaluations() > kCalibrateEvaluations && r->max_evaluations() <= 100'000)) {
+    r->set_max_evaluations(kCalibrateEvaluations);
+  }
+  v1::Observations* o = r->mutable_observations();
+  if (o->throw__size() > kCalibrateObservations) {
+    o->mutable_throw_()->DeleteSubrange(kCalibrateObservations, o->throw__size() - kCalibrateObservations);
+  }
+  if (o->cushion_size() > kCalibrateObservations) {
+    o->mutable_cushion()->DeleteSubrange(kCalibrateObservations, o->cushion_size() - kCalibrateObservations);
+  }
+  if (o->tracked_size() > kCalibrateTracked) {
+    o->mutable_tracked()->DeleteSubrange(kCalibrateTracked, o->tracked_size() - kCalibrateTracked);
+  }
+  for (v1::TrackedShot& s : *o->mutable_tracked()) {
+    if (s.sightings_size() > kCalibrateSightings) {
+      s.mutable_sightings()->DeleteSubrange(kCalibrateSightings, s.sightings_size() - kCalibrateSightings);
+    }
+  }
+}
+
 // Method-specific properties of an answer.
 void CheckAnswer(const v1::CollideRequest&, const v1::CollideResponse&) {}
 void CheckAnswer(const v1::GetModelRequest&, const v1::GetModelResponse&) {}
+
+// A fit's answer: its parameters are the groups', each within its bound, with an
+// uncertainty >= 0 or -1 (undetermined); its model reads back as a valid model file.
+void CheckAnswer(const v1::CalibrateRequest& request, const v1::CalibrateResponse& response) {
+  physics::Model start;
+  if (!server::ModelFromProto(request.start(), &start).empty()) Fail("Calibrate: a bad start model answered");
+  std::string groups_text;
+  for (const std::string& g : request.fit()) groups_text += (groups_text.empty() ? "" : ",") + g;
+  const calibration::ParsedGroups groups = calibration::ParseGroups(groups_text);
+  std::vector<server::FieldError> errors;
+  const calibration::Observations observations = server::ObservationsFrom(request.observations(), &errors);
+  const std::vector<calibration::ParameterSpec> specs =
+      calibration::FittedParameters(groups.groups, observations, start);
+  if (!groups.error.empty() || !errors.empty()) Fail("Calibrate: a request with bad groups or observations answered");
+  if (response.parameters_size() != static_cast<int>(specs.size()) || specs.empty()) {
+    Fail("Calibrate: " + std::to_string(response.parameters_size()) + " parameters for " +
+         std::to_string(specs.size()));
+  }
+  for (int i = 0; i < response.parameters_size(); ++i) {
+    const v1::FittedParameter& p = response.parameters(i);
+    const calibration::ParameterSpec& spec = specs[static_cast<std::size_t>(i)];
+    if (p.name() != spec.name) Fail("Calibrate: parameter " + p.name() + " where " + spec.name + " was due");
+    if (!(p.value() >= spec.lo && p.value() <= spec.hi)) Fail("Calibrate: " + p.name() + " outside its bounds");
+    if (!(p.uncertainty() >= 0 || p.uncertainty() == -1)) Fail("Calibrate: " + p.name() + "'s uncertainty < 0");
+  }
+  physics::Model fitted;
+  if (const std::string bad = server::ModelFromProto(response.model(), &fitted); !bad.empty()) {
+    Fail("Calibrate: the fitted model is not a valid model file: " + bad);
+  }
+  if (response.evaluations() <= 0) Fail("Calibrate: no evaluations");
+  for (const v1::ResidualSummary& r : response.residuals()) {
+    if (r.count() <= 0 || !(r.rms_before() >= 0) || !(r.rms_after() >= 0)) Fail("Calibrate: a bad residual summary");
+  }
+}
 // The vision repair moved each ball at most the tolerance, and left a valid table.
 template <typename Request, typename Response>
 void CheckRepair(const Request& request, const Response& response) {
@@ -353,6 +421,131 @@ std::string BuildPlan(FuzzedDataProvider& in) {
   return Serialized(r);
 }
 
+// Observations near and beyond their ranges, sometimes an input repeated with
+// another measurement (contradictions); now and then one or two tiny tracked shots.
+void AddThrows(FuzzedDataProvider& in, v1::Observations* o) {
+  const int n = in.ConsumeIntegralInRange<int>(0, 6);
+  for (int i = 0; i < n; ++i) {
+    v1::ThrowObservation* t = o->add_throw_();
+    if (i > 0 && in.ConsumeIntegralInRange<int>(0, 5) == 0) {
+      *t = o->throw_(i - 1);
+      t->set_throw_deg(Value(in, -50, 50));
+      continue;
+    }
+    t->set_cut_deg(Value(in, -1, 91));
+    switch (in.ConsumeIntegralInRange<int>(0, 5)) {
+      case 0: break;  // no speed
+      case 1:
+        t->set_cue_ball_speed(Value(in, 0, 11));
+        t->set_object_ball_speed(Value(in, 0, 11));
+        break;
+      case 2:
+      case 3: t->set_cue_ball_speed(Value(in, 0, 11)); break;
+      default: t->set_object_ball_speed(Value(in, 0, 11));
+    }
+    if (in.ConsumeBool()) t->set_topspin(Value(in, -1100, 1100));
+    if (in.ConsumeBool()) t->set_sidespin(Value(in, -1100, 1100));
+    t->set_throw_deg(Value(in, -50, 50));
+  }
+}
+
+void AddRebounds(FuzzedDataProvider& in, v1::Observations* o) {
+  const int n = in.ConsumeIntegralInRange<int>(0, 6);
+  for (int i = 0; i < n; ++i) {
+    v1::CushionObservation* c = o->add_cushion();
+    if (i > 0 && in.ConsumeIntegralInRange<int>(0, 5) == 0) {
+      *c = o->cushion(i - 1);
+      c->set_rebound_speed(Value(in, -0.1, 11));
+      continue;
+    }
+    c->set_speed(Value(in, 0, 11));
+    c->set_angle_deg(Value(in, -1, 181));
+    if (in.ConsumeBool()) c->set_topspin(Value(in, -1100, 1100));
+    if (in.ConsumeBool()) c->set_sidespin(Value(in, -1100, 1100));
+    c->set_rebound_speed(Value(in, -0.1, 11));
+    if (in.ConsumeBool()) c->set_rebound_angle_deg(Value(in, -1, 181));
+  }
+}
+
+void AddTrackedShot(FuzzedDataProvider& in, v1::Observations* o) {
+  v1::TrackedShot* s = o->add_tracked();
+  const int balls = in.ConsumeIntegralInRange<int>(0, 3);
+  physics::Vec2 previous;
+  for (int i = 0; i < balls; ++i) {
+    v1::Ball* b = s->mutable_table()->add_balls();
+    b->set_id(i == 0 ? "cue" : Id(in, i));
+    b->set_kind(i == 0 || in.ConsumeIntegralInRange<int>(0, 7) == 0 ? v1::CUE : v1::RED);
+    previous = Position(in, i > 0 ? &previous : nullptr);
+    b->mutable_position()->set_x(previous.x());
+    b->mutable_position()->set_y(previous.y());
+  }
+  switch (in.ConsumeIntegralInRange<int>(0, 4)) {
+    case 0: break;  // no strike
+    case 1:
+    case 2: {
+      v1::CueStrike* k = s->mutable_cue();
+      k->set_speed(Value(in, 0, 11));
+      k->set_heading_deg(Value(in, -4000, 4000));
+      k->set_tip_side(Value(in, -1, 1));
+      k->set_tip_height(Value(in, -1, 1));
+      if (in.ConsumeBool()) k->set_elevation_deg(Value(in, -1, 91));
+      break;
+    }
+    default: {
+      v1::Shot* shot = s->mutable_shot();
+      shot->set_speed(Value(in, 0, 11));
+      shot->set_heading_deg(Value(in, -4000, 4000));
+      if (in.ConsumeBool()) shot->set_topspin(Value(in, -1100, 1100));
+      if (in.ConsumeBool()) shot->set_sidespin(Value(in, -1100, 1100));
+      if (in.ConsumeBool()) shot->set_swerve_spin(Value(in, -1100, 1100));
+    }
+  }
+  const int sightings = in.ConsumeIntegralInRange<int>(0, 4);
+  double t = 0;
+  for (int k = 0; k < sightings; ++k) {
+    v1::Sighting* g = s->add_sightings();
+    t += Value(in, -0.1, 1.0);
+    g->set_t_s(t);
+    for (int i = 0; i < balls; ++i) {
+      if (in.ConsumeIntegralInRange<int>(0, 3) == 0) continue;  // not seen
+      const v1::Ball& ball = s->table().balls(i);
+      v1::BallSighting* b = g->add_balls();
+      b->set_id(in.ConsumeIntegralInRange<int>(0, 9) == 0 ? "ghost" : ball.id());
+      const double dx = Value(in, -0.5, 0.5), dy = Value(in, -0.5, 0.5);
+      b->mutable_position()->set_x(ball.position().x() + dx);
+      b->mutable_position()->set_y(ball.position().y() + dy);
+    }
+  }
+}
+
+std::string BuildCalibrate(FuzzedDataProvider& in) {
+  v1::CalibrateRequest r;
+  AddThrows(in, r.mutable_observations());
+  AddRebounds(in, r.mutable_observations());
+  if (in.ConsumeIntegralInRange<int>(0, 3) == 0) {
+    const int tracked = in.ConsumeIntegralInRange<int>(1, 2);
+    for (int i = 0; i < tracked; ++i) AddTrackedShot(in, r.mutable_observations());
+  }
+  static const char* const kWords[] = {"ball-ball", "cushion", "cloth", "cue", "", "fish",
+                                       "ball-ball,cushion", " cue ", "Ball-Ball", ",", "cloth,cloth"};
+  const int groups = in.ConsumeIntegralInRange<int>(0, 7) == 0 ? 0 : in.ConsumeIntegralInRange<int>(1, 3);
+  for (int i = 0; i < groups; ++i) {
+    r.add_fit(kWords[in.ConsumeIntegralInRange<std::size_t>(0, std::size(kWords) - 1)]);
+  }
+  v1::PhysicsModel* start = r.mutable_start();
+  if (in.ConsumeBool()) {
+    start->mutable_ball_ball()->set_friction_law(v1::BallBallFrictionLaw(in.ConsumeIntegralInRange<int>(-1, 4)));
+  }
+  if (in.ConsumeIntegralInRange<int>(0, 3) == 0) start->mutable_ball_ball()->set_mu_bb(Value(in, -0.1, 1.1));
+  if (in.ConsumeIntegralInRange<int>(0, 3) == 0) start->mutable_ball_ball()->set_slip_gain(Value(in, -0.1, 1.1));
+  if (in.ConsumeIntegralInRange<int>(0, 3) == 0) start->mutable_ball_ball()->set_slip_decay(Value(in, -1, 110));
+  if (in.ConsumeIntegralInRange<int>(0, 3) == 0) start->mutable_cloth()->set_mu_s(Value(in, -0.1, 1.1));
+  if (in.ConsumeIntegralInRange<int>(0, 3) == 0) start->mutable_cushion()->set_no_restitution_curve(in.ConsumeBool());
+  if (in.ConsumeIntegralInRange<int>(0, 3) == 0) start->mutable_cue()->set_end_mass_kg(Value(in, -0.1, 1.1));
+  if (in.ConsumeBool()) r.set_max_evaluations(in.ConsumeIntegralInRange<std::int32_t>(-5, 200'000));
+  return Serialized(r);
+}
+
 std::string BuildGetModel(FuzzedDataProvider& in) {
   return in.ConsumeRandomLengthString(64);  // unknown fields, or bytes that do not parse
 }
@@ -368,6 +561,7 @@ const Method kMethods[] = {
     {"Simulate", &Exercise<v1::SimulateRequest, v1::SimulateResponse, &server::Simulate>, &BuildSimulate},
     {"GetModel", &Exercise<v1::GetModelRequest, v1::GetModelResponse, &server::GetModel>, &BuildGetModel},
     {"Plan", &Exercise<v1::PlanRequest, v1::PlanResponse, &PlanOperation>, &BuildPlan},
+    {"Calibrate", &Exercise<v1::CalibrateRequest, v1::CalibrateResponse, &server::Calibrate>, &BuildCalibrate},
 };
 
 }  // namespace

@@ -5,22 +5,45 @@
 #include <limits>
 #include <map>
 #include <string>
+#include <string_view>
+#include <utility>
 
 #include "physics/core/types.h"
+#include "physics/table/table.h"
+#include "server/limits.h"
 #include "server/model_convert.h"
 
 namespace snooker::server {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// FittedParameter.uncertainty of a parameter the data do not determine.
+constexpr double kUndetermined = -1;
 
 std::string Index(const char* list, int i) { return std::string(list) + "[" + std::to_string(i) + "]"; }
 
-// Degrees to radians; a value that is not finite stays so (Validate names it).
+// Degrees to radians; a value that is not finite stays so.
 double Rad(double deg) { return physics::DegToRad(deg); }
 
-void ThrowsFrom(const v1::Observations& in, calibration::Observations* out) {
-  for (const v1::ThrowObservation& t : in.throw_()) {
+// The angles are checked here, in the API's degrees and names: Validate checks the
+// same ranges in radians and would name the library's fields. The bounds of throws
+// and rebounds are the library's own (compared in radians), so that a value accepted
+// here is never refused there; a strike's heading and elevation take the ranges of
+// the shared messages (table.proto), within the library's.
+void CheckAngle(bool ok, const std::string& field, double deg, const char* rule, std::vector<FieldError>* errors) {
+  if (!ok) errors->push_back({field, FormatNumber(deg), rule});
+}
+
+void ThrowsAndReboundsFrom(const v1::Observations& in, calibration::Observations* out,
+                           std::vector<FieldError>* errors) {
+  for (int i = 0; i < in.throw__size(); ++i) {
+    const v1::ThrowObservation& t = in.throw_(i);
+    const std::string at = Index("throw", i);
+    const double cut = Rad(t.cut_deg()), thrown = Rad(t.throw_deg());
+    CheckAngle(std::isfinite(cut) && cut >= 0 && cut <= calibration::kMaxCut, at + ".cut_deg", t.cut_deg(),
+               "must be in [0, 89] deg", errors);
+    CheckAngle(std::isfinite(thrown) && std::abs(thrown) <= calibration::kMaxThrow, at + ".throw_deg",
+               t.throw_deg(), "must be in [-45, 45] deg", errors);
     calibration::ThrowObservation o;
     o.cut = Rad(t.cut_deg());
     if (t.has_cue_ball_speed()) o.cue_ball_speed = t.cue_ball_speed();
@@ -30,7 +53,15 @@ void ThrowsFrom(const v1::Observations& in, calibration::Observations* out) {
     o.measured_throw = Rad(t.throw_deg());
     out->throws.push_back(o);
   }
-  for (const v1::CushionObservation& c : in.cushion()) {
+  for (int i = 0; i < in.cushion_size(); ++i) {
+    const v1::CushionObservation& c = in.cushion(i);
+    const std::string at = Index("cushion", i);
+    auto angle_ok = [](double rad) { return std::isfinite(rad) && rad > 0 && rad < physics::kPi; };
+    CheckAngle(angle_ok(Rad(c.angle_deg())), at + ".angle_deg", c.angle_deg(), "must be in (0, 180) deg", errors);
+    if (c.has_rebound_angle_deg()) {
+      CheckAngle(angle_ok(Rad(c.rebound_angle_deg())), at + ".rebound_angle_deg", c.rebound_angle_deg(),
+                 "must be in (0, 180) deg", errors);
+    }
     calibration::CushionObservation o;
     o.speed = c.speed();
     o.angle = Rad(c.angle_deg());
@@ -40,6 +71,14 @@ void ThrowsFrom(const v1::Observations& in, calibration::Observations* out) {
     if (c.has_rebound_angle_deg()) o.rebound_angle = Rad(c.rebound_angle_deg());
     out->rebounds.push_back(o);
   }
+}
+
+// A seen coordinate within calibration::kTableMargin of the playing area [0, size].
+void CheckOnTable(double x, double size, const std::string& field, std::vector<FieldError>* errors) {
+  if (x >= -calibration::kTableMargin && x <= size + calibration::kTableMargin) return;
+  errors->push_back({field, FormatNumber(x),
+                     "must be on the table, in [" + FormatNumber(-calibration::kTableMargin) + ", " +
+                         FormatNumber(size + calibration::kTableMargin) + "] m"});
 }
 
 // One tracked shot; false with the errors added when its balls or sightings cannot
@@ -61,14 +100,26 @@ bool TrackedFrom(const v1::TrackedShot& s, const std::string& at, calibration::T
     out->balls.emplace_back(b.position().x(), b.position().y());
   }
   if (out->cue_ball < 0) errors->push_back({at + ".table", "no CUE ball", "must have exactly one"});
+  auto heading_ok = [](double deg) { return limits::kHeadingDeg.Contains(deg); };
   switch (s.strike_case()) {
     case v1::TrackedShot::kCue:
+      CheckAngle(heading_ok(s.cue().heading_deg()), at + ".cue.heading_deg", s.cue().heading_deg(),
+                 "must be in [-3600, 3600] deg", errors);
+      // The shared CueStrike message's range, within the library's [0, 90).
+      CheckAngle(std::isfinite(s.cue().elevation_deg()) && s.cue().elevation_deg() >= 0 &&
+                     s.cue().elevation_deg() < 60,
+                 at + ".cue.elevation_deg", s.cue().elevation_deg(), "must be in [0, 60) deg", errors);
       out->strike = physics::CueStrike{s.cue().speed(), Rad(NormalizedHeadingDeg(s.cue().heading_deg())),
                                        s.cue().tip_side(), s.cue().tip_height(), Rad(s.cue().elevation_deg())};
       break;
-    case v1::TrackedShot::kShot: out->strike = ShotFrom(s.shot()); break;
+    case v1::TrackedShot::kShot:
+      CheckAngle(heading_ok(s.shot().heading_deg()), at + ".shot.heading_deg", s.shot().heading_deg(),
+                 "must be in [-3600, 3600] deg", errors);
+      out->strike = ShotFrom(s.shot());
+      break;
     default: errors->push_back({at, "no strike", "must give cue or shot"});
   }
+  const physics::TableSpec& table = physics::DefaultTable().spec();
   for (int k = 0; k < s.sightings_size(); ++k) {
     const v1::Sighting& seen = s.sightings(k);
     calibration::Sighting g;
@@ -89,6 +140,10 @@ bool TrackedFrom(const v1::TrackedShot& s, const std::string& at, calibration::T
       if (!std::isfinite(b.position().x()) || !std::isfinite(b.position().y())) {
         errors->push_back({field + ".position", FormatNumber(b.position().x()) + ", " + FormatNumber(b.position().y()),
                            "must be finite (leave out a ball not seen)"});
+      } else {
+        // Named here by the sighting's own list; Validate would name the table's.
+        CheckOnTable(b.position().x(), table.width, field + ".position.x", errors);
+        CheckOnTable(b.position().y(), table.length, field + ".position.y", errors);
       }
       g.positions[static_cast<std::size_t>(it->second)] = physics::Vec2(b.position().x(), b.position().y());
     }
@@ -97,12 +152,29 @@ bool TrackedFrom(const v1::TrackedShot& s, const std::string& at, calibration::T
   return errors->size() == before;
 }
 
-// The library names observation lists as it stores them; the API's names differ.
+// The library names observation lists and a few fields as it stores them; the
+// API's names differ. The angles and the sighted positions never reach the library
+// unchecked (ObservationsFrom names them), so their names need no translation.
 std::string ApiNames(std::string message) {
-  for (const auto& [from, to] : {std::pair<std::string, std::string>{"rebound[", "cushion["}, {"shot[", "tracked["}}) {
+  using Names = std::pair<std::string_view, std::string_view>;
+  // List names, only at the start of a path ("shot[2].cue.speed", "rebound: 1
+  // observation"), not inside one ("tracked[0].shot.speed").
+  for (const auto& [from, to] :
+       {Names{"rebound[", "cushion["}, Names{"rebound:", "cushion:"}, Names{"shot[", "tracked["}}) {
+    std::size_t at = message.find(from);
+    while (at != std::string::npos) {
+      const bool path = at == 0 || message[at - 1] == ' ' || message[at - 1] == ';';
+      if (path) message.replace(at, from.size(), to);
+      at = message.find(from, at + (path ? to.size() : from.size()));
+    }
+  }
+  // Fields of a tracked shot, after its index.
+  for (const auto& [from, to] :
+       {Names{"].cue.side = ", "].cue.tip_side = "}, Names{"].cue.height = ", "].cue.tip_height = "},
+        Names{"].balls: ", "].table.balls: "}, Names{"].balls.size = ", "].table.balls.size = "},
+        Names{"].t = ", "].t_s = "}}) {
     for (std::size_t at = message.find(from); at != std::string::npos; at = message.find(from, at + to.size())) {
-      // Only list names at the start of a path, not "shot.speed" inside one.
-      if (at == 0 || message[at - 1] == ' ' || message[at - 1] == ';') message.replace(at, from.size(), to);
+      message.replace(at, from.size(), to);
     }
   }
   return message;
@@ -125,7 +197,9 @@ void ResponseFrom(const calibration::FitResult& fit, const std::vector<calibrati
     p->set_unit(UnitOf(e.name));
     p->set_start(e.start);
     p->set_value(e.fitted);
-    p->set_uncertainty(e.uncertainty);
+    // The library's NaN (J^T J singular at the optimum: the data do not determine
+    // the parameter there) as calibrate.proto's -1: an answer has finite numbers.
+    p->set_uncertainty(std::isfinite(e.uncertainty) ? e.uncertainty : kUndetermined);
     if (i < specs.size()) {
       const double room = 1e-6 * (specs[i].hi - specs[i].lo);
       p->set_at_bound(e.fitted <= specs[i].lo + room || e.fitted >= specs[i].hi - room);
@@ -151,7 +225,7 @@ void ResponseFrom(const calibration::FitResult& fit, const std::vector<calibrati
 
 calibration::Observations ObservationsFrom(const v1::Observations& in, std::vector<FieldError>* errors) {
   calibration::Observations out;
-  ThrowsFrom(in, &out);
+  ThrowsAndReboundsFrom(in, &out, errors);
   for (int i = 0; i < in.tracked_size(); ++i) {
     calibration::TrackedShot shot;
     TrackedFrom(in.tracked(i), Index("tracked", i), &shot, errors);
@@ -232,7 +306,7 @@ ApiStatus Calibrate(const v1::CalibrateRequest& request, v1::CalibrateResponse* 
   }
   physics::Model start = limits.physics_model();
   if (std::string e = ModelFromProto(request.start(), &start); !e.empty()) {
-    errors.push_back({"start", "", e});
+    errors.push_back({"start", "not a valid model", e});
   }
   const calibration::Observations observations = ObservationsFrom(request.observations(), &errors);
   if (!errors.empty()) return ApiStatus::Invalid(Describe(errors));

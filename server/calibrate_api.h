@@ -17,8 +17,9 @@ namespace snooker::server {
 
 /// The observations in library form, or the errors naming each bad observation by
 /// its API path ("throw[2].cut_deg", "tracked[0].sightings[3].balls[1].id").
-/// Degrees become radians here; ranges are checked by calibration::Validate (called
-/// by Calibrate), whose messages name observations the same way.
+/// Degrees become radians here. The angles (in degrees) and the sighted positions
+/// are checked here too; the other ranges by calibration::Validate (called by
+/// Calibrate), whose messages Calibrate turns into the API's names.
 calibration::Observations ObservationsFrom(const v1::Observations& in, std::vector<FieldError>* errors);
 
 /// The library's observations as API messages (tracked shots' balls named "cue",

@@ -122,6 +122,23 @@ TEST(ValidateTest, RepeatsWithinTheToleranceAreNotContradictions) {
   EXPECT_EQ(Validate(o), "");
 }
 
+TEST(ValidateTest, ManyRepeatsOfOneInputGiveOneMessageNamingTheTwoFurthestApart) {
+  Observations o = Valid();
+  for (int i = 0; i < 5; ++i) o.throws.push_back(o.throws[2]);
+  o.throws[9].measured_throw += physics::DegToRad(2);
+  o.throws[11].measured_throw -= physics::DegToRad(2);  // 4 deg from throws[9]
+  const std::string message = Validate(o);
+  EXPECT_NE(message.find("throw[9] and throw[11] contradict"), std::string::npos) << message;
+  EXPECT_EQ(message.find(';'), std::string::npos) << message;  // one message
+  // A speed given as the cue ball's is another input than the same object ball speed.
+  o = Valid();
+  o.throws[1] = o.throws[0];
+  o.throws[1].cue_ball_speed = o.throws[1].object_ball_speed;
+  o.throws[1].object_ball_speed.reset();
+  o.throws[1].measured_throw += physics::DegToRad(10);
+  EXPECT_EQ(Validate(o), "");
+}
+
 TEST(ValidateTest, AnUnseenBallIsNaNInBoth) {
   Observations o = Valid();
   o.shots[0].sightings[4].positions[1] = Vec2(kNaN, kNaN);
