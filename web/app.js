@@ -186,6 +186,7 @@ const debugInfo = {
   lastPlanRequest: null,
   lastPlanResponse: null,
   replaySeq: 0,
+  progressShown: 0,       // progress messages drawn (the best shot so far)
   builtinTables: BUILTIN_TABLES,
 };
 window.snookerPage = debugInfo;
@@ -655,6 +656,7 @@ function showProgress(message, balls, request) {
   $('progress').textContent = `Best so far (${fixed(message.elapsedMs, 0)} ms): ${shotLabel(shot)}, ${target}, ` +
     `P(pot) ≈ ${pct(shot.potProbability)} (fast estimate)`;
   drawShot(shot, balls, request, null, true);
+  ++debugInfo.progressShown;
 }
 
 function finishPlan(request, balls, response, info) {

@@ -366,7 +366,9 @@ async function main() {
     check('a built-in table plans again after the error', colours.trigger === 'table' && errorHidden,
       `${colours.shots} shots in ${colours.ms.toFixed(0)} ms`);
 
-    // 6. What the page loaded, and the console.
+    // 6. Progress messages drawn while plans ran, what the page loaded, the console.
+    const progressShown = await page.evaluate(() => window.snookerPage.progressShown);
+    check('the best shot so far drawn while plans ran', progressShown > 0, `${progressShown} progress messages drawn`);
     const pageBytes = [...bytes.entries()].filter(([u]) => u.startsWith(base)).reduce((a, [, n]) => a + n, 0);
     check('page size < 300 KB', pageBytes < 300 * 1024, `${(pageBytes / 1024).toFixed(1)} KB in ${bytes.size} files`);
     check('no console errors', consoleErrors.length === 0, consoleErrors.join('\n      '));
