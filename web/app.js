@@ -307,7 +307,7 @@ function drawTable() {
       svg('polygon', { class: 'pocket', points: points.map((q) => `${q.x},${q.y}`).join(' ') }, g);
     }
     const cc = vec(p.captureCentre);
-    svg('circle', { class: 'pocket', cx: cc.x, cy: cc.y, r: num(p.captureRadiusM) }, g);
+    svg('title', {}, svg('circle', { class: 'pocket', cx: cc.x, cy: cc.y, r: num(p.captureRadiusM) }, g)).textContent = p.name;
   }
   for (const s of segments) {
     const a = vec(s.p0), b = vec(s.p1);
