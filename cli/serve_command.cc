@@ -1,6 +1,7 @@
 // snooker serve: the gRPC service (snooker.v1.ShotPlanner, grpc.health.v1.Health,
-// reflection) until SIGINT or SIGTERM; then calls in flight may finish for a bounded
-// time and are cancelled after it.
+// reflection) and, with --http, the same service over HTTP (the Connect protocol,
+// the web page, /healthz) until SIGINT or SIGTERM; then calls in flight may finish
+// for a bounded time and are cancelled after it.
 #include <csignal>
 #include <iostream>
 #include <sstream>
@@ -24,14 +25,23 @@ std::string Help() {
        "                     [--tls-client-ca CA.pem] | --insecure] [--max-call-ms MS]\n"
        "                     [--shutdown-grace-ms MS] [--workers N] [--max-queued N]\n"
        "                     [--max-plans N] [--default-budget-ms MS] [--max-budget-ms MS]\n"
-       "                     [--vision-tolerance-mm MM] [--model FILE]\n\n"
+       "                     [--vision-tolerance-mm MM] [--model FILE]\n"
+       "                     [--http HOST:PORT [--cors-origin ORIGIN]]\n\n"
        "Serves snooker.v1.ShotPlanner (proto/snooker/v1/service.proto) with the gRPC\n"
-       "health service and reflection until SIGINT or SIGTERM. One line per call on\n"
+       "health service and reflection until SIGINT or SIGTERM; with --http also over\n"
+       "HTTP in the same process, on the same workers and limits. One line per call on\n"
        "stderr: method, peer, status, latency, simulations, request and response bytes.\n\n"
        "  --address HOST:PORT      where to listen (default 127.0.0.1:50051; port 0 picks\n"
        "                           a free port, printed on start). An address that is not\n"
        "                           loopback (127.0.0.0/8, ::1, localhost, unix:) needs TLS\n"
        "                           or --insecure\n"
+       "  --http HOST:PORT         also serve HTTP/1.1 here (port 0 picks a free port,\n"
+       "                           printed on start): the Connect protocol (POST\n"
+       "                           /snooker.v1.ShotPlanner/Plan with a JSON body, ...),\n"
+       "                           the web page at / and GET /healthz. HTTPS with the\n"
+       "                           TLS flags; plaintext off loopback only with --insecure\n"
+       "  --cors-origin ORIGIN     let pages of this one origin (https://host[:port]) call\n"
+       "                           the HTTP service from a browser (default: no CORS)\n"
        "  --tls-cert CERT.pem      serve TLS with this certificate (chain), PEM\n"
        "  --tls-key KEY.pem        and its private key, PEM\n"
        "  --tls-client-ca CA.pem   require client certificates signed by this CA (mutual TLS)\n"
@@ -91,6 +101,42 @@ bool ReadPem(const std::string& flag, const std::string& path, std::string* pem,
   return true;
 }
 
+// --http and --cors-origin as the server will take them (whether TLS is given, not
+// its files, which are read later); false with the reason on `err`.
+bool HttpFlagsOk(const std::string& http, const std::string& cors_origin, bool tls, bool insecure,
+                 std::ostream& err) {
+  if (!cors_origin.empty() && http.empty()) {
+    err << "snooker serve: --cors-origin needs --http\n";
+    return false;
+  }
+  if (http.empty()) return true;
+  server::HttpOptions check;
+  check.address = http;
+  check.allow_insecure = insecure;
+  check.cors_origin = cors_origin;
+  const server::TlsOptions some_tls;
+  check.tls = tls ? &some_tls : nullptr;
+  if (const std::string bad = server::CheckHttpOptions(check); !bad.empty()) {
+    err << "snooker serve: " << bad << "\n";
+    return false;
+  }
+  return true;
+}
+
+// The lines that say where the server listens: HTTP's first, so that whoever waits
+// for "on port" finds both.
+void PrintListening(const server::Server& server, const server::ServerOptions& options, std::ostream& out) {
+  if (server.http_port() != 0) {
+    const std::string& http = options.http_address;
+    out << "snooker: serving HTTP (Connect protocol, web page, /healthz) at " << server.http_scheme() << "://"
+        << http.substr(0, http.rfind(':')) << ":" << server.http_port() << "/" << std::endl;
+  }
+  out << "snooker: serving snooker.v1.ShotPlanner on port " << server.port() << " (" << options.address << ", "
+      << (!options.tls ? "plaintext"
+                       : options.tls->client_ca_pem.empty() ? "TLS" : "TLS with client certificates")
+      << ")" << std::endl;
+}
+
 }  // namespace
 
 int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
@@ -98,7 +144,7 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   Args args(argv,
             {"address", "max-call-ms", "shutdown-grace-ms", "workers", "max-queued", "tls-cert",
              "tls-key", "tls-client-ca", "max-plans", "default-budget-ms", "max-budget-ms",
-             "vision-tolerance-mm", "model"},
+             "vision-tolerance-mm", "model", "http", "cors-origin"},
             {"help", "insecure"});
   if (args.error().empty() && args.Switch("help")) {
     out << Help();
@@ -118,6 +164,8 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   const auto cert = args.Text("tls-cert", "");
   const auto key = args.Text("tls-key", "");
   const auto client_ca = args.Text("tls-client-ca", "");
+  const auto http = args.Text("http", "");
+  const auto cors_origin = args.Text("cors-origin", "");
   if (args.error().empty()) {
     if (cert->empty() != key->empty()) {
       err << "snooker serve: --tls-cert and --tls-key go together\n";
@@ -131,6 +179,7 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
       err << "snooker serve: --insecure and TLS (--tls-cert) exclude each other\n";
       return kExitUsage;
     }
+    if (!HttpFlagsOk(*http, *cors_origin, !cert->empty(), args.Switch("insecure"), err)) return kExitUsage;
   }
   if (!args.error().empty()) {
     err << "snooker serve: " << args.error() << "\n(see snooker serve --help)\n";
@@ -149,6 +198,8 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   options.max_plan_budget_ms = *max_budget;
   options.vision_tolerance_mm = *tolerance;
   options.allow_insecure = args.Switch("insecure");
+  options.http_address = *http;
+  options.cors_origin = *cors_origin;
   options.log = &err;
   if (const std::string bad = server::ValidateServiceOptions(options); !bad.empty()) {
     err << "snooker serve: " << bad << "\n(see snooker serve --help)\n";
@@ -176,11 +227,7 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
     err << "snooker serve: " << error << "\n";
     return kExitFailure;
   }
-  out << "snooker: serving snooker.v1.ShotPlanner on port " << server->port() << " ("
-      << *address << ", "
-      << (!options.tls ? "plaintext"
-                       : options.tls->client_ca_pem.empty() ? "TLS" : "TLS with client certificates")
-      << ")" << std::endl;
+  PrintListening(*server, options, out);
   int signal = 0;
   sigwait(&stop, &signal);
   const server::CallCounts at_signal = server->counts();

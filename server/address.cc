@@ -50,6 +50,24 @@ std::string CheckListenAddress(std::string_view address) {
   return "";
 }
 
+bool SplitHostPort(std::string_view address, std::string* host, int* port) {
+  std::string_view h;
+  if (StartsWith(address, "unix:") || StartsWith(address, "unix-abstract:") ||
+      !CheckListenAddress(address).empty() || !SplitHost(address, &h)) {
+    return false;
+  }
+  *host = std::string(h);
+  *port = std::stoi(std::string(address.substr(address.rfind(':') + 1)));
+  return true;
+}
+
+std::string PlaintextRefusal(std::string_view address, bool tls, bool allow_insecure, std::string_view what) {
+  if (tls || allow_insecure || IsLoopbackAddress(address)) return "";
+  return "refusing to " + std::string(what) + " on " + std::string(address) +
+         " in plaintext: it is not a loopback address. Give a TLS certificate and key "
+         "(--tls-cert, --tls-key), or --insecure for a trusted network";
+}
+
 bool IsLoopbackAddress(std::string_view address) {
   if (StartsWith(address, "unix:") || StartsWith(address, "unix-abstract:")) return true;
   for (std::string_view scheme : {"ipv4:", "ipv6:", "dns:///", "dns:"}) {

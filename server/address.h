@@ -20,4 +20,13 @@ bool IsLoopbackAddress(std::string_view address);
 /// 99999 as 34463.)
 std::string CheckListenAddress(std::string_view address);
 
+/// The host and port of "host:port" or "[v6]:port" (a valid listen address that is
+/// not a Unix socket); false otherwise.
+bool SplitHostPort(std::string_view address, std::string* host, int* port);
+
+/// Why a server must not listen on `address` in plaintext (empty when it may):
+/// without TLS and without `allow_insecure`, only a loopback address. `what` says
+/// what it would do there ("listen", "serve HTTP").
+std::string PlaintextRefusal(std::string_view address, bool tls, bool allow_insecure, std::string_view what);
+
 }  // namespace snooker::server

@@ -192,12 +192,27 @@ std::shared_ptr<ShotPlannerService::PlanCall> ShotPlannerService::AdmitPlan(
   call->method = method;
   if (plans_.fetch_add(1) >= options_.max_plans) {
     plans_.fetch_sub(1);
-    *refusal = {ApiStatus::Code::kResourceExhausted,
-                "the server is planning " + std::to_string(options_.max_plans) +
-                    " shots already (its --max-plans); try again later"};
+    *refusal = TooManyPlans();
     return nullptr;
   }
   return call;
+}
+
+ApiStatus ShotPlannerService::TooManyPlans() const {
+  return {ApiStatus::Code::kResourceExhausted, "the server is planning " + std::to_string(options_.max_plans) +
+                                                   " shots already (its --max-plans); try again later"};
+}
+
+PlanControl ShotPlannerService::PlanControlOf(Clock::time_point arrival, Clock::time_point deadline,
+                                              const std::atomic<bool>* cancel) const {
+  PlanControl control;
+  control.deadline = PlanStop(arrival, deadline);
+  control.cancel = cancel;
+  control.vision_tolerance_mm = options_.vision_tolerance_mm;
+  control.default_budget_ms = options_.default_plan_budget_ms;
+  control.max_budget_ms = options_.max_plan_budget_ms;
+  control.planner = planner_.get();
+  return control;
 }
 
 ApiStatus ShotPlannerService::RunPlan(PlanCall& call, v1::PlanResponse* response, Work* work,
@@ -210,14 +225,8 @@ ApiStatus ShotPlannerService::RunPlan(PlanCall& call, v1::PlanResponse* response
   if (!Flatten(*call.request, &bytes)) return ApiStatus::Invalid("cannot read the request's bytes");
   v1::PlanRequest request;
   if (ApiStatus st = ParseRequest(bytes, &request); !st.ok()) return st;
-  PlanControl control;
-  control.deadline = PlanStop(call.arrival, call.deadline);
-  control.cancel = &call.cancel;
+  PlanControl control = PlanControlOf(call.arrival, call.deadline, &call.cancel);
   control.on_progress = on_progress;
-  control.vision_tolerance_mm = options_.vision_tolerance_mm;
-  control.default_budget_ms = options_.default_plan_budget_ms;
-  control.max_budget_ms = options_.max_plan_budget_ms;
-  control.planner = planner_.get();
   ApiStatus st = server::Plan(request, response, control);
   work->simulations = response->simulations();
   return service_detail::DeadlineIfClientLate(std::move(st), call);

@@ -274,15 +274,9 @@ void ShotPlannerService::Run(const std::shared_ptr<Call>& call) {
   if (auto late = service_detail::RefuseLateStart(*call, call->context->IsCancelled(), "it")) {
     status = std::move(*late);
   } else {
-    CallLimits limits;
-    limits.interrupt.deadline = call->deadline;
+    CallLimits limits = LimitsOf(call->deadline);
     limits.interrupt.poll = &IsCancelled;
     limits.interrupt.poll_context = call->context;
-    limits.vision_tolerance_mm = options_.vision_tolerance_mm;
-    limits.default_plan_budget_ms = options_.default_plan_budget_ms;
-    limits.max_plan_budget_ms = options_.max_plan_budget_ms;
-    limits.service = &service_limits_;
-    limits.model = model();
     status = service_detail::Guarded([&]() -> ApiStatus {
       std::string bytes;
       if (!Flatten(*call->request, &bytes)) return ApiStatus::Invalid("cannot read the request's bytes");
@@ -294,6 +288,17 @@ void ShotPlannerService::Run(const std::shared_ptr<Call>& call) {
   }
   running_.fetch_sub(1);
   Finish(*call, status, response_bytes, work);
+}
+
+CallLimits ShotPlannerService::LimitsOf(Clock::time_point deadline) const {
+  CallLimits limits;
+  limits.interrupt.deadline = deadline;
+  limits.vision_tolerance_mm = options_.vision_tolerance_mm;
+  limits.default_plan_budget_ms = options_.default_plan_budget_ms;
+  limits.max_plan_budget_ms = options_.max_plan_budget_ms;
+  limits.service = &service_limits_;
+  limits.model = model();
+  return limits;
 }
 
 ApiStatus ShotPlannerService::Busy() const {

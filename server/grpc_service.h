@@ -20,6 +20,8 @@
 //    PlanStream writes from the planner's threads without blocking them: while a
 //    write is in flight only the newest progress message waits (older ones are
 //    dropped), and the final answer is always the last message.
+//  * Another transport in the same process (the HTTP adapter) runs its calls here
+//    too (Submit): one pool of workers, one admission, one log.
 #pragma once
 
 #include <grpcpp/grpcpp.h>
@@ -38,6 +40,7 @@
 #include "server/api.h"
 #include "server/api_status.h"
 #include "server/limits.h"
+#include "server/plan_api.h"
 #include "server/worker_pool.h"
 #include "snooker/v1/plan.pb.h"
 #include "snooker/v1/service.grpc.pb.h"
@@ -126,6 +129,44 @@ class ShotPlannerService final : public ShotPlannerRawService {
   struct Work {
     std::int64_t simulations = 0;  ///< whole-table simulations run
   };
+
+  // --- Calls of another transport in this process (the HTTP adapter, http_server.h):
+  // the same workers, admission, limits, counters and log as the gRPC methods. ------
+  /// One such call.
+  struct TransportCall {
+    std::string method;  ///< the procedure ("Plan"), for the log
+    std::string peer;    ///< who sent it ("ipv4:127.0.0.1:51000"), for the log
+    std::chrono::steady_clock::time_point arrival;
+    std::chrono::steady_clock::time_point deadline;  ///< when it must end (DeadlineOf)
+    std::size_t request_bytes = 0;
+    /// A plan: counted among max_plans, and stopped a little before its deadline so
+    /// that its best shots so far reach the client in time.
+    bool is_plan = false;
+    /// Set by the transport to stop the call: its client went away, or the
+    /// shutdown's grace ended.
+    std::atomic<bool> cancel{false};
+    std::string log_extra;  ///< appended to the log line (" transport=http")
+  };
+  /// A transport call's work, on a worker: with the server's limits and the call's
+  /// deadline and cancellation (`limits` for the unary operations, `plan` for a
+  /// plan's); `work` and `response_bytes` are for the log.
+  using TransportWork = std::function<ApiStatus(const CallLimits& limits, const PlanControl& plan,
+                                                Work* work, std::size_t* response_bytes)>;
+  /// Runs `work` on the workers as a gRPC call is run: refused at once with
+  /// RESOURCE_EXHAUSTED when max_plans plans are in the server (a plan) or the
+  /// workers and queue are full; DEADLINE_EXCEEDED or CANCELLED when its deadline
+  /// passed or it was cancelled while it waited; counted and logged. `done` gets the
+  /// status exactly once, after the log line: on the worker, or on this thread when
+  /// the call is refused.
+  void Submit(std::shared_ptr<TransportCall> call, TransportWork work,
+              std::function<void(const ApiStatus&)> done);
+  /// When a call that arrived at `arrival` must end: after the client's `timeout`
+  /// (none: no deadline of its own) or the server's max_call, whichever is first.
+  std::chrono::steady_clock::time_point DeadlineOf(std::chrono::steady_clock::time_point arrival,
+                                                   std::optional<std::chrono::milliseconds> timeout) const;
+  /// Counts a streamed progress message of another transport: written, or dropped
+  /// for a newer one.
+  void CountProgress(bool written);
   /// One unary method: parse the request, run the operation, serialise the answer.
   /// (Plan and PlanStream have their own path: grpc_plan.cc.)
   struct Method {
@@ -148,6 +189,15 @@ class ShotPlannerService final : public ShotPlannerRawService {
   void Refuse(grpc::ServerUnaryReactor* reactor, const ApiStatus& status);
   /// The answer to a call that finds every worker busy and the queue full.
   ApiStatus Busy() const;
+  /// The answer to a plan that finds max_plans plans in the server.
+  ApiStatus TooManyPlans() const;
+  /// The limits of a call that ends at `deadline`: the server's flags and model.
+  CallLimits LimitsOf(std::chrono::steady_clock::time_point deadline) const;
+  /// The control of a plan that arrived at `arrival` and ends at `deadline` (it
+  /// stops a little before), stopped by `cancel`: the server's flags and planner.
+  PlanControl PlanControlOf(std::chrono::steady_clock::time_point arrival,
+                            std::chrono::steady_clock::time_point deadline,
+                            const std::atomic<bool>* cancel) const;
   /// Counts a finished call by its status.
   void Count(const ApiStatus& status);
   /// Counts a finished call and writes its log line.

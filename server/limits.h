@@ -64,6 +64,20 @@ inline constexpr int kMaxWorkers = 256;
 inline constexpr int kDefaultMaxQueued = 256;
 inline constexpr int kMaxQueuedLimit = 100'000;
 
+// --- HTTP (`snooker serve --http`) --------------------------------------------------
+/// HTTP connections served at once: cpp-httplib gives each connection a thread for
+/// as long as it lasts (a unary call waits there for its worker, a stream writes
+/// from it); more connections wait for one. The calls themselves run on the workers.
+inline constexpr int kHttpConnectionThreads = 32;
+/// An idle keep-alive connection is closed after this long, s (a shutdown waits for
+/// idle connections at most this long); a connection serves at most
+/// kHttpKeepAliveRequests requests.
+inline constexpr int kHttpKeepAliveSeconds = 2;
+inline constexpr int kHttpKeepAliveRequests = 100;
+/// A read or write on an HTTP connection that makes no progress for this long
+/// fails, s: a client that stops reading a stream loses it; the plan goes on.
+inline constexpr int kHttpIoTimeoutSeconds = 5;
+
 // --- Vision repair ----------------------------------------------------------------
 /// Overlaps and cushion overshoots up to this are repaired (balls moved, with a
 /// warning), mm (`snooker serve --vision-tolerance-mm`, and the same flag of the local

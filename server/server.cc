@@ -46,13 +46,24 @@ std::unique_ptr<Server> Server::Start(const ServerOptions& options, std::string*
   };
   if (const std::string bad = ValidateServiceOptions(options); !bad.empty()) return fail(bad);
   if (const std::string bad = CheckListenAddress(options.address); !bad.empty()) return fail(bad);
-  if (!options.tls && !options.allow_insecure && !IsLoopbackAddress(options.address)) {
-    return fail("refusing to listen on " + options.address +
-                " in plaintext: it is not a loopback address. Give a TLS certificate and key "
-                "(--tls-cert, --tls-key), or --insecure for a trusted network");
+  if (const std::string refusal =
+          PlaintextRefusal(options.address, options.tls.has_value(), options.allow_insecure, "listen");
+      !refusal.empty()) {
+    return fail(refusal);
   }
   if (options.tls && (options.tls->cert_chain_pem.empty() || options.tls->private_key_pem.empty())) {
     return fail("TLS needs both a certificate and its private key");
+  }
+  HttpOptions http;
+  http.address = options.http_address;
+  http.tls = options.tls ? &*options.tls : nullptr;
+  http.allow_insecure = options.allow_insecure;
+  http.cors_origin = options.cors_origin;
+  http.log = options.log;
+  if (!options.http_address.empty()) {
+    if (const std::string bad = CheckHttpOptions(http); !bad.empty()) return fail(bad);
+  } else if (!options.cors_origin.empty()) {
+    return fail("a CORS origin needs an HTTP address (--http)");
   }
   // The planner's tables are built before the port opens: the first plan after
   // SERVING is as fast as any other.
@@ -78,6 +89,15 @@ std::unique_ptr<Server> Server::Start(const ServerOptions& options, std::string*
                                "not match)"
                              : ""));
   }
+  if (!options.http_address.empty()) {
+    std::string why;
+    s->http_ = HttpServer::Start(&s->service_, http, &why);
+    if (s->http_ == nullptr) {
+      s->server_->Shutdown(std::chrono::system_clock::now());
+      s->server_.reset();
+      return fail(why);
+    }
+  }
   s->server_->GetHealthCheckService()->SetServingStatus(kServiceName, true);
   return s;
 }
@@ -86,12 +106,16 @@ Server::~Server() { Shutdown(std::chrono::milliseconds(0)); }
 
 void Server::Shutdown(std::chrono::milliseconds grace) {
   std::call_once(shutdown_once_, [&] {
+    const auto deadline = std::chrono::steady_clock::now() + grace;
+    if (http_) http_->BeginShutdown();
     if (server_) {
       server_->GetHealthCheckService()->SetServingStatus(kServiceName, false);
       // Waits for calls in flight until the deadline, then cancels them and waits
       // for their answers (each stops at its next interrupt check).
       server_->Shutdown(std::chrono::system_clock::now() + grace);
     }
+    // The HTTP calls get what is left of the same grace.
+    if (http_) http_->Finish(deadline);
     service_.StopWorkers();
   });
 }

@@ -1,5 +1,7 @@
 // Building and running the gRPC server: the ShotPlanner service, the standard
-// health service (grpc.health.v1) and server reflection.
+// health service (grpc.health.v1) and server reflection; and, on a second address,
+// the same service over HTTP with the Connect protocol and the web page
+// (http_server.h), on the same workers.
 //
 // Security: a server listens in plaintext only on a loopback address
 // (server/address.h) unless allow_insecure says otherwise; anywhere else it needs
@@ -17,6 +19,7 @@
 #include <grpcpp/grpcpp.h>
 
 #include "server/grpc_service.h"
+#include "server/http_server.h"
 #include "server/limits.h"
 
 namespace snooker::server {
@@ -44,13 +47,19 @@ struct ServerOptions : ServiceOptions {
   bool allow_insecure = false;
   /// Shutdown(): how long calls in flight may finish before they are cancelled.
   std::chrono::milliseconds shutdown_grace = limits::kDefaultShutdownGrace;
+  /// Also serve HTTP (Connect, the web page, /healthz) on this "host:port" (`--http`);
+  /// empty: no HTTP. The same TLS (then HTTPS) and plaintext rule as `address`.
+  std::string http_address;
+  /// The one browser origin whose pages may call the HTTP service (CORS,
+  /// `--cors-origin`); empty: none.
+  std::string cors_origin;
 };
 
 class Server {
  public:
   /// Starts serving. Returns nullptr and sets `error` when the options are invalid,
-  /// plaintext is asked for on an address that is not loopback without
-  /// allow_insecure, or the address cannot be bound.
+  /// plaintext is asked for on an address (gRPC's or HTTP's) that is not loopback
+  /// without allow_insecure, or an address cannot be bound.
   static std::unique_ptr<Server> Start(const ServerOptions& options, std::string* error);
   /// The same with default options on `address`.
   static std::unique_ptr<Server> Start(const std::string& address, std::string* error);
@@ -59,12 +68,15 @@ class Server {
 
   /// The port actually bound.
   int port() const { return port_; }
+  /// The HTTP port bound (0: no HTTP), and "http" or "https".
+  int http_port() const { return http_ ? http_->port() : 0; }
+  const char* http_scheme() const { return http_ ? http_->scheme() : ""; }
   /// Blocks until Shutdown() is called from another thread.
   void Wait() { server_->Wait(); }
-  /// Stops accepting calls, lets the calls in flight (running or queued) finish for
-  /// `grace`, then cancels the rest (they stop at their next interrupt check and
-  /// answer CANCELLED), and returns once every call has its answer and the workers
-  /// have stopped. Later calls do nothing.
+  /// Stops accepting calls (gRPC's and HTTP's), lets the calls in flight (running
+  /// or queued) finish for `grace`, then cancels the rest (they stop at their next
+  /// interrupt check and answer CANCELLED), and returns once every call has its
+  /// answer and the workers have stopped. Later calls do nothing.
   void Shutdown(std::chrono::milliseconds grace);
   /// Shutdown with the options' shutdown_grace.
   void Shutdown() { Shutdown(shutdown_grace_); }
@@ -75,6 +87,7 @@ class Server {
   explicit Server(const ServerOptions& options);
   ShotPlannerService service_;
   std::unique_ptr<grpc::Server> server_;
+  std::unique_ptr<HttpServer> http_;  // after service_: its calls run there
   std::chrono::milliseconds shutdown_grace_;
   std::once_flag shutdown_once_;
   int port_ = 0;

@@ -1,7 +1,7 @@
-// Tests of cli/json_input.h: the JSON syntax scanner (the first error's line and
+// Tests of server/json_input.h: the JSON syntax scanner (the first error's line and
 // column), and ReadJsonMessage (ball kinds and the ball on in any case, unknown kinds
 // named with their ball and the kinds there are, Protobuf's reasons for the rest).
-#include "cli/json_input.h"
+#include "server/json_input.h"
 
 #include <gtest/gtest.h>
 
@@ -14,9 +14,9 @@
 namespace snooker {
 namespace {
 
-using cli::FindJsonSyntaxError;
-using cli::JsonSyntaxError;
-using cli::ReadJsonMessage;
+using server::FindJsonSyntaxError;
+using server::JsonSyntaxError;
+using server::ReadJsonMessage;
 
 bool Mentions(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;

@@ -1,4 +1,4 @@
-#include "cli/json_input.h"
+#include "server/json_input.h"
 
 #include <google/protobuf/descriptor.h>
 #include <google/protobuf/util/json_util.h>
@@ -13,7 +13,7 @@
 #include "snooker/v1/plan.pb.h"
 #include "snooker/v1/table.pb.h"
 
-namespace snooker::cli {
+namespace snooker::server {
 namespace {
 
 using google::protobuf::Descriptor;
@@ -431,4 +431,4 @@ bool ReadJsonMessage(std::string_view text, google::protobuf::Message* message, 
   return false;
 }
 
-}  // namespace snooker::cli
+}  // namespace snooker::server

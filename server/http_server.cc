@@ -1,0 +1,638 @@
+#include "server/http_server.h"
+
+#include <openssl/err.h>
+#include <openssl/pem.h>
+#include <openssl/ssl.h>
+#include <sys/socket.h>
+
+#include <algorithm>
+#include <condition_variable>
+#include <future>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <thread>
+#include <utility>
+
+#include "server/address.h"
+#include "server/connect.h"
+#include "server/limits.h"
+#include "server/server.h"
+#include "server/web_files.h"
+
+// Last: through <resolv.h> it defines the macro _res, a name Eigen's headers use.
+#include <httplib.h>
+
+namespace snooker::server {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using connect::Codec;
+
+// What the connection's thread knows of the request it serves: when it arrived, and
+// whether its call wrote its own log line (the service's, as a gRPC call's).
+thread_local Clock::time_point t_arrival;
+thread_local bool t_logged = false;
+
+// Paths longer than this are refused before routing (the router's regular
+// expressions then only see short ones).
+constexpr std::size_t kMaxPathBytes = 1024;
+
+bool StartsWith(std::string_view s, std::string_view prefix) { return s.substr(0, prefix.size()) == prefix; }
+
+// "ipv4:127.0.0.1:51000" or "ipv6:[::1]:51000", as gRPC names its peers.
+std::string PeerOf(const httplib::Request& req) {
+  if (req.remote_addr.empty()) return "unknown";  // a request line that did not parse
+  const bool v6 = req.remote_addr.find(':') != std::string::npos;
+  return (v6 ? "ipv6:[" + req.remote_addr + "]" : "ipv4:" + req.remote_addr) + ":" +
+         std::to_string(req.remote_port);
+}
+
+// Printable ASCII of `text`, at most `max` bytes: for a log line.
+std::string Printable(std::string_view text, std::size_t max = 200) {
+  std::string out;
+  for (const char c : text.substr(0, max)) out += (c >= 0x20 && c < 0x7F) ? c : '?';
+  if (text.size() > max) out += "...";
+  return out;
+}
+
+// --- TLS from PEM text ------------------------------------------------------------
+
+struct BioFree {
+  void operator()(BIO* b) const { BIO_free(b); }
+};
+using Bio = std::unique_ptr<BIO, BioFree>;
+
+Bio MemoryBio(const std::string& pem) { return Bio(BIO_new_mem_buf(pem.data(), static_cast<int>(pem.size()))); }
+
+// Every certificate of `pem`, in order, to `take` (which owns it); how many.
+template <typename Take>
+int ForEachCertificate(const std::string& pem, Take take) {
+  Bio bio = MemoryBio(pem);
+  int n = 0;
+  while (bio != nullptr) {
+    X509* x = PEM_read_bio_X509(bio.get(), nullptr, nullptr, nullptr);
+    if (x == nullptr) break;
+    take(x);
+    ++n;
+  }
+  ERR_clear_error();  // the end of the text reads as an error
+  return n;
+}
+
+bool SetUpTls(SSL_CTX& ctx, const TlsOptions& tls, std::string* why) {
+  auto fail = [why](const char* what) {
+    *why = what;
+    return false;
+  };
+  SSL_CTX_set_min_proto_version(&ctx, TLS1_2_VERSION);
+  SSL_CTX_set_options(&ctx, SSL_OP_NO_COMPRESSION | SSL_OP_NO_RENEGOTIATION);
+  bool leaf = true, chain_ok = true;
+  const int certificates = ForEachCertificate(tls.cert_chain_pem, [&](X509* x) {
+    if (leaf) {
+      chain_ok = SSL_CTX_use_certificate(&ctx, x) == 1;
+      X509_free(x);
+      leaf = false;
+    } else if (SSL_CTX_add_extra_chain_cert(&ctx, x) != 1) {  // takes x when it succeeds
+      X509_free(x);
+      chain_ok = false;
+    }
+  });
+  if (certificates == 0 || !chain_ok) return fail("the certificate is not valid PEM");
+  Bio key_bio = MemoryBio(tls.private_key_pem);
+  EVP_PKEY* key = key_bio ? PEM_read_bio_PrivateKey(key_bio.get(), nullptr, nullptr, nullptr) : nullptr;
+  const bool key_ok = key != nullptr && SSL_CTX_use_PrivateKey(&ctx, key) == 1;
+  EVP_PKEY_free(key);
+  if (!key_ok) return fail("the private key is not valid PEM");
+  if (SSL_CTX_check_private_key(&ctx) != 1) return fail("the key does not match the certificate");
+  if (!tls.client_ca_pem.empty()) {
+    X509_STORE* store = SSL_CTX_get_cert_store(&ctx);
+    bool ca_ok = true;
+    const int cas = ForEachCertificate(tls.client_ca_pem, [&](X509* x) {
+      ca_ok = ca_ok && X509_STORE_add_cert(store, x) == 1 && SSL_CTX_add_client_CA(&ctx, x) == 1;
+      X509_free(x);
+    });
+    if (cas == 0 || !ca_ok) return fail("the client CA is not valid PEM");
+    SSL_CTX_set_verify(&ctx, SSL_VERIFY_PEER | SSL_VERIFY_FAIL_IF_NO_PEER_CERT, nullptr);
+  }
+  ERR_clear_error();
+  return true;
+}
+
+// --- Answers -------------------------------------------------------------------------
+
+void ReplyText(httplib::Response& res, int status, const std::string& text) {
+  res.status = status;
+  res.set_content(text + "\n", "text/plain; charset=utf-8");
+}
+
+// A unary call's error: its HTTP status and the Connect error body.
+void ReplyError(httplib::Response& res, const connect::Error& error) {
+  res.status = error.http_status;
+  res.set_content(connect::ErrorJson(error), "application/json");
+}
+
+// A streaming call that ends before it starts: 200, and the end-of-stream message
+// with the error.
+void ReplyEndStream(httplib::Response& res, Codec codec, const connect::Error& error) {
+  res.status = 200;
+  res.set_content(connect::Envelope(connect::kEndStreamFlag, connect::EndStreamJson(error)),
+                  connect::StreamingContentType(codec));
+}
+
+void ReplyNotAllowed(httplib::Response& res, const char* allow, bool rpc) {
+  res.set_header("Allow", allow);
+  if (rpc) {
+    ReplyError(res, connect::Unimplemented("a procedure takes POST", 405));
+  } else {
+    ReplyText(res, 405, std::string("method not allowed: ") + allow);
+  }
+}
+
+// The request's body, at most `limit` bytes (decompressed): RESOURCE_EXHAUSTED beyond,
+// INVALID_ARGUMENT when it does not read. A body left unread closes the connection.
+ApiStatus ReadBody(const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader,
+                   std::size_t limit, std::string* body) {
+  bool too_large = false;
+  const bool read = reader([&](const char* data, std::size_t n) {
+    if (body->size() + n > limit) {
+      too_large = true;
+      return false;
+    }
+    body->append(data, n);
+    return true;
+  });
+  if (read) return ApiStatus::Ok();
+  body->clear();
+  res.set_header("Connection", "close");
+  if (too_large || res.status == 413) {
+    return {ApiStatus::Code::kResourceExhausted,
+            "the request body is larger than " + std::to_string(limit) + " bytes"};
+  }
+  if (res.status == 415) {
+    return ApiStatus::Invalid("Content-Encoding '" + Printable(req.get_header_value("Content-Encoding"), 40) +
+                              "' is not one of identity, gzip, deflate, br");
+  }
+  return ApiStatus::Invalid("the request body does not read (it ended early, or its chunks are malformed)");
+}
+
+// The call's own checks of its headers: the protocol version and the timeout.
+ApiStatus CheckCallHeaders(const httplib::Request& req, std::optional<std::chrono::milliseconds>* timeout) {
+  if (req.has_header("Connect-Protocol-Version") && req.get_header_value("Connect-Protocol-Version") != "1") {
+    return ApiStatus::Invalid("Connect-Protocol-Version '" +
+                              Printable(req.get_header_value("Connect-Protocol-Version"), 40) +
+                              "' is not 1");
+  }
+  if (req.has_header("Connect-Timeout-Ms")) {
+    std::chrono::milliseconds ms{};
+    if (ApiStatus st = connect::ParseTimeout(req.get_header_value("Connect-Timeout-Ms"), &ms); !st.ok()) {
+      return st;
+    }
+    *timeout = ms;
+  }
+  return ApiStatus::Ok();
+}
+
+// A unary call's answer, from its worker to the connection's thread.
+struct UnaryResult {
+  std::mutex mu;
+  std::condition_variable done_cv;
+  bool done = false;
+  ApiStatus status;
+  std::string body;
+};
+
+// A stream's messages, from the planner (and its worker) to the connection's thread,
+// which writes them as the gRPC PlanStream's reactor does: a progress message that
+// finds the writer idle is the next write; one that comes while a write is in
+// flight waits, and only the newest does (an older one is dropped); the final answer
+// drops the one waiting, and is followed by the end of the stream.
+struct StreamState {
+  ShotPlannerService* service = nullptr;
+  std::mutex mu;
+  std::condition_variable changed;
+  std::optional<std::string> next;     // the next write
+  std::optional<std::string> pending;  // the newest progress while a write is in flight
+  bool writing = false;
+  std::string final_envelope;  // set by the worker before `completed`
+  bool completed = false;
+  ApiStatus status;
+
+  void Progress(std::string envelope) {
+    std::lock_guard<std::mutex> lock(mu);
+    if (completed) return;
+    if (!writing && !next) {
+      next = std::move(envelope);
+    } else {
+      if (pending) service->CountProgress(false);
+      pending = std::move(envelope);
+    }
+    changed.notify_all();
+  }
+  void Complete(const ApiStatus& st) {
+    std::lock_guard<std::mutex> lock(mu);
+    completed = true;
+    status = st;
+    if (pending) service->CountProgress(false);  // the final answer supersedes it
+    pending.reset();
+    changed.notify_all();
+  }
+  // The connection's thread: waits for the next message and writes it; false when
+  // the client is gone.
+  bool WriteNext(httplib::DataSink& sink) {
+    std::unique_lock<std::mutex> lock(mu);
+    changed.wait(lock, [this] { return next.has_value() || completed; });
+    if (next) {
+      const std::string bytes = std::move(*next);
+      next.reset();
+      writing = true;
+      lock.unlock();
+      const bool ok = sink.write(bytes.data(), bytes.size());
+      lock.lock();
+      writing = false;
+      next = std::move(pending);
+      pending.reset();
+      if (ok) service->CountProgress(true);
+      return ok;
+    }
+    std::string tail = status.ok() ? std::move(final_envelope) : std::string();
+    tail += connect::Envelope(connect::kEndStreamFlag,
+                              connect::EndStreamJson(status.ok() ? std::nullopt
+                                                                 : std::optional(connect::ErrorOf(status))));
+    lock.unlock();
+    if (!sink.write(tail.data(), tail.size())) return false;
+    sink.done();
+    return true;
+  }
+};
+
+}  // namespace
+
+std::string CheckCorsOrigin(std::string_view origin) {
+  std::string_view rest = origin;
+  if (StartsWith(rest, "https://")) {
+    rest.remove_prefix(8);
+  } else if (StartsWith(rest, "http://")) {
+    rest.remove_prefix(7);
+  } else {
+    return "--cors-origin '" + Printable(origin) +
+           "' is not an origin: it starts with http:// or https:// (one origin, no wildcard)";
+  }
+  const bool host_chars = !rest.empty() && rest.size() <= 260 && std::all_of(rest.begin(), rest.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' || c == '-' ||
+           c == ':' || c == '[' || c == ']';
+  });
+  if (!host_chars) {
+    return "--cors-origin '" + Printable(origin) +
+           "' is not an origin: after the scheme comes a host and an optional port, nothing else "
+           "(no path, no '/')";
+  }
+  return "";
+}
+
+std::string CheckHttpOptions(const HttpOptions& options) {
+  std::string host;
+  int port = 0;
+  if (!SplitHostPort(options.address, &host, &port)) {
+    const std::string why = CheckListenAddress(options.address);
+    return "HTTP address '" + options.address + "': " +
+           (why.empty() ? "HTTP listens on HOST:PORT (not a Unix socket)" : why);
+  }
+  if (std::string refusal = PlaintextRefusal(options.address, options.tls != nullptr, options.allow_insecure,
+                                             "serve HTTP");
+      !refusal.empty()) {
+    return refusal;
+  }
+  if (!options.cors_origin.empty()) return CheckCorsOrigin(options.cors_origin);
+  return "";
+}
+
+struct HttpServer::Impl {
+  ShotPlannerService* service = nullptr;
+  std::string cors_origin;
+  std::ostream* log = nullptr;
+  bool tls = false;
+  std::unique_ptr<httplib::Server> http;
+  std::thread listener;
+  std::future<void> listener_done;
+  int port = 0;
+
+  std::mutex mu;
+  std::condition_variable idle;
+  bool shutting_down = false;
+  std::set<std::shared_ptr<ShotPlannerService::TransportCall>> in_flight;
+  std::once_flag finished;
+  std::mutex log_mu;
+
+  void Configure();
+  void OnGet(const httplib::Request& req, httplib::Response& res);
+  void OnBody(const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader);
+  void OnOptions(const httplib::Request& req, httplib::Response& res);
+  void Unary(const connect::UnaryProcedure& procedure, const httplib::Request& req, httplib::Response& res,
+             std::string body, const ApiStatus& read);
+  void Stream(const httplib::Request& req, httplib::Response& res, std::string body, const ApiStatus& read);
+  std::shared_ptr<ShotPlannerService::TransportCall> NewCall(const httplib::Request& req, std::string_view method,
+                                                            std::optional<std::chrono::milliseconds> timeout,
+                                                            std::size_t request_bytes, bool is_plan);
+  bool Admit(const std::shared_ptr<ShotPlannerService::TransportCall>& call);
+  void Release(const std::shared_ptr<ShotPlannerService::TransportCall>& call);
+  void Log(const httplib::Request& req, const httplib::Response& res);
+  void Stop(Clock::time_point deadline);
+};
+
+void HttpServer::Impl::Configure() {
+  httplib::Server& s = *http;
+  s.new_task_queue = [] { return new httplib::ThreadPool(limits::kHttpConnectionThreads); };
+  // SO_REUSEADDR only: cpp-httplib's default also sets SO_REUSEPORT, with which a
+  // second server could share the port unnoticed.
+  s.set_socket_options([](socket_t sock) {
+    int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+  });
+  s.set_payload_max_length(limits::kMaxRequestBytes + connect::kEnvelopePrefixBytes);
+  s.set_keep_alive_timeout(limits::kHttpKeepAliveSeconds);
+  s.set_keep_alive_max_count(limits::kHttpKeepAliveRequests);
+  s.set_read_timeout(limits::kHttpIoTimeoutSeconds);
+  s.set_write_timeout(limits::kHttpIoTimeoutSeconds);
+  httplib::Headers headers{{"X-Content-Type-Options", "nosniff"}};
+  if (!cors_origin.empty()) headers.emplace("Access-Control-Allow-Origin", cors_origin);
+  s.set_default_headers(headers);
+  s.set_pre_routing_handler([](const httplib::Request& req, httplib::Response& res) {
+    t_arrival = Clock::now();
+    t_logged = false;
+    if (req.path.size() <= kMaxPathBytes) return httplib::Server::HandlerResponse::Unhandled;
+    res.set_header("Connection", "close");
+    ReplyText(res, 404, "not found");
+    return httplib::Server::HandlerResponse::Handled;
+  });
+  s.Get(".*", [this](const httplib::Request& req, httplib::Response& res) { OnGet(req, res); });
+  s.Options(".*", [this](const httplib::Request& req, httplib::Response& res) { OnOptions(req, res); });
+  auto body = [this](const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader) {
+    OnBody(req, res, reader);
+  };
+  s.Post(".*", body);
+  s.Put(".*", body);
+  s.Patch(".*", body);
+  s.Delete(".*", body);
+  s.set_logger([this](const httplib::Request& req, const httplib::Response& res) { Log(req, res); });
+}
+
+void HttpServer::Impl::OnGet(const httplib::Request& req, httplib::Response& res) {
+  if (req.path == "/healthz") {
+    std::lock_guard<std::mutex> lock(mu);
+    res.set_header("Cache-Control", "no-store");
+    ReplyText(res, shutting_down ? 503 : 200, shutting_down ? "NOT_SERVING" : "SERVING");
+    return;
+  }
+  if (StartsWith(req.path, connect::kServicePath)) return ReplyNotAllowed(res, "POST, OPTIONS", true);
+  const std::string_view name = req.path == "/" ? std::string_view("index.html") : std::string_view(req.path).substr(1);
+  const WebFile* file = name.find('/') == std::string_view::npos ? FindWebFile(name) : nullptr;
+  if (file == nullptr) return ReplyText(res, 404, "not found");
+  res.status = 200;
+  res.set_content(std::string(file->bytes), std::string(file->content_type));
+  res.set_header("Cache-Control", "no-cache");
+  res.set_header("Content-Security-Policy", "default-src 'self'");
+}
+
+void HttpServer::Impl::OnOptions(const httplib::Request& req, httplib::Response& res) {
+  const bool rpc = StartsWith(req.path, connect::kServicePath);
+  res.status = 204;
+  res.set_header("Allow", rpc ? "POST, OPTIONS" : "GET, HEAD, OPTIONS");
+  if (!rpc || cors_origin.empty()) return;
+  // A preflight: what the page of the origin (named in every answer) may send.
+  res.set_header("Access-Control-Allow-Methods", "POST");
+  res.set_header("Access-Control-Allow-Headers", "Content-Type, Connect-Protocol-Version, Connect-Timeout-Ms");
+  res.set_header("Access-Control-Max-Age", "7200");
+}
+
+void HttpServer::Impl::OnBody(const httplib::Request& req, httplib::Response& res,
+                              const httplib::ContentReader& reader) {
+  std::string body;
+  const ApiStatus read =
+      ReadBody(req, res, reader, limits::kMaxRequestBytes + connect::kEnvelopePrefixBytes, &body);
+  if (!StartsWith(req.path, connect::kServicePath)) {
+    const std::string_view name = std::string_view(req.path).substr(1);
+    const bool known = req.path == "/" || req.path == "/healthz" || FindWebFile(name) != nullptr;
+    return known ? ReplyNotAllowed(res, "GET, HEAD, OPTIONS", false) : ReplyText(res, 404, "not found");
+  }
+  if (req.method != "POST") return ReplyNotAllowed(res, "POST, OPTIONS", true);
+  const std::string_view name = std::string_view(req.path).substr(connect::kServicePath.size());
+  if (name == connect::kPlanStream) return Stream(req, res, std::move(body), read);
+  if (const connect::UnaryProcedure* procedure = connect::FindUnary(name)) {
+    return Unary(*procedure, req, res, std::move(body), read);
+  }
+  ReplyError(res, connect::Unimplemented("snooker.v1.ShotPlanner has no procedure '" + Printable(name, 64) +
+                                             "'; it has " + connect::ProcedureNames(),
+                                         404));
+}
+
+std::shared_ptr<ShotPlannerService::TransportCall> HttpServer::Impl::NewCall(
+    const httplib::Request& req, std::string_view method, std::optional<std::chrono::milliseconds> timeout,
+    std::size_t request_bytes, bool is_plan) {
+  auto call = std::make_shared<ShotPlannerService::TransportCall>();
+  call->method = std::string(method);
+  call->peer = PeerOf(req);
+  call->arrival = t_arrival;
+  call->deadline = service->DeadlineOf(t_arrival, timeout);
+  call->request_bytes = request_bytes;
+  call->is_plan = is_plan;
+  call->log_extra = tls ? " transport=https" : " transport=http";
+  return call;
+}
+
+bool HttpServer::Impl::Admit(const std::shared_ptr<ShotPlannerService::TransportCall>& call) {
+  std::lock_guard<std::mutex> lock(mu);
+  if (shutting_down) return false;
+  in_flight.insert(call);
+  return true;
+}
+
+void HttpServer::Impl::Release(const std::shared_ptr<ShotPlannerService::TransportCall>& call) {
+  std::lock_guard<std::mutex> lock(mu);
+  in_flight.erase(call);
+  if (in_flight.empty()) idle.notify_all();
+}
+
+void HttpServer::Impl::Unary(const connect::UnaryProcedure& procedure, const httplib::Request& req,
+                             httplib::Response& res, std::string body, const ApiStatus& read) {
+  const std::optional<Codec> codec = connect::UnaryCodec(req.get_header_value("Content-Type"));
+  if (!codec) {
+    res.set_header("Accept-Post", "application/json, application/proto");
+    return ReplyError(res, connect::Unimplemented(
+                               "Content-Type '" + Printable(req.get_header_value("Content-Type"), 60) +
+                                   "' is not application/json or application/proto",
+                               415));
+  }
+  std::optional<std::chrono::milliseconds> timeout;
+  if (!read.ok()) return ReplyError(res, connect::ErrorOf(read));
+  if (ApiStatus st = CheckCallHeaders(req, &timeout); !st.ok()) return ReplyError(res, connect::ErrorOf(st));
+  auto call = NewCall(req, procedure.name, timeout, body.size(), procedure.is_plan);
+  if (!Admit(call)) return ReplyError(res, connect::Unavailable("the server is shutting down"));
+  auto result = std::make_shared<UnaryResult>();
+  service->Submit(
+      call,
+      [&procedure, codec, body = std::move(body), result](const CallLimits& limits, const PlanControl& plan,
+                                                          ShotPlannerService::Work* work, std::size_t* bytes) {
+        const ApiStatus st = procedure.run(body, *codec, limits, plan, &result->body, &work->simulations);
+        *bytes = result->body.size();
+        return st;
+      },
+      [result](const ApiStatus& st) {
+        std::lock_guard<std::mutex> lock(result->mu);
+        result->status = st;
+        result->done = true;
+        result->done_cv.notify_all();
+      });
+  {
+    std::unique_lock<std::mutex> lock(result->mu);
+    result->done_cv.wait(lock, [&] { return result->done; });
+  }
+  Release(call);
+  t_logged = true;  // the service wrote the call's line
+  if (!result->status.ok()) return ReplyError(res, connect::ErrorOf(result->status));
+  res.status = 200;
+  res.set_content(std::move(result->body), connect::UnaryContentType(*codec));
+}
+
+void HttpServer::Impl::Stream(const httplib::Request& req, httplib::Response& res, std::string body,
+                              const ApiStatus& read) {
+  const std::optional<Codec> codec = connect::StreamingCodec(req.get_header_value("Content-Type"));
+  if (!codec) {
+    res.set_header("Accept-Post", "application/connect+json, application/connect+proto");
+    return ReplyError(res, connect::Unimplemented(
+                               "PlanStream streams: Content-Type '" +
+                                   Printable(req.get_header_value("Content-Type"), 60) +
+                                   "' is not application/connect+json or application/connect+proto",
+                               415));
+  }
+  std::optional<std::chrono::milliseconds> timeout;
+  std::string_view message;
+  ApiStatus st = read;
+  if (st.ok()) st = CheckCallHeaders(req, &timeout);
+  if (st.ok()) st = connect::OpenEnvelope(body, &message);
+  if (!st.ok()) return ReplyEndStream(res, *codec, connect::ErrorOf(st));
+  auto call = NewCall(req, connect::kPlanStream, timeout, body.size(), true);
+  if (!Admit(call)) return ReplyEndStream(res, *codec, connect::Unavailable("the server is shutting down"));
+  auto state = std::make_shared<StreamState>();
+  state->service = service;
+  service->Submit(
+      call,
+      [codec, request = std::string(message), state](const CallLimits&, const PlanControl& plan,
+                                                     ShotPlannerService::Work* work, std::size_t* bytes) {
+        std::string final_envelope;
+        const ApiStatus status = connect::PlanStream(
+            request, *codec, plan, [&state](std::string envelope) { state->Progress(std::move(envelope)); },
+            &final_envelope, &work->simulations);
+        *bytes = final_envelope.size();
+        std::lock_guard<std::mutex> lock(state->mu);
+        state->final_envelope = std::move(final_envelope);
+        return status;
+      },
+      [state](const ApiStatus& status) { state->Complete(status); });
+  t_logged = true;  // the service writes the call's line
+  res.status = 200;
+  res.set_chunked_content_provider(
+      connect::StreamingContentType(*codec),
+      [state](std::size_t, httplib::DataSink& sink) { return state->WriteNext(sink); },
+      [this, call](bool success) {
+        if (!success) call->cancel.store(true);  // the client is gone: stop planning
+        Release(call);
+      });
+}
+
+void HttpServer::Impl::Log(const httplib::Request& req, const httplib::Response& res) {
+  const Clock::time_point arrival = std::exchange(t_arrival, Clock::time_point{});
+  if (std::exchange(t_logged, false) || log == nullptr) return;
+  std::ostringstream line;
+  line.precision(3);
+  line << std::fixed << "snooker: http method=" << Printable(req.method, 16) << " path=" << Printable(req.path)
+       << " peer=" << PeerOf(req) << " status=" << res.status;
+  // A request that did not parse never reached the router, which notes the arrival.
+  if (arrival != Clock::time_point{}) {
+    line << " latency_ms=" << std::chrono::duration<double, std::milli>(Clock::now() - arrival).count();
+  }
+  line << " response_bytes=" << res.body.size() << "\n";
+  std::lock_guard<std::mutex> lock(log_mu);
+  *log << line.str() << std::flush;
+}
+
+void HttpServer::Impl::Stop(Clock::time_point deadline) {
+  {
+    std::unique_lock<std::mutex> lock(mu);
+    shutting_down = true;
+    idle.wait_until(lock, deadline, [this] { return in_flight.empty(); });
+    // The grace is over: the rest stop at their next interrupt check.
+    for (const auto& call : in_flight) call->cancel.store(true);
+    idle.wait_for(lock, std::chrono::seconds(limits::kHttpIoTimeoutSeconds), [this] { return in_flight.empty(); });
+  }
+  http->stop();
+  // Connections end after their request, an idle one within the keep-alive
+  // timeout. One that still reads or writes after that (a client that trickles)
+  // is left to the process's exit: the server's objects are kept for it.
+  const auto wait = std::chrono::seconds(limits::kHttpKeepAliveSeconds + limits::kHttpIoTimeoutSeconds + 1);
+  if (listener_done.wait_for(wait) == std::future_status::ready) {
+    listener.join();
+  } else {
+    listener.detach();
+    (void)http.release();
+  }
+}
+
+HttpServer::HttpServer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
+HttpServer::~HttpServer() { Finish(Clock::now()); }
+
+int HttpServer::port() const { return impl_->port; }
+
+const char* HttpServer::scheme() const { return impl_->tls ? "https" : "http"; }
+
+void HttpServer::BeginShutdown() {
+  std::lock_guard<std::mutex> lock(impl_->mu);
+  impl_->shutting_down = true;
+}
+
+void HttpServer::Finish(Clock::time_point deadline) {
+  std::call_once(impl_->finished, [&] { impl_->Stop(deadline); });
+}
+
+std::unique_ptr<HttpServer> HttpServer::Start(ShotPlannerService* service, const HttpOptions& options,
+                                              std::string* error) {
+  auto fail = [&](const std::string& why) {
+    if (error != nullptr) *error = why;
+    return nullptr;
+  };
+  if (std::string bad = CheckHttpOptions(options); !bad.empty()) return fail(bad);
+  std::string host;
+  int port = 0;
+  SplitHostPort(options.address, &host, &port);
+  auto impl = std::make_unique<Impl>();
+  impl->service = service;
+  impl->cors_origin = options.cors_origin;
+  impl->log = options.log;
+  impl->tls = options.tls != nullptr;
+  if (options.tls != nullptr) {
+    std::string why;
+    impl->http = std::make_unique<httplib::SSLServer>(
+        [&](SSL_CTX& ctx) { return SetUpTls(ctx, *options.tls, &why); });
+    if (!impl->http->is_valid()) return fail("cannot serve HTTPS on " + options.address + ": " + why);
+  } else {
+    impl->http = std::make_unique<httplib::Server>();
+  }
+  impl->Configure();
+  impl->port = port == 0 ? impl->http->bind_to_any_port(host) : (impl->http->bind_to_port(host, port) ? port : -1);
+  if (impl->port <= 0) return fail("cannot listen on " + options.address + " for HTTP (is the port in use?)");
+  std::promise<void> done;
+  impl->listener_done = done.get_future();
+  httplib::Server* http = impl->http.get();
+  impl->listener = std::thread([http, done = std::move(done)]() mutable {
+    http->listen_after_bind();
+    done.set_value();
+  });
+  // Until it runs, stopping it would not stop it.
+  while (!impl->http->is_running() &&
+         impl->listener_done.wait_for(std::chrono::milliseconds(1)) != std::future_status::ready) {
+  }
+  return std::unique_ptr<HttpServer>(new HttpServer(std::move(impl)));
+}
+
+}  // namespace snooker::server

@@ -1,0 +1,503 @@
+// The service over HTTP with the Connect protocol (server/http_server.h,
+// server/connect.h), through an in-process server and cpp-httplib's client: the
+// answers equal gRPC's, errors carry Connect's codes and HTTP statuses, a stream
+// sends enveloped progress and ends with its end-of-stream message, the client's
+// timeout ends a plan, and the listener's security: plaintext only on loopback,
+// HTTPS with the TLS flags, CORS only for a named origin, the page with its headers.
+#include <google/protobuf/util/json_util.h>
+#include <google/protobuf/util/message_differencer.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <future>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli/load_tables.h"
+#include "server/connect.h"
+#include "server/server.h"
+#include "server/web_files.h"
+#include "tests/service/requests.h"
+#include "tests/service/server_support.h"
+#include "tests/support/cli_support.h"
+
+// Last: through <resolv.h> it defines the macro _res, a name Eigen's headers use.
+#include <httplib.h>
+
+namespace snooker::server {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+bool Mentions(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+std::string Json(const google::protobuf::Message& m) {
+  std::string out;
+  EXPECT_TRUE(google::protobuf::util::MessageToJsonString(m, &out).ok());
+  return out;
+}
+
+template <typename Message>
+Message FromJson(const std::string& json) {
+  Message m;
+  const auto st = google::protobuf::util::JsonStringToMessage(json, &m);
+  EXPECT_TRUE(st.ok()) << st.message() << ": " << json.substr(0, 300);
+  return m;
+}
+
+// A plan of the built-in table "black" capped in simulations: the same answer for
+// the same seed.
+v1::PlanRequest BlackPlan() {
+  v1::PlanRequest r;
+  EXPECT_TRUE(cli::BuiltinTable("black", r.mutable_table()));
+  r.set_max_simulations(300);
+  r.set_monte_carlo_samples(16);
+  r.set_time_budget_ms(10'000);
+  r.set_seed(1);
+  return r;
+}
+
+// A plan that would take its whole 10 s budget: 15 reds, no simulation cap.
+v1::PlanRequest LongPlan() {
+  v1::PlanRequest r;
+  testing_requests::AddBall(&r, "cue", v1::CUE, 0.889, 1.2);
+  for (int i = 0; i < 15; ++i) {
+    testing_requests::AddBall(&r, "red-" + std::to_string(i + 1), v1::RED, 0.3 + 0.59 * (i % 3),
+                              1.6 + 0.35 * (i / 3));
+  }
+  r.set_time_budget_ms(10'000);
+  r.set_max_simulations(100'000'000);
+  r.set_monte_carlo_samples(100'000);
+  return r;
+}
+
+// LongPlan(), kept for a call in flight.
+const v1::PlanRequest& LongPlanRequest() {
+  static const v1::PlanRequest r = LongPlan();
+  return r;
+}
+
+std::string ShotsOf(const v1::PlanResponse& r) {
+  std::string out;
+  for (const v1::PlannedShot& s : r.shots()) out += s.SerializeAsString() + "|";
+  return out;
+}
+
+// The envelopes of a streaming answer: (flags, message).
+std::vector<std::pair<int, std::string>> Envelopes(const std::string& body) {
+  std::vector<std::pair<int, std::string>> out;
+  std::size_t at = 0;
+  while (at + 5 <= body.size()) {
+    std::size_t n = 0;
+    for (std::size_t i = 1; i < 5; ++i) n = (n << 8) | static_cast<unsigned char>(body[at + i]);
+    if (at + 5 + n > body.size()) break;
+    out.emplace_back(static_cast<unsigned char>(body[at]), body.substr(at + 5, n));
+    at += 5 + n;
+  }
+  EXPECT_EQ(at, body.size()) << "bytes after the last whole envelope";
+  return out;
+}
+
+class HttpTest : public testing::Test {
+ protected:
+  void StartServer(ServerOptions options = {}) {
+    if (options.http_address.empty()) options.http_address = "127.0.0.1:0";
+    test_server_ = std::make_unique<server_support::TestServer>(options);
+    ASSERT_NE(test_server_->server, nullptr);
+    port_ = test_server_->server->http_port();
+    ASSERT_GT(port_, 0);
+  }
+  httplib::Client Client() const {
+    httplib::Client c("127.0.0.1", port_);
+    c.set_read_timeout(60, 0);
+    return c;
+  }
+  httplib::Result Call(const std::string& method, const std::string& body,
+                       const std::string& type = "application/json", const httplib::Headers& headers = {}) {
+    return Client().Post(("/snooker.v1.ShotPlanner/" + method).c_str(), headers, body, type.c_str());
+  }
+  // The server's log once every call it received has its answer.
+  std::string Log() {
+    const auto give_up = Clock::now() + std::chrono::seconds(20);
+    while (test_server_->server->counts().in_flight() > 0 && Clock::now() < give_up) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    return test_server_->log.str();
+  }
+
+  std::unique_ptr<server_support::TestServer> test_server_;
+  int port_ = 0;
+};
+
+TEST_F(HttpTest, PlanOfABuiltinTableEqualsTheGrpcAnswer) {
+  StartServer();
+  const v1::PlanRequest request = BlackPlan();
+  v1::PlanResponse grpc_answer;
+  grpc::ClientContext ctx;
+  const grpc::Status st = test_server_->stub->Plan(&ctx, request, &grpc_answer);
+  ASSERT_TRUE(st.ok()) << st.error_message();
+  ASSERT_GT(grpc_answer.shots_size(), 0) << grpc_answer.reason();
+
+  const auto res = Call("Plan", Json(request));
+  ASSERT_TRUE(res) << httplib::to_string(res.error());
+  ASSERT_EQ(res->status, 200) << res->body;
+  EXPECT_EQ(res->get_header_value("Content-Type"), "application/json");
+  const auto http_answer = FromJson<v1::PlanResponse>(res->body);
+  EXPECT_EQ(ShotsOf(http_answer), ShotsOf(grpc_answer));
+  EXPECT_EQ(http_answer.simulations(), grpc_answer.simulations());
+  EXPECT_TRUE(http_answer.final());
+  EXPECT_TRUE(Mentions(res->body, "\"headingDeg\"")) << "lowerCamelCase names";
+
+  // The binary form gives the same answer.
+  const auto binary = Call("Plan", request.SerializeAsString(), "application/proto");
+  ASSERT_TRUE(binary);
+  ASSERT_EQ(binary->status, 200);
+  v1::PlanResponse from_binary;
+  ASSERT_TRUE(from_binary.ParseFromString(binary->body));
+  EXPECT_EQ(ShotsOf(from_binary), ShotsOf(grpc_answer));
+
+  const std::string log = Log();
+  EXPECT_TRUE(Mentions(log, "method=Plan peer=ipv4:127.0.0.1:")) << log;
+  EXPECT_TRUE(Mentions(log, "transport=http")) << log;
+}
+
+TEST_F(HttpTest, GetModelAnswersTheServersModelInJson) {
+  StartServer();
+  v1::GetModelResponse grpc_answer;
+  grpc::ClientContext ctx;
+  ASSERT_TRUE(test_server_->stub->GetModel(&ctx, v1::GetModelRequest(), &grpc_answer).ok());
+  for (const char* body : {"{}", ""}) {
+    const auto res = Call("GetModel", body);
+    ASSERT_TRUE(res);
+    ASSERT_EQ(res->status, 200) << res->body;
+    EXPECT_TRUE(google::protobuf::util::MessageDifferencer::Equals(FromJson<v1::GetModelResponse>(res->body),
+                                                                   grpc_answer));
+  }
+}
+
+TEST_F(HttpTest, ABadValueIsInvalidArgumentNamingTheField) {
+  StartServer();
+  v1::CollideRequest request = testing_requests::PaperCollide();
+  request.set_speed(-1);
+  const auto res = Call("Collide", Json(request));
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 400);
+  EXPECT_EQ(res->get_header_value("Content-Type"), "application/json");
+  EXPECT_TRUE(Mentions(res->body, "\"code\": \"invalid_argument\"")) << res->body;
+  EXPECT_TRUE(Mentions(res->body, "speed")) << res->body;
+}
+
+TEST_F(HttpTest, BadJsonIsInvalidArgumentSayingWhere) {
+  StartServer();
+  auto res = Call("Collide", "{\"speed\": 1.5,\n \"cutAngleDeg\": }");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 400);
+  EXPECT_TRUE(Mentions(res->body, "invalid_argument")) << res->body;
+  EXPECT_TRUE(Mentions(res->body, "line 2, column")) << res->body;
+  res = Call("Collide", R"({"speed": 1.5, "sped": 2})");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 400);
+  EXPECT_TRUE(Mentions(res->body, "sped")) << res->body;
+  res = Call("Simulate", R"({"table": {"balls": [{"id": "cue", "position": {"x": "left"}}]}})");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 400);
+  EXPECT_TRUE(Mentions(res->body, "position.x")) << res->body;
+  // Bytes that are not a message in the binary form.
+  res = Call("Collide", "\xff\xff\xff", "application/proto");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 400);
+  EXPECT_TRUE(Mentions(res->body, "invalid_argument")) << res->body;
+}
+
+TEST_F(HttpTest, WhatIsNotAProcedureOrNotThisWayIsRefused) {
+  StartServer();
+  auto res = Call("Teleport", "{}");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 404);
+  EXPECT_TRUE(Mentions(res->body, "\"code\": \"unimplemented\"")) << res->body;
+  EXPECT_TRUE(Mentions(res->body, "Teleport")) << res->body;
+
+  res = Client().Get("/snooker.v1.ShotPlanner/Plan");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 405);
+  EXPECT_TRUE(Mentions(res->get_header_value("Allow"), "POST"));
+
+  res = Call("GetModel", "{}", "text/plain");  // what a page may send without asking
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 415);
+  res = Call("PlanStream", "{}", "application/json");  // a stream, asked for as unary
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 415);
+  res = Call("GetModel", "{}", "application/json", {{"Connect-Timeout-Ms", "soon"}});
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 400);
+  EXPECT_TRUE(Mentions(res->body, "Connect-Timeout-Ms")) << res->body;
+}
+
+TEST_F(HttpTest, AnOversizedBodyIsRefused) {
+  StartServer();
+  const std::string body(limits::kMaxRequestBytes + 100, ' ');
+  const auto res = Call("Simulate", body);
+  ASSERT_TRUE(res) << httplib::to_string(res.error());
+  EXPECT_EQ(res->status, 429);
+  EXPECT_TRUE(Mentions(res->body, "\"code\": \"resource_exhausted\"")) << res->body;
+  EXPECT_TRUE(Mentions(res->body, "larger than")) << res->body;
+  // The server goes on.
+  const auto after = Call("GetModel", "{}");
+  ASSERT_TRUE(after);
+  EXPECT_EQ(after->status, 200);
+}
+
+TEST_F(HttpTest, AOneMillisecondTimeoutEndsABigPlanAsGrpcsDeadlineDoes) {
+  StartServer();
+  const auto start = Clock::now();
+  const auto res = Call("Plan", Json(LongPlan()), "application/json", {{"Connect-Timeout-Ms", "1"}});
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  ASSERT_TRUE(res);
+  EXPECT_LT(seconds, 5.0);
+  if (res->status == 200) {  // OK only with the shots verified by then
+    EXPECT_GT(FromJson<v1::PlanResponse>(res->body).shots_size(), 0);
+  } else {
+    EXPECT_EQ(res->status, 504) << res->body;
+    EXPECT_TRUE(Mentions(res->body, "\"code\": \"deadline_exceeded\"")) << res->body;
+  }
+}
+
+TEST_F(HttpTest, PlansOverHttpAndGrpcShareOneAdmission) {
+  ServerOptions options;
+  options.max_plans = 1;
+  StartServer(options);
+  // A gRPC plan holds the one place ...
+  grpc::ClientContext ctx;
+  v1::PlanResponse held;
+  std::promise<grpc::Status> held_done;
+  test_server_->stub->async()->Plan(&ctx, &LongPlanRequest(), &held,
+                                    [&](grpc::Status st) { held_done.set_value(std::move(st)); });
+  const auto give_up = Clock::now() + std::chrono::seconds(20);
+  while (test_server_->server->counts().plans < 1 && Clock::now() < give_up) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  ASSERT_EQ(test_server_->server->counts().plans, 1);
+  // ... so an HTTP plan is refused at once.
+  const auto res = Call("Plan", Json(BlackPlan()));
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 429);
+  EXPECT_TRUE(Mentions(res->body, "--max-plans")) << res->body;
+  ctx.TryCancel();
+  EXPECT_EQ(held_done.get_future().get().error_code(), grpc::StatusCode::CANCELLED);
+}
+
+TEST_F(HttpTest, AShutdownCancelsAnHttpPlanAfterItsGrace) {
+  StartServer();
+  std::promise<httplib::Result> answer;
+  std::thread client([&] { answer.set_value(Call("Plan", Json(LongPlan()))); });
+  const auto give_up = Clock::now() + std::chrono::seconds(20);
+  while (test_server_->server->counts().running < 1 && Clock::now() < give_up) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  const auto start = Clock::now();
+  test_server_->server->Shutdown(std::chrono::milliseconds(100));
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  client.join();
+  const httplib::Result res = answer.get_future().get();
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 499) << res->body;
+  EXPECT_TRUE(Mentions(res->body, "\"code\": \"canceled\"")) << res->body;
+  EXPECT_LT(seconds, 5.0);
+  EXPECT_TRUE(Mentions(test_server_->log.str(), "method=Plan")) << test_server_->log.str();
+}
+
+TEST_F(HttpTest, PlanStreamSendsProgressThenPlansAnswerThenTheEnd) {
+  StartServer();
+  const v1::PlanRequest request = BlackPlan();
+  const auto unary = Call("Plan", Json(request));
+  ASSERT_TRUE(unary);
+  ASSERT_EQ(unary->status, 200) << unary->body;
+  const auto plan = FromJson<v1::PlanResponse>(unary->body);
+
+  const auto res = Call("PlanStream", connect::Envelope(0, Json(request)), "application/connect+json");
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 200);
+  EXPECT_EQ(res->get_header_value("Content-Type"), "application/connect+json");
+  const auto envelopes = Envelopes(res->body);
+  ASSERT_GE(envelopes.size(), 3u) << "progress, the final answer, the end";
+  for (std::size_t i = 0; i + 2 < envelopes.size(); ++i) {
+    EXPECT_EQ(envelopes[i].first, 0);
+    const auto progress = FromJson<v1::PlanResponse>(envelopes[i].second);
+    EXPECT_FALSE(progress.final());
+    EXPECT_EQ(progress.shots_size(), 1);
+  }
+  const auto& last = envelopes[envelopes.size() - 2];
+  EXPECT_EQ(last.first, 0);
+  const auto answer = FromJson<v1::PlanResponse>(last.second);
+  EXPECT_TRUE(answer.final());
+  EXPECT_EQ(ShotsOf(answer), ShotsOf(plan));
+  EXPECT_EQ(envelopes.back().first, connect::kEndStreamFlag);
+  EXPECT_EQ(envelopes.back().second, "{}");
+  EXPECT_GE(test_server_->server->counts().progress_messages, 1);
+
+  // A request that is not one envelope ends the stream with the error.
+  const auto bad = Call("PlanStream", Json(request), "application/connect+json");
+  ASSERT_TRUE(bad);
+  EXPECT_EQ(bad->status, 200);
+  const auto bad_envelopes = Envelopes(bad->body);
+  ASSERT_EQ(bad_envelopes.size(), 1u);
+  EXPECT_EQ(bad_envelopes[0].first, connect::kEndStreamFlag);
+  EXPECT_TRUE(Mentions(bad_envelopes[0].second, "{\"error\": {\"code\": \"invalid_argument\""))
+      << bad_envelopes[0].second;
+}
+
+TEST_F(HttpTest, ThePageTheHealthCheckAndNoCorsByDefault) {
+  StartServer();
+  auto res = Client().Get("/");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 200);
+  EXPECT_EQ(res->get_header_value("Content-Type"), "text/html; charset=utf-8");
+  EXPECT_EQ(res->get_header_value("Content-Security-Policy"), "default-src 'self'");
+  EXPECT_EQ(res->get_header_value("X-Content-Type-Options"), "nosniff");
+  EXPECT_EQ(res->get_header_value("Cache-Control"), "no-cache");
+  ASSERT_NE(FindWebFile("index.html"), nullptr);
+  EXPECT_EQ(res->body, std::string(FindWebFile("index.html")->bytes));
+  for (const WebFile& f : WebFiles()) {
+    res = Client().Get(("/" + std::string(f.name)).c_str());
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 200) << f.name;
+    EXPECT_EQ(res->get_header_value("Content-Type"), f.content_type) << f.name;
+  }
+  res = Client().Get("/no-such-file.js");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 404);
+  res = Client().Get("/healthz");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 200);
+  EXPECT_EQ(res->body, "SERVING\n");
+
+  res = Call("GetModel", "{}", "application/json", {{"Origin", "https://elsewhere.example"}});
+  ASSERT_TRUE(res);
+  EXPECT_FALSE(res->has_header("Access-Control-Allow-Origin"));
+  res = Client().Options("/snooker.v1.ShotPlanner/Plan",
+                         {{"Origin", "https://elsewhere.example"}, {"Access-Control-Request-Method", "POST"}});
+  ASSERT_TRUE(res);
+  EXPECT_FALSE(res->has_header("Access-Control-Allow-Origin"));
+  EXPECT_FALSE(res->has_header("Access-Control-Allow-Methods"));
+}
+
+TEST_F(HttpTest, CorsNamesTheOneOriginGiven) {
+  ServerOptions options;
+  options.cors_origin = "https://planner.example:8443";
+  StartServer(options);
+  auto res = Call("GetModel", "{}", "application/json", {{"Origin", "https://planner.example:8443"}});
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 200);
+  EXPECT_EQ(res->get_header_value("Access-Control-Allow-Origin"), "https://planner.example:8443");
+  res = Client().Options("/snooker.v1.ShotPlanner/Plan",
+                         {{"Origin", "https://planner.example:8443"},
+                          {"Access-Control-Request-Method", "POST"},
+                          {"Access-Control-Request-Headers", "content-type,connect-protocol-version"}});
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 204);
+  EXPECT_EQ(res->get_header_value("Access-Control-Allow-Origin"), "https://planner.example:8443");
+  EXPECT_EQ(res->get_header_value("Access-Control-Allow-Methods"), "POST");
+  EXPECT_TRUE(Mentions(res->get_header_value("Access-Control-Allow-Headers"), "Connect-Timeout-Ms"));
+
+  // What is not one origin is refused.
+  for (const char* bad : {"*", "planner.example", "https://planner.example/app", "https://a.example\r\nX: 1"}) {
+    EXPECT_FALSE(CheckCorsOrigin(bad).empty()) << bad;
+  }
+}
+
+TEST(HttpCommandTest, PlainHttpOffLoopbackIsRefused) {
+  const cli_support::RunResult r = cli_support::RunCli("serve --http 0.0.0.0:0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(Mentions(r.err, "refusing to serve HTTP on 0.0.0.0:0 in plaintext")) << r.err;
+  EXPECT_TRUE(Mentions(r.err, "--insecure")) << r.err;
+  const cli_support::RunResult cors = cli_support::RunCli("serve --cors-origin https://a.example");
+  EXPECT_EQ(cors.exit_code, 2);
+  EXPECT_TRUE(Mentions(cors.err, "--cors-origin needs --http")) << cors.err;
+  const cli_support::RunResult help = cli_support::RunCli("serve --help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_TRUE(Mentions(help.out, "--http HOST:PORT")) << help.out;
+  EXPECT_TRUE(Mentions(help.out, "--cors-origin ORIGIN")) << help.out;
+}
+
+TEST(ConnectTest, EnvelopesTimeoutsAndCodes) {
+  std::string_view message;
+  EXPECT_TRUE(connect::OpenEnvelope(connect::Envelope(0, "{}"), &message).ok());
+  EXPECT_EQ(message, "{}");
+  EXPECT_FALSE(connect::OpenEnvelope("{}", &message).ok());
+  EXPECT_FALSE(connect::OpenEnvelope(connect::Envelope(connect::kCompressedFlag, "{}"), &message).ok());
+  EXPECT_FALSE(connect::OpenEnvelope(connect::Envelope(0, "{}") + "x", &message).ok());
+  std::chrono::milliseconds ms{};
+  EXPECT_TRUE(connect::ParseTimeout("2500", &ms).ok());
+  EXPECT_EQ(ms.count(), 2500);
+  for (const char* bad : {"", "0", "-1", "1.5", "12345678901", "1 "}) {
+    EXPECT_FALSE(connect::ParseTimeout(bad, &ms).ok()) << bad;
+  }
+  const std::pair<ApiStatus::Code, int> statuses[] = {
+      {ApiStatus::Code::kInvalidArgument, 400}, {ApiStatus::Code::kResourceExhausted, 429},
+      {ApiStatus::Code::kDeadlineExceeded, 504}, {ApiStatus::Code::kCancelled, 499},
+      {ApiStatus::Code::kInternal, 500}};
+  for (const auto& [code, http] : statuses) EXPECT_EQ(connect::ErrorOf({code, "m"}).http_status, http);
+  EXPECT_EQ(connect::ErrorJson(connect::ErrorOf(ApiStatus::Invalid("ball \"a\"\n"))),
+            "{\"code\": \"invalid_argument\", \"message\": \"ball \\\"a\\\"\\u000a\"}");
+}
+
+class HttpTlsTest : public HttpTest {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = testing::TempDir() + "snooker_http_certs_" + std::to_string(getpid());
+    const std::string cmd = std::string(SNOOKER_DEV_CERTS) + " " + dir_ + " >/dev/null";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  }
+  static std::string Path(const std::string& name) { return dir_ + "/" + name; }
+  static std::string Pem(const std::string& name) {
+    std::ifstream f(Path(name));
+    std::stringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+  }
+  static inline std::string dir_;
+};
+
+TEST_F(HttpTlsTest, HttpsServesWithTheTlsFlagsAndPlainHttpFails) {
+  ServerOptions options;
+  TlsOptions tls;
+  tls.cert_chain_pem = Pem("server.pem");
+  tls.private_key_pem = Pem("server.key");
+  tls.client_ca_pem = Pem("ca.pem");
+  options.tls = tls;
+  options.http_address = "127.0.0.1:0";
+  StartServer(options);
+
+  httplib::SSLClient with_certificate("localhost", port_, Path("client.pem"), Path("client.key"));
+  with_certificate.set_ca_cert_path(Path("ca.pem"));
+  with_certificate.enable_server_certificate_verification(true);
+  auto res = with_certificate.Post("/snooker.v1.ShotPlanner/GetModel", "{}", "application/json");
+  ASSERT_TRUE(res) << httplib::to_string(res.error());
+  EXPECT_EQ(res->status, 200);
+
+  httplib::SSLClient without_certificate("localhost", port_);
+  without_certificate.set_ca_cert_path(Path("ca.pem"));
+  without_certificate.enable_server_certificate_verification(true);
+  EXPECT_FALSE(without_certificate.Get("/healthz"));
+
+  httplib::SSLClient stranger("localhost", port_, Path("other-client.pem"), Path("other-client.key"));
+  stranger.set_ca_cert_path(Path("ca.pem"));
+  stranger.enable_server_certificate_verification(true);
+  EXPECT_FALSE(stranger.Get("/healthz"));
+
+  httplib::Client plain("127.0.0.1", port_);
+  plain.set_read_timeout(5, 0);
+  const auto plain_res = plain.Get("/healthz");
+  EXPECT_TRUE(!plain_res || plain_res->status != 200);
+}
+
+}  // namespace
+}  // namespace snooker::server
