@@ -10,8 +10,7 @@
 // Environment: CHROMIUM (default /usr/bin/chromium). Exit status 0 when every check
 // passes.
 import { spawn } from 'node:child_process';
-import { mkdtempSync, writeFileSync, mkdirSync, statSync } from 'node:fs';
-import { createServer } from 'node:net';
+import { mkdtempSync, writeFileSync, mkdirSync, statSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import puppeteer from 'puppeteer-core';
@@ -46,39 +45,33 @@ function check(name, ok, detail = '') {
 
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 
-function freePort() {
-  return new Promise((res, rej) => {
-    const s = createServer();
-    s.on('error', rej);
-    s.listen(0, '127.0.0.1', () => {
-      const { port } = s.address();
-      s.close(() => res(port));
-    });
-  });
-}
-
+// Starts `snooker serve` with both listeners on free loopback ports and waits for the
+// HTTP address it prints ("... at http://127.0.0.1:PORT/") to serve the page.
 async function startServer(binary) {
-  const port = await freePort();
-  const child = spawn(binary, ['serve', '--address', '127.0.0.1:0', '--http', `127.0.0.1:${port}`],
+  const child = spawn(binary, ['serve', '--address', '127.0.0.1:0', '--http', '127.0.0.1:0'],
     { stdio: ['ignore', 'pipe', 'pipe'] });
+  let stdout = '';
   let output = '';
-  child.stdout.on('data', (d) => { output += d; });
+  child.stdout.on('data', (d) => { stdout += d; output += d; });
   child.stderr.on('data', (d) => { output += d; });
   let exited = null;
   child.on('exit', (code, signal) => { exited = { code, signal }; });
-  const url = `http://127.0.0.1:${port}/`;
   const deadline = Date.now() + 20000;
+  let url = null;
   for (;;) {
     if (exited) throw new Error(`snooker serve exited (${JSON.stringify(exited)}):\n${output}`);
-    try {
-      const r = await fetch(url);
-      if (r.ok) break;
-    } catch (_) { /* not listening yet */ }
+    const printed = stdout.match(/\b(https?:\/\/[^\s/]+:\d+)\/?/);
+    if (printed) {
+      url = printed[1] + '/';
+      try {
+        if ((await fetch(url)).ok) break;
+      } catch (_) { /* not answering yet */ }
+    }
     if (Date.now() > deadline) {
       child.kill('SIGTERM');
-      throw new Error(`snooker serve did not answer GET ${url} within 20 s:\n${output}`);
+      throw new Error(`snooker serve did not serve the page within 20 s (${url || 'no HTTP address printed'}):\n${output}`);
     }
-    await sleep(100);
+    await sleep(50);
   }
   return {
     url,
@@ -343,7 +336,8 @@ async function main() {
         { id: 'black', kind: 'BLACK', position: { x: 0.889, y: 3.245 } },
       ],
     };
-    const badFile = join(mkdtempSync(join(tmpdir(), 'snooker-bad-')), 'overlap.json');
+    const badDir = mkdtempSync(join(tmpdir(), 'snooker-bad-'));
+    const badFile = join(badDir, 'overlap.json');
     writeFileSync(badFile, JSON.stringify(badTable));
     const seqBefore = await page.evaluate(() => window.snookerPage.planSeq);
     const input = await page.$('#load-file');
@@ -351,6 +345,7 @@ async function main() {
     await page.waitForFunction(() => document.body.dataset.planState === 'error' && !document.getElementById('error').hidden,
       { timeout: 15000 });
     const errorText = await page.$eval('#error', (e) => e.textContent);
+    rmSync(badDir, { recursive: true, force: true });
     const directBad = await unary(base, 'Plan', { table: badTable });
     const serviceMessage = (directBad.body && directBad.body.message) || '';
     check('a bad table shows the service\'s error',
