@@ -17,7 +17,7 @@ import puppeteer from 'puppeteer-core';
 
 const FIRST_PLAN_TARGET_MS = 1000;  // page load to the first plan shown
 const REPLAN_MARGIN_MS = 100;       // a drop to the new plan shown: the plan + this
-const LOADS = 4;                    // page loads timed (the first, then reloads)
+const LOADS = 5;                    // page loads timed (the first, then reloads)
 
 function parseArgs(argv) {
   const out = { snooker: null, url: null, screenshots: null };
@@ -305,6 +305,54 @@ async function main() {
         `${plan.ms.toFixed(0)} ms from the drop to the list (the plan ${plan.serverMs.toFixed(0)} ms on the server; ` +
         `request sent after ${(plan.sentMs - plan.startMs).toFixed(0)} ms, answer after ${(plan.answerMs - plan.startMs).toFixed(0)} ms, ` +
         `drawn after ${plan.ms.toFixed(0)} ms)`);
+      replans.push(plan);
+    }
+
+    // A long plan cancelled by a drop: on a full table (the colours on their spots, 15
+    // reds spread over the top half) a plan with a 10 s budget runs for seconds; a drop
+    // 0.3 s into it aborts its stream, the server cancels it, and the new plan is on
+    // the list within its own time + the margin.
+    {
+      const full = { balls: [{ id: 'cue', kind: 'CUE', position: { x: 0.6, y: 0.5 } }] };
+      for (const spot of model.table.spots) full.balls.push({ id: spot.kind.toLowerCase(), kind: spot.kind, position: spot.position });
+      for (let k = 0; k < 15; ++k) {
+        const row = Math.floor(k / 5), col = k % 5;
+        full.balls.push({ id: `red-${k + 1}`, kind: 'RED', position: { x: 0.35 + 0.27 * col, y: 2.0 + 0.18 * row + (col % 2) * 0.05 } });
+      }
+      const dir = mkdtempSync(join(tmpdir(), 'snooker-full-'));
+      writeFileSync(join(dir, 'full.json'), JSON.stringify(full));
+      let seq = await page.evaluate(() => window.snookerPage.planSeq);
+      await (await page.$('#load-file')).uploadFile(join(dir, 'full.json'));
+      await waitForPlan(page, seq);
+      rmSync(dir, { recursive: true, force: true });
+
+      const aborted = [];
+      const onFailed = (r) => {
+        if (r.url().endsWith('/PlanStream') && /ABORTED/.test(r.failure().errorText)) aborted.push(r.url());
+      };
+      page.on('requestfailed', onFailed);
+      seq = await page.evaluate(() => window.snookerPage.planSeq);
+      await page.$eval('#budget', (e) => { e.value = '10000'; });
+      await page.click('#plan-button');
+      await page.$eval('#budget', (e) => { e.value = ''; });
+      await sleep(300);
+      const running = await page.evaluate(() => document.body.dataset.planState);
+      await dragBall(page, 'cue', 25, 25);
+      const plan = await waitForPlan(page, seq);
+      await sleep(100);
+      page.off('requestfailed', onFailed);
+      check('a drop aborts a running 10 s plan and plans again at once',
+        running === 'running' && plan.trigger === 'drop' && aborted.length >= 1 && plan.ms <= plan.serverMs + REPLAN_MARGIN_MS,
+        `the long plan ${running} at the drop, its stream aborted (${aborted.length}); the new plan on the ` +
+        `list ${plan.ms.toFixed(0)} ms after the drop (${plan.serverMs.toFixed(0)} ms on the server)`);
+      if (server) {
+        // What the server made of the closed stream (its log line), for information:
+        // the page's part is to abort.
+        const pattern = /method=PlanStream\S* .*status=CANCELLED/;
+        for (let k = 0; k < 40 && !pattern.test(server.output()); ++k) await sleep(50);
+        console.log(`      server: ${pattern.test(server.output()) ? 'the aborted plan logged CANCELLED'
+          : 'no CANCELLED plan logged within 2 s of the abort (the server ran it on)'}`);
+      }
       replans.push(plan);
     }
 
