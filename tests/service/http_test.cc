@@ -428,8 +428,9 @@ TEST(HttpCommandTest, PlainHttpOffLoopbackIsRefused) {
 }
 
 TEST(ConnectTest, EnvelopesTimeoutsAndCodes) {
-  std::string_view message;
-  EXPECT_TRUE(connect::OpenEnvelope(connect::Envelope(0, "{}"), &message).ok());
+  std::string_view message;  // a view into the envelope: the envelope must outlive it
+  const std::string envelope = connect::Envelope(0, "{}");
+  EXPECT_TRUE(connect::OpenEnvelope(envelope, &message).ok());
   EXPECT_EQ(message, "{}");
   EXPECT_FALSE(connect::OpenEnvelope("{}", &message).ok());
   EXPECT_FALSE(connect::OpenEnvelope(connect::Envelope(connect::kCompressedFlag, "{}"), &message).ok());
