@@ -21,10 +21,7 @@ std::vector<ThrowObservation> AlciatoreStunThrow45() {
 
 physics::Model SimToRealWorld() {
   physics::Model m;
-  m.ball_ball.friction_law = physics::BallBallFrictionLaw::kExponential;
-  m.ball_ball.mu_bb = kSimToRealThrowLaw.a;
-  m.ball_ball.slip_gain = kSimToRealThrowLaw.b;
-  m.ball_ball.slip_decay = kSimToRealThrowLaw.c;
+  m.ball_ball = physics::WithFrictionCurve(m.ball_ball, kSimToRealThrowLaw);
   m.cloth.mu_s *= 1.2;
   m.cloth.mu_r *= 1.2;
   m.cue.end_mass = 0.009;

@@ -33,9 +33,6 @@ physics::Model SimToRealWorld();
 /// stun cut falls from 7.1 deg at 0.35 m/s of the object ball to 3.1 deg at
 /// 1.75 m/s; at 20 and 30 deg it is the no-slip limit atan(2 tan(cut) / (7 (1 +
 /// e))) (3.15 and 4.99 deg) up to about 2 m/s, the contact sticking.
-struct ThrowLaw {
-  double a, b, c;  ///< dimensionless, dimensionless, s/m
-};
-inline constexpr ThrowLaw kSimToRealThrowLaw{0.0, 0.1430, 0.6283};
+inline constexpr physics::FrictionCurve kSimToRealThrowLaw{0.0, 0.1430, 0.6283};
 
 }  // namespace snooker::calibration

@@ -138,10 +138,7 @@ Model StartModel(std::span<const Group> groups, const Model& start) {
   if (std::find(groups.begin(), groups.end(), Group::kBallBall) == groups.end()) return m;
   physics::FrictionCurve f = physics::FrictionCurveOf(start.ball_ball);
   if (!(f.b > 0)) f = {9.951e-3, 0.108, 1.088};
-  m.ball_ball.friction_law = physics::BallBallFrictionLaw::kExponential;
-  m.ball_ball.mu_bb = f.a;
-  m.ball_ball.slip_gain = f.b;
-  m.ball_ball.slip_decay = f.c;
+  m.ball_ball = physics::WithFrictionCurve(m.ball_ball, f);
   return m;
 }
 

@@ -70,6 +70,16 @@ inline FrictionCurve FrictionCurveOf(const BallBallParams& p) {
   return {p.mu_bb, 0, 0};
 }
 
+/// `p` with the law mu(s) = f.a + f.b exp(-f.c s) (kExponential), the inverse of
+/// FrictionCurveOf; e is kept.
+inline BallBallParams WithFrictionCurve(BallBallParams p, const FrictionCurve& f) {
+  p.friction_law = BallBallFrictionLaw::kExponential;
+  p.mu_bb = f.a;
+  p.slip_gain = f.b;
+  p.slip_decay = f.c;
+  return p;
+}
+
 /// Ball-ball friction coefficient at slip speed `s` (m/s).
 inline double BallBallFriction(const BallBallParams& p, double s) {
   if (p.friction_law == BallBallFrictionLaw::kConstant) return p.mu_bb;

@@ -41,10 +41,7 @@ class Noise {
 
 physics::Model WithLaw(double a, double b, double c) {
   physics::Model m;
-  m.ball_ball.friction_law = physics::BallBallFrictionLaw::kExponential;
-  m.ball_ball.mu_bb = a;
-  m.ball_ball.slip_gain = b;
-  m.ball_ball.slip_decay = c;
+  m.ball_ball = physics::WithFrictionCurve(m.ball_ball, {a, b, c});
   return m;
 }
 

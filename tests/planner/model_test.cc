@@ -22,10 +22,7 @@ const physics::TableModel& Table() { return physics::DefaultTable(); }
 // 0.12 at low slip, falling to 0.07.
 physics::Model HighThrow() {
   physics::Model m;
-  m.ball_ball.friction_law = physics::BallBallFrictionLaw::kExponential;
-  m.ball_ball.mu_bb = 0.07;
-  m.ball_ball.slip_gain = 0.05;
-  m.ball_ball.slip_decay = 1.0;
+  m.ball_ball = physics::WithFrictionCurve(m.ball_ball, {0.07, 0.05, 1.0});
   return m;
 }
 

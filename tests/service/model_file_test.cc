@@ -24,10 +24,7 @@ physics::Model Calibrated() {
   physics::Model m;
   m.cloth.mu_s = 0.168;
   m.cloth.mu_r = 0.01024;
-  m.ball_ball.friction_law = physics::BallBallFrictionLaw::kExponential;
-  m.ball_ball.mu_bb = 0.021;
-  m.ball_ball.slip_gain = 0.11;
-  m.ball_ball.slip_decay = 1.3;
+  m.ball_ball = physics::WithFrictionCurve(m.ball_ball, {0.021, 0.11, 1.3});
   m.cushion.restitution_curve.e[3] = 0.97;
   m.cue.end_mass = 0.009;
   return m;
