@@ -19,6 +19,19 @@ std::vector<ThrowObservation> AlciatoreStunThrow45() {
   return out;
 }
 
+std::vector<ThrowObservation> AlciatoreStunThrow30Ends() {
+  constexpr double kPoints[][2] = {{0.35, 6.0}, {1.75, 3.5}};
+  std::vector<ThrowObservation> out;
+  for (const auto& p : kPoints) {
+    ThrowObservation o;
+    o.cut = physics::DegToRad(30.0);
+    o.object_ball_speed = p[0];
+    o.measured_throw = physics::DegToRad(p[1]);
+    out.push_back(o);
+  }
+  return out;
+}
+
 physics::Model SimToRealWorld() {
   physics::Model m;
   m.ball_ball = physics::WithFrictionCurve(m.ball_ball, kSimToRealThrowLaw);

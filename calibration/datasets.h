@@ -16,6 +16,12 @@ namespace snooker::calibration {
 /// from 6.8 deg at slow speed to 3.0 deg at 1.75 m/s.
 std::vector<ThrowObservation> AlciatoreStunThrow45();
 
+/// The two ends of the same article's 30 deg stun-shot curve, the data a law
+/// fitted at 45 deg is judged on: about 6.0 deg at the slow end and 3.5 deg at the
+/// fast end, taken at the 45 deg data's slowest and fastest object-ball speeds
+/// (0.35 and 1.75 m/s).
+std::vector<ThrowObservation> AlciatoreStunThrow30Ends();
+
 /// The "real" table of a sim-to-real experiment: the default model except
 ///  * the ball-ball friction law fitted to AlciatoreStunThrow45 (kExponential,
 ///    kSimToRealThrowLaw below: throw that falls with speed, as measured, where

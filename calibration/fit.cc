@@ -81,11 +81,11 @@ std::string MissingData(Group g, const Observations& o) {
 }
 
 void AddBallBall(std::vector<Param>* out) {
-  out->push_back({{"ball_ball.mu_bb", "friction law a: mu at high slip speed", 0.0, 0.3, 0.005},
+  out->push_back({{"ball_ball.mu_bb", "friction law a: mu at high speed", 0.0, 0.3, 0.005},
                   [](Model& m, int) { return &m.ball_ball.mu_bb; }, 0});
   out->push_back({{"ball_ball.slip_gain", "friction law b: mu(0) - a", 0.0, 0.5, 0.02},
                   [](Model& m, int) { return &m.ball_ball.slip_gain; }, 0});
-  out->push_back({{"ball_ball.slip_decay", "friction law c: decay of mu with slip speed, s/m", 0.01, 20.0, 0.2},
+  out->push_back({{"ball_ball.slip_decay", "friction law c: decay of mu with speed, s/m", 0.01, 20.0, 0.2},
                   [](Model& m, int) { return &m.ball_ball.slip_decay; }, 0});
 }
 
@@ -132,13 +132,14 @@ void AddCue(std::vector<Param>* out) {
 }
 
 // The model the search starts from: `start` with its ball-ball law in the
-// exponential family when that group is fitted (a constant law as Marlow's).
+// exponential family when that group is fitted (a constant law as Marlow's), in the
+// start's form (the impact-speed form stays one, any other becomes the slip form).
 Model StartModel(std::span<const Group> groups, const Model& start) {
   Model m = start;
   if (std::find(groups.begin(), groups.end(), Group::kBallBall) == groups.end()) return m;
   physics::FrictionCurve f = physics::FrictionCurveOf(start.ball_ball);
   if (!(f.b > 0)) f = {9.951e-3, 0.108, 1.088};
-  m.ball_ball = physics::WithFrictionCurve(m.ball_ball, f);
+  m.ball_ball = physics::WithFrictionCurve(m.ball_ball, f, start.ball_ball.friction_law);
   return m;
 }
 

@@ -5,7 +5,9 @@
 // Groups and their parameters (FittedParameters lists them with bounds and scales):
 //  * ball-ball: the friction law mu(s) = a + b exp(-c s) (physics/core/params.h),
 //    a = ball_ball.mu_bb, b = ball_ball.slip_gain, c = ball_ball.slip_decay; the
-//    fitted model's law is BallBallFrictionLaw::kExponential. A start whose law is
+//    fitted model's law is BallBallFrictionLaw::kExponential, or
+//    kExponentialImpactSpeed when the start's law is (s is then the impact's normal
+//    speed: the form is the caller's choice, not fitted). A start whose law is
 //    the constant one (b = 0, where c changes nothing and so cannot be found) starts
 //    from Marlow's measured law instead, the family's one published member with a
 //    slope. The restitution e stays: throw hardly depends on it.

@@ -18,7 +18,7 @@ namespace {
 
 constexpr const char* kHelp = R"(usage: snooker collide --speed V0 [--topspin wT] [--sidespin wS] [--cut-deg THETA]
                        [--steps N | --tolerance X] [--mu-bb X] [--restitution E]
-                       [--mu-s X] [--friction-law constant|marlow] [--json]
+                       [--mu-s X] [--friction-law LAW] [--json]
 
 Resolves one ball-ball collision with the model of Mathavan, Jackson & Parkin (2014),
 then each ball's slip on the cloth until it rolls (paper section 2.5).
@@ -43,7 +43,9 @@ and spin (-wT cos th, wT sin th, wS); the object ball is at rest.
   --restitution E    energetic coefficient of restitution, 0 to 1 (default 0.89)
   --mu-s X           ball-cloth sliding friction coefficient, 0 to 1 (default 0.21)
   --friction-law L   constant (mu_bb), marlow (slip-speed dependent, Marlow 1994)
-                     or exponential (mu_bb + b exp(-c s), s the slip speed in m/s)
+                     exponential (mu_bb + b exp(-c s), s the slip speed in m/s)
+                     or exponential-impact-speed (the same, s the normal approach
+                     speed at first contact, held through the impact)
   --slip-gain B      the exponential law's b, >= 0 with mu_bb + b <= 1
   --slip-decay C     the exponential law's c, 0 to 100 s/m
   --model FILE       take the parameters not given here from this model file
@@ -181,10 +183,12 @@ int RunCollide(const std::vector<std::string>& argv, std::ostream& out, std::ost
       p->set_friction_law(v1::BALL_BALL_FRICTION_LAW_MARLOW);
     } else if (law && *law == "exponential") {
       p->set_friction_law(v1::BALL_BALL_FRICTION_LAW_EXPONENTIAL);
+    } else if (law && *law == "exponential-impact-speed") {
+      p->set_friction_law(v1::BALL_BALL_FRICTION_LAW_EXPONENTIAL_IMPACT_SPEED);
     } else if (law && *law == "constant") {
       p->set_friction_law(v1::BALL_BALL_FRICTION_LAW_CONSTANT);
     } else if (law) {
-      err << "snooker collide: --friction-law '" << *law << "' is not constant, marlow or exponential\n";
+      err << "snooker collide: --friction-law '" << *law << "' is not constant, marlow, exponential or exponential-impact-speed\n";
       return kExitUsage;
     }
   }

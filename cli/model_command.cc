@@ -34,7 +34,11 @@ void PrintText(const physics::Model& m, std::ostream& out) {
       << "cloth      mu_s " << m.cloth.mu_s << ", mu_r " << m.cloth.mu_r << ", spin deceleration "
       << m.cloth.spin_decel << " rad/s^2, g " << m.cloth.g << " m/s^2\n"
       << "ball-ball  friction " << server::FrictionLawName(bb.friction_law) << ": mu(s) = " << f.a << " + " << f.b
-      << " exp(-" << f.c << " s), s the slip speed in m/s; restitution " << bb.e << "\n"
+      << " exp(-" << f.c << " s), s the "
+      << (bb.friction_law == physics::BallBallFrictionLaw::kExponentialImpactSpeed
+              ? "normal approach speed at first contact"
+              : "slip speed")
+      << " in m/s; restitution " << bb.e << "\n"
       << "cushion    mu_w " << m.cushion.mu_w << ", mu_s " << m.cushion.mu_s << ", restitution ";
   const physics::RestitutionCurve& c = m.cushion.restitution_curve;
   if (c.points <= 0) {

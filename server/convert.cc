@@ -482,6 +482,9 @@ physics::BallBallParams BallBallParamsFrom(const v1::CollisionParameters& p, con
     case v1::BALL_BALL_FRICTION_LAW_CONSTANT: c.friction_law = physics::BallBallFrictionLaw::kConstant; break;
     case v1::BALL_BALL_FRICTION_LAW_MARLOW: c.friction_law = physics::BallBallFrictionLaw::kMarlow; break;
     case v1::BALL_BALL_FRICTION_LAW_EXPONENTIAL: c.friction_law = physics::BallBallFrictionLaw::kExponential; break;
+    case v1::BALL_BALL_FRICTION_LAW_EXPONENTIAL_IMPACT_SPEED:
+      c.friction_law = physics::BallBallFrictionLaw::kExponentialImpactSpeed;
+      break;
     default: break;  // unspecified: the base model's law
   }
   return c;

@@ -46,6 +46,7 @@ const char* FrictionLawName(physics::BallBallFrictionLaw law) {
   switch (law) {
     case physics::BallBallFrictionLaw::kMarlow: return "marlow";
     case physics::BallBallFrictionLaw::kExponential: return "exponential";
+    case physics::BallBallFrictionLaw::kExponentialImpactSpeed: return "exponential-impact-speed";
     case physics::BallBallFrictionLaw::kConstant: break;
   }
   return "constant";
@@ -69,9 +70,12 @@ std::string ModelFromProto(const v1::PhysicsModel& f, physics::Model* m) {
     case v1::BALL_BALL_FRICTION_LAW_EXPONENTIAL:
       m->ball_ball.friction_law = physics::BallBallFrictionLaw::kExponential;
       break;
+    case v1::BALL_BALL_FRICTION_LAW_EXPONENTIAL_IMPACT_SPEED:
+      m->ball_ball.friction_law = physics::BallBallFrictionLaw::kExponentialImpactSpeed;
+      break;
     default:
       return "ball_ball.friction_law = " + std::to_string(bb.friction_law()) +
-             " (must be CONSTANT, MARLOW or EXPONENTIAL)";
+             " (must be CONSTANT, MARLOW, EXPONENTIAL or EXPONENTIAL_IMPACT_SPEED)";
   }
   Take(bb, &P::has_mu_bb, &P::mu_bb, &m->ball_ball.mu_bb);
   Take(bb, &P::has_slip_gain, &P::slip_gain, &m->ball_ball.slip_gain);
@@ -104,6 +108,9 @@ void ModelToProto(const physics::Model& m, v1::PhysicsModel* out) {
     case physics::BallBallFrictionLaw::kMarlow: bb->set_friction_law(v1::BALL_BALL_FRICTION_LAW_MARLOW); break;
     case physics::BallBallFrictionLaw::kExponential:
       bb->set_friction_law(v1::BALL_BALL_FRICTION_LAW_EXPONENTIAL);
+      break;
+    case physics::BallBallFrictionLaw::kExponentialImpactSpeed:
+      bb->set_friction_law(v1::BALL_BALL_FRICTION_LAW_EXPONENTIAL_IMPACT_SPEED);
       break;
     case physics::BallBallFrictionLaw::kConstant: bb->set_friction_law(v1::BALL_BALL_FRICTION_LAW_CONSTANT); break;
   }

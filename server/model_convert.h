@@ -18,7 +18,7 @@ std::string ModelFromProto(const v1::PhysicsModel& file, physics::Model* model);
 /// Every field of `model` (the restitution curve's knots when it has one).
 void ModelToProto(const physics::Model& model, v1::PhysicsModel* out);
 
-/// "constant", "marlow" or "exponential".
+/// "constant", "marlow", "exponential" or "exponential-impact-speed".
 const char* FrictionLawName(physics::BallBallFrictionLaw law);
 
 }  // namespace snooker::server

@@ -41,7 +41,7 @@ std::string ValidateBallBallParams(const BallBallParams& p) {
   // limits.h: mu_bb <= 1 with mu_s <= 1 bounds the impulse and the step count.
   Check(out, limits::kFrictionCoefficient.Contains(p.mu_bb), "mu_bb", p.mu_bb, "in [0, 1]");
   Check(out, limits::kRestitution.Contains(p.e), "e", p.e, "in [0, 1]");
-  if (p.friction_law == BallBallFrictionLaw::kExponential) {
+  if (IsExponentialLaw(p.friction_law)) {
     // mu(0) = a + b <= 1 keeps the same bound on the impulse as mu_bb <= 1.
     Check(out, Finite(p.slip_gain) && p.slip_gain >= 0 && p.mu_bb + p.slip_gain <= 1, "slip_gain",
           p.slip_gain, "finite, >= 0, with mu_bb + slip_gain <= 1");
@@ -49,8 +49,8 @@ std::string ValidateBallBallParams(const BallBallParams& p) {
           p.slip_decay, "in [0, 100] s/m");
   }
   const int law = static_cast<int>(p.friction_law);
-  Check(out, law >= 0 && law <= static_cast<int>(BallBallFrictionLaw::kExponential), "friction_law",
-        law, "constant, marlow or exponential");
+  Check(out, law >= 0 && law <= static_cast<int>(BallBallFrictionLaw::kExponentialImpactSpeed),
+        "friction_law", law, "constant, marlow, exponential or exponential in the impact speed");
   return out.str();
 }
 

@@ -42,6 +42,12 @@ enum class BallBallFrictionLaw {
   /// the family both laws above belong to (constant: b = 0; Marlow: its three
   /// numbers), for a law fitted to a table's measured throw (calibration).
   kExponential,
+  /// mu_bb = a + b exp(-c v_n), the same three numbers, with v_n the normal
+  /// approach speed at first contact (m/s) in place of the slip speed: one
+  /// coefficient for the whole impact, lower the harder the balls meet. The two
+  /// forms agree on a stun shot at a 45 deg cut, where slip and normal speeds are
+  /// equal at first contact, and differ at other cuts (docs/calibration.md).
+  kExponentialImpactSpeed,
 };
 
 /// Ball-ball contact.
@@ -51,12 +57,13 @@ struct BallBallParams {
   /// Energetic coefficient of restitution (Stronge). Paper: 0.89.
   double e = 0.89;
   BallBallFrictionLaw friction_law = BallBallFrictionLaw::kConstant;
-  /// kExponential's b (dimensionless) and c (s/m).
+  /// kExponential's and kExponentialImpactSpeed's b (dimensionless) and c (s/m).
   double slip_gain = 0;
   double slip_decay = 0;
 };
 
-/// The ball-ball friction law as mu(s) = a + b exp(-c s), whichever law is chosen.
+/// The ball-ball friction law as mu(s) = a + b exp(-c s), whichever law is chosen
+/// (s the impact speed for kExponentialImpactSpeed, the slip speed otherwise).
 struct FrictionCurve {
   double a = 0, b = 0, c = 0;
 };
@@ -64,23 +71,43 @@ struct FrictionCurve {
 inline FrictionCurve FrictionCurveOf(const BallBallParams& p) {
   switch (p.friction_law) {
     case BallBallFrictionLaw::kMarlow: return {9.951e-3, 0.108, 1.088};
-    case BallBallFrictionLaw::kExponential: return {p.mu_bb, p.slip_gain, p.slip_decay};
+    case BallBallFrictionLaw::kExponential:
+    case BallBallFrictionLaw::kExponentialImpactSpeed: return {p.mu_bb, p.slip_gain, p.slip_decay};
     case BallBallFrictionLaw::kConstant: break;
   }
   return {p.mu_bb, 0, 0};
 }
 
-/// `p` with the law mu(s) = f.a + f.b exp(-f.c s) (kExponential), the inverse of
-/// FrictionCurveOf; e is kept.
-inline BallBallParams WithFrictionCurve(BallBallParams p, const FrictionCurve& f) {
-  p.friction_law = BallBallFrictionLaw::kExponential;
+/// Is `law` one of the two exponential forms, whose three numbers are free?
+inline bool IsExponentialLaw(BallBallFrictionLaw law) {
+  return law == BallBallFrictionLaw::kExponential || law == BallBallFrictionLaw::kExponentialImpactSpeed;
+}
+
+/// `p` with the law mu = f.a + f.b exp(-f.c s) in the form `law` (kExponential, or
+/// kExponentialImpactSpeed), the inverse of FrictionCurveOf; e is kept.
+inline BallBallParams WithFrictionCurve(BallBallParams p, const FrictionCurve& f,
+                                        BallBallFrictionLaw law = BallBallFrictionLaw::kExponential) {
+  p.friction_law = IsExponentialLaw(law) ? law : BallBallFrictionLaw::kExponential;
   p.mu_bb = f.a;
   p.slip_gain = f.b;
   p.slip_decay = f.c;
   return p;
 }
 
-/// Ball-ball friction coefficient at slip speed `s` (m/s).
+/// The law an impact that starts at normal approach speed `v_n` (m/s) integrates:
+/// kExponentialImpactSpeed becomes the constant coefficient it gives at v_n; the
+/// others are returned as they are.
+inline BallBallParams AtImpactSpeed(BallBallParams p, double v_n) {
+  if (p.friction_law != BallBallFrictionLaw::kExponentialImpactSpeed) return p;
+  p.mu_bb += p.slip_gain * std::exp(-p.slip_decay * v_n);
+  p.friction_law = BallBallFrictionLaw::kConstant;
+  p.slip_gain = 0;
+  p.slip_decay = 0;
+  return p;
+}
+
+/// Ball-ball friction coefficient at slip speed `s` (m/s); for
+/// kExponentialImpactSpeed, `s` is the impact speed (see AtImpactSpeed).
 inline double BallBallFriction(const BallBallParams& p, double s) {
   if (p.friction_law == BallBallFrictionLaw::kConstant) return p.mu_bb;
   const FrictionCurve f = FrictionCurveOf(p);

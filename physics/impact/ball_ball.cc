@@ -25,7 +25,7 @@ bool OptionsValid(const ImpulseSolverOptions& o) {
 // messages: this runs on every call.
 bool InUnit(double x) { return std::isfinite(x) && x >= 0 && x <= 1; }
 bool ParamsValid(const BallParams& ball, const BallBallParams& contact, double mu_s) {
-  if (contact.friction_law == BallBallFrictionLaw::kExponential &&
+  if (IsExponentialLaw(contact.friction_law) &&
       !(InUnit(contact.slip_gain) && contact.mu_bb + contact.slip_gain <= 1 &&
         std::isfinite(contact.slip_decay) && contact.slip_decay >= 0 && contact.slip_decay <= 100)) {
     return false;
@@ -33,7 +33,7 @@ bool ParamsValid(const BallParams& ball, const BallBallParams& contact, double m
   return std::isfinite(ball.mass) && ball.mass > 0 && std::isfinite(ball.radius) &&
          ball.radius > 0 && InUnit(contact.mu_bb) && InUnit(contact.e) && InUnit(mu_s) &&
          static_cast<unsigned>(contact.friction_law) <=
-             static_cast<unsigned>(BallBallFrictionLaw::kExponential);
+             static_cast<unsigned>(BallBallFrictionLaw::kExponentialImpactSpeed);
 }
 
 void PutVec(std::ostringstream& out, const char* name, const Vec3& v) {
@@ -111,11 +111,12 @@ ImpactResult ResolveImpact(const ImpactState& in, const BallParams& ball,
     r.status = ImpactStatus::kInvalidInput;
     return r;
   }
-  if (!(in.c.v.y() - in.o.v.y() > kMinApproach * SpeedScale(in, ball.radius))) {  // eq. 5c
+  const double approach = in.c.v.y() - in.o.v.y();
+  if (!(approach > kMinApproach * SpeedScale(in, ball.radius))) {  // eq. 5c
     r.status = ImpactStatus::kNotApproaching;
     return r;
   }
-  const impulse::Model model(ball, contact, mu_s);
+  const impulse::Model model(ball, AtImpactSpeed(contact, approach), mu_s);
   return o.integrator == ImpulseIntegrator::kFixedStep ? detail::SolveFixedStep(in, model, o)
                                                       : detail::SolveAdaptive(in, model, o);
 }

@@ -231,6 +231,61 @@ TEST(FitTest, AlciatoresThrowGivesThrowFallingWithSpeed) {
   EXPECT_NEAR(r.model.ball_ball.slip_decay, kSimToRealThrowLaw.c, 2e-2);
 }
 
+// Mean |predicted - measured| throw, deg, of `model` on `data`.
+double MeanThrowErrorDeg(const std::vector<ThrowObservation>& data, const physics::Model& model) {
+  double sum = 0;
+  for (const ThrowObservation& t : data) {
+    sum += std::abs(physics::RadToDeg(PredictThrow(t, model).throw_angle - t.measured_throw));
+  }
+  return sum / static_cast<double>(data.size());
+}
+
+// The law's two forms fitted to the 45 deg data, judged on the 30 deg curve's ends:
+// both fit 45 deg, and only the impact-speed form predicts 30 deg within 1 deg on
+// average (the slip form sticks at 30 deg, its fast end at the geared limit).
+TEST(FitTest, TheImpactSpeedFormPredictsThirtyDegreesWithinOneDegree) {
+  Observations o;
+  o.throws = AlciatoreStunThrow45();
+  const Group groups[] = {Group::kBallBall};
+  physics::Model start;
+  start.ball_ball.friction_law = physics::BallBallFrictionLaw::kExponentialImpactSpeed;
+  const FitResult impact = Fit(o, groups, start);
+  const FitResult slip = Fit(o, groups, physics::Model{});
+  ASSERT_EQ(impact.error, "");
+  ASSERT_EQ(slip.error, "");
+  EXPECT_EQ(impact.model.ball_ball.friction_law, physics::BallBallFrictionLaw::kExponentialImpactSpeed);
+  EXPECT_EQ(slip.model.ball_ball.friction_law, physics::BallBallFrictionLaw::kExponential);
+  EXPECT_LT(impact.throw_deg.rms_after, 0.45);
+  EXPECT_LT(slip.throw_deg.rms_after, 0.45);
+  const std::vector<ThrowObservation> ends = AlciatoreStunThrow30Ends();
+  EXPECT_LT(MeanThrowErrorDeg(ends, impact.model), 1.0);
+  EXPECT_GT(MeanThrowErrorDeg(ends, slip.model), 1.0);
+  // The slow end is above the geared limit atan(2 tan(cut) / (7 (1 + e))) for
+  // both: no friction reaches it.
+  const double geared = physics::RadToDeg(std::atan(2 * std::tan(ends[0].cut) / (7 * (1 + 0.89))));
+  EXPECT_NEAR(physics::RadToDeg(PredictThrow(ends[0], impact.model).throw_angle), geared, 0.02);
+  EXPECT_GT(physics::RadToDeg(ends[0].measured_throw), geared + 0.5);
+}
+
+// Throws made with an impact-speed law are fitted back to it from a start in that form.
+TEST(FitTest, FindsAnImpactSpeedLawAgainFromThrows) {
+  physics::Model world;
+  world.ball_ball = physics::WithFrictionCurve(world.ball_ball, {0.01, 0.12, 0.8},
+                                               physics::BallBallFrictionLaw::kExponentialImpactSpeed);
+  Observations o;
+  o.throws = ThrowsOf(world);
+  physics::Model start;
+  start.ball_ball.friction_law = physics::BallBallFrictionLaw::kExponentialImpactSpeed;
+  const Group groups[] = {Group::kBallBall};
+  const FitResult r = Fit(o, groups, start, Sigmas(0.1, 0.02, 1));
+  ASSERT_EQ(r.error, "");
+  EXPECT_EQ(r.model.ball_ball.friction_law, physics::BallBallFrictionLaw::kExponentialImpactSpeed);
+  EXPECT_NEAR(r.model.ball_ball.mu_bb, 0.01, 0.003);
+  EXPECT_NEAR(r.model.ball_ball.slip_gain, 0.12, 0.01);
+  EXPECT_NEAR(r.model.ball_ball.slip_decay, 0.8, 0.1);
+  EXPECT_LT(r.reduced_chi_square, 1.5);
+}
+
 TEST(FitTest, SimToRealWorldIsValidAndDiffersWhereStated) {
   const physics::Model w = SimToRealWorld(), d;
   EXPECT_EQ(physics::ValidateModel(w), "");

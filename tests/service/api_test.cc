@@ -60,6 +60,27 @@ TEST(CollideTest, ReturnsThePapersFirstShot) {
   EXPECT_GT(resp.impulse_final(), resp.impulse_compression());
 }
 
+// The API's impact-speed law answers as the constant law at its coefficient for the
+// shot's normal speed (a cue ball on a ball at rest: speed cos(cut)).
+TEST(CollideTest, ImpactSpeedLawIsTheConstantLawAtTheShotsNormalSpeed) {
+  const physics::PaperShot& s = physics::kPaperShots[1];
+  v1::CollideRequest law = PaperShotRequest(s);
+  law.mutable_parameters()->set_friction_law(v1::BALL_BALL_FRICTION_LAW_EXPONENTIAL_IMPACT_SPEED);
+  law.mutable_parameters()->set_mu_bb(0.01);
+  law.mutable_parameters()->set_slip_gain(0.14);
+  law.mutable_parameters()->set_slip_decay(0.6);
+  v1::CollideRequest constant = PaperShotRequest(s);
+  constant.mutable_parameters()->set_mu_bb(0.01 + 0.14 * std::exp(-0.6 * s.speed * std::cos(s.cut_deg * M_PI / 180)));
+  v1::CollideResponse a, b;
+  ASSERT_TRUE(Collide(law, &a).ok());
+  ASSERT_TRUE(Collide(constant, &b).ok());
+  EXPECT_NEAR(a.cue().slip_end().exit_angle_deg(), b.cue().slip_end().exit_angle_deg(), 1e-9);
+  EXPECT_NEAR(a.object().slip_end().speed(), b.object().slip_end().speed(), 1e-12);
+  v1::CollideResponse d;
+  ASSERT_TRUE(Collide(PaperShotRequest(s), &d).ok());
+  EXPECT_GT(std::abs(a.cue().slip_end().exit_angle_deg() - d.cue().slip_end().exit_angle_deg()), 0.1);
+}
+
 TEST(CollideTest, FixedStepSchemeIsSelectable) {
   v1::CollideRequest req = PaperShotRequest(physics::kPaperShots[0]);
   req.mutable_solver()->set_integrator(v1::IMPULSE_INTEGRATOR_FIXED_STEP);

@@ -42,6 +42,15 @@ TEST(ModelFileTest, WrittenWholeAndReadBackItIsTheSameModel) {
   ModelToProto(flat, &file);
   ASSERT_EQ(ModelFromProto(file, &back), "");
   EXPECT_TRUE(physics::SameModel(back, flat));
+  // The law's impact-speed form is kept as such.
+  physics::Model impact = Calibrated();
+  impact.ball_ball = physics::WithFrictionCurve(impact.ball_ball, {0.0, 0.15, 0.53},
+                                                physics::BallBallFrictionLaw::kExponentialImpactSpeed);
+  ModelToProto(impact, &file);
+  EXPECT_EQ(file.ball_ball().friction_law(), v1::BALL_BALL_FRICTION_LAW_EXPONENTIAL_IMPACT_SPEED);
+  ASSERT_EQ(ModelFromProto(file, &back), "");
+  EXPECT_TRUE(physics::SameModel(back, impact));
+  EXPECT_FALSE(physics::SameModel(back, Calibrated()));
 }
 
 TEST(ModelFileTest, AFieldLeftOutKeepsTheDefault) {
@@ -73,6 +82,10 @@ TEST(ModelFileTest, BadValuesAreNamed) {
   EXPECT_NE(error(R"({"ballBall": {"frictionLaw": "BALL_BALL_FRICTION_LAW_EXPONENTIAL", "slipGain": 0.99}})")
                 .find("slip_gain = 0.99"),
             std::string::npos);
+  EXPECT_NE(
+      error(R"({"ballBall": {"frictionLaw": "BALL_BALL_FRICTION_LAW_EXPONENTIAL_IMPACT_SPEED", "slipDecay": -2}})")
+          .find("slip_decay = -2"),
+      std::string::npos);
   EXPECT_NE(error(R"({"cushion": {"restitution": [0.9, 0.8], "restitutionSpeed": [1]}})")
                 .find("cushion.restitution has 2 values and cushion.restitution_speed 1"),
             std::string::npos);

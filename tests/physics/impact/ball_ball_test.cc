@@ -438,6 +438,48 @@ TEST(AdaptiveTest, ExponentialFrictionLawOutOfRangeIsRejectedByName) {
   EXPECT_EQ(ValidateImpact(in, {}, law, 0.21, Adaptive(1e-10)), "");
 }
 
+// The impact-speed form is the constant law at mu = a + b exp(-c v_n), v_n the
+// normal approach speed (the incident speed times cos(cut) on a ball at rest): the
+// same answer to the last bit, a higher coefficient for a gentler impact, and a
+// slip-form law with the same numbers gives a different answer.
+TEST(AdaptiveTest, ImpactSpeedFrictionLawIsTheConstantLawAtItsImpactSpeed) {
+  constexpr double a = 0.01, b = 0.14, c = 0.6;
+  const BallParams ball;
+  BallBallParams law{.mu_bb = a, .e = 0.89, .friction_law = BallBallFrictionLaw::kExponentialImpactSpeed};
+  law.slip_gain = b;
+  law.slip_decay = c;
+  EXPECT_EQ(ValidateBallBallParams(law), "");
+  for (const double speed : {0.3, 1.0, 2.5}) {
+    for (const double cut : {0.2, 0.6, 1.1}) {
+      const ImpactState in = PaperIncidentState(speed, 0.7 * speed / ball.radius, -10.0, cut);
+      const double v_n = speed * std::cos(cut);
+      const BallBallParams constant{.mu_bb = a + b * std::exp(-c * v_n), .e = 0.89};
+      const ImpactResult r = ResolveImpact(in, ball, law, 0.21, Adaptive(1e-10));
+      ASSERT_EQ(r.status, ImpactStatus::kOk) << speed << " " << cut;
+      EXPECT_EQ(MaxDifference(r.out, ResolveImpact(in, ball, constant, 0.21, Adaptive(1e-10)).out, ball.radius),
+                0.0)
+          << speed << " " << cut;
+      EXPECT_EQ(AtImpactSpeed(law, v_n).mu_bb, constant.mu_bb);
+      EXPECT_EQ(AtImpactSpeed(law, v_n).friction_law, BallBallFrictionLaw::kConstant);
+    }
+  }
+  EXPECT_GT(AtImpactSpeed(law, 0.2).mu_bb, AtImpactSpeed(law, 2.0).mu_bb);
+  const BallBallParams slip_form = WithFrictionCurve(law, FrictionCurveOf(law));
+  ASSERT_EQ(slip_form.friction_law, BallBallFrictionLaw::kExponential);
+  const ImpactState cut = PaperIncidentState(2.0, 0.0, 0.0, 0.5);
+  EXPECT_GT(MaxDifference(ResolveImpact(cut, ball, law, 0.21, Adaptive(1e-10)).out,
+                          ResolveImpact(cut, ball, slip_form, 0.21, Adaptive(1e-10)).out, ball.radius),
+            1e-3);
+  // Its range rules are the slip form's.
+  law.slip_gain = 0.995;  // mu(0) = 1.005
+  EXPECT_EQ(ResolveImpact(cut, ball, law, 0.21, Adaptive(1e-10)).status, ImpactStatus::kInvalidInput);
+  EXPECT_NE(ValidateImpact(cut, ball, law, 0.21, Adaptive(1e-10)).find("slip_gain = 0.995"), std::string::npos);
+  law.friction_law = static_cast<BallBallFrictionLaw>(5);
+  law.slip_gain = b;
+  EXPECT_NE(ValidateBallBallParams(law).find("friction_law = 5"), std::string::npos);
+  EXPECT_EQ(ResolveImpact(cut, ball, law, 0.21, Adaptive(1e-10)).status, ImpactStatus::kInvalidInput);
+}
+
 TEST(AdaptiveTest, ToleranceOutOfRangeIsRejected) {
   const ImpactState in = PaperIncidentState(1.0, 0.0, 0.0, 0.2);
   for (double tol : {0.0, 1e-20, 0.5, std::nan("")}) {
