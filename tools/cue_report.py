@@ -114,7 +114,7 @@ def main():
     sp_ref = json.load(open(os.path.join(data, "cue-selfplay-reference-noise.json")))
     sp_after = json.load(open(os.path.join(data, "cue-selfplay.json")))
     sp_equal = json.load(open(os.path.join(data, "cue-selfplay-equal-heading.json")))
-    sp_before = json.load(open(os.path.join(data, "frame-play-selfplay.json")))
+    sp_before = json.load(open(os.path.join(data, "cue-before-selfplay-level-cue.json")))
 
     lines_before, big_b, all_b = usage_rows("before: level cue, cue-ball noise", before_rows)
     lines_after, big_a, all_a = usage_rows("now: the robot's cue and its noise", after)
