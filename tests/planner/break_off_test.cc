@@ -8,6 +8,8 @@
 #include <cmath>
 
 #include "planner/geometry.h"
+#include "planner/random.h"
+#include "planner/robustness.h"
 #include "planner/shot_sim.h"
 
 namespace snooker::planner {
@@ -166,6 +168,45 @@ TEST(BreakOffTest, AMovedEndRedLosesItsSide) {
   const auto all = BreakOffCandidates(blocked, Model());
   blocked.balls[0].position = all[1].placement + Vec2(0, -0.01);
   EXPECT_EQ(BreakOffCandidates(blocked, Model()).size(), 5u);
+}
+
+// The Monte Carlo's true racks, drawn around the rack seen with 0.2 mm of vision
+// noise: every ball clear of every other and on the bed, and the break-off's
+// nominal stroke simulates from each of them.
+TEST(BreakOffTest, RacksDrawnAroundTheOneSeenAreSettledAndPlayable) {
+  TableState t = Rack();
+  const BreakOffCandidate c = BreakOffCandidates(t, Model()).front();
+  t.balls.push_back({BallKind::kCue, c.placement});
+  const int cue = static_cast<int>(t.balls.size()) - 1;
+  PotContext ctx;
+  ctx.table = &Model();
+  ctx.noise.position = 0.2e-3;
+  const double r = Model().ball_radius();
+  ShotSimulator sim(Model(), physics::SimParams{});
+  const ShotSetup setup{&t, cue, c.target, physics::PocketId::kTopRight, BallOn::kRed};
+  physics::Shot shot;
+  shot.speed = c.speed;
+  shot.heading = c.heading;
+  shot.sidespin = c.sidespin;
+  Rng rng(5);
+  std::vector<Vec2> truth;
+  double moved = 0;
+  for (int k = 0; k < 60; ++k) {
+    SampleTruePositions(t, ctx, rng, &truth);
+    ASSERT_EQ(truth.size(), t.balls.size());
+    for (size_t i = 0; i < truth.size(); ++i) {
+      moved = std::max(moved, (truth[i] - t.balls[i].position).norm());
+      for (size_t j = i + 1; j < truth.size(); ++j) {
+        ASSERT_GE((truth[j] - truth[i]).norm(), 2 * r - 1e-9) << "draw " << k << ": balls " << i << " and " << j;
+      }
+    }
+    const ShotOutcome& out = sim.Run(setup, shot, truth, ShotSimulator::Mode::kFull, {});
+    EXPECT_EQ(out.status, physics::SimStatus::kAtRest) << "draw " << k;
+    EXPECT_EQ(out.first_hit, c.target) << "draw " << k;
+  }
+  // The draws are draws: the balls moved, by about the vision noise.
+  EXPECT_GT(moved, 0.1e-3);
+  EXPECT_LT(moved, 3e-3);
 }
 
 TEST(BreakOffTest, NominalStrokesHitTheEndRedFirstAndKeepTheCueBall) {
