@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "planner/geometry.h"
@@ -69,6 +70,35 @@ std::optional<std::pair<double, double>> ClearCuts(const TableState& table, cons
   return run;
 }
 
+// The ball a cue ball rolling straight from `from` along unit `u` meets first, or -1.
+int FirstMet(const TableState& table, const Vec2& from, const Vec2& u, double radius) {
+  int first = -1;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (size_t j = 0; j < table.balls.size(); ++j) {
+    const Vec2 to = table.balls[j].position - from;
+    const double along = to.dot(u);
+    const double across = u.x() * to.y() - u.y() * to.x();
+    if (along <= 0 || std::abs(across) >= 2 * radius) continue;
+    const double travel = along - std::sqrt(4 * radius * radius - across * across);
+    if (travel < nearest) {
+      nearest = travel;
+      first = static_cast<int>(j);
+    }
+  }
+  return first;
+}
+
+// The cut of `target` from `from` meets a red first (the target or another).
+bool MeetsARed(const TableState& table, const Vec2& from, int target, double cut, double radius) {
+  const auto h = HeadingForCut(from, table.balls[static_cast<size_t>(target)].position, cut, radius);
+  if (!h) return false;
+  const int first = FirstMet(table, from, Vec2(std::cos(*h), std::sin(*h)), radius);
+  return first >= 0 && table.balls[static_cast<size_t>(first)].kind == BallKind::kRed;
+}
+
+// A soft break's cuts: this either side of the full ball, rad.
+constexpr double kSoftCutRange = 6.0 * physics::kPi / 180;
+
 }  // namespace
 
 std::vector<BreakOffCandidate> BreakOffCandidates(const TableState& table, const physics::TableModel& model,
@@ -100,6 +130,53 @@ std::vector<BreakOffCandidate> BreakOffCandidates(const TableState& table, const
       c.heading = *HeadingForCut(p, c.target_position, c.cut, r);
       c.speed = options.speed;
       c.sidespin = -sign * options.side;
+      out.push_back(c);
+    }
+  }
+  return out;
+}
+
+std::vector<BreakOffCandidate> SoftBreakCandidates(const TableState& table, const physics::TableModel& model,
+                                                   const BreakOffOptions& options) {
+  std::vector<BreakOffCandidate> out;
+  if (!options.soft_break) return out;
+  const double r = model.ball_radius();
+  const Vec2 brown = model.spot(physics::Colour::kBrown);
+  const int n = std::clamp(options.placements_per_side, 0, kMaxPlacementsPerSide);
+  for (const bool right : {true, false}) {
+    const double sign = right ? 1.0 : -1.0;
+    for (int k = 1; k <= n; ++k) {
+      const double f = static_cast<double>(k) / (n + 1);
+      const Vec2 p(brown.x() + sign * f * model.spec().d_radius, brown.y() - options.line_inset);
+      if (!Free(p, table, 2 * r + options.ball_clearance)) continue;
+      // The nearest red whose centre line from p meets a red first.
+      int target = -1;
+      double nearest = std::numeric_limits<double>::infinity();
+      for (size_t i = 0; i < table.balls.size(); ++i) {
+        if (table.balls[i].kind != BallKind::kRed) continue;
+        const double d = (table.balls[i].position - p).norm();
+        if (!(d < nearest)) continue;
+        if (!MeetsARed(table, p, static_cast<int>(i), 0.0, r)) continue;
+        target = static_cast<int>(i);
+        nearest = d;
+      }
+      if (target < 0) continue;
+      // The run of cuts about the full ball that meet a red first.
+      double lo = 0, hi = 0;
+      const double step = options.cut_step > 0 ? options.cut_step : kSoftCutRange;
+      while (hi + step <= kSoftCutRange && MeetsARed(table, p, target, hi + step, r)) hi += step;
+      while (lo - step >= -kSoftCutRange && MeetsARed(table, p, target, lo - step, r)) lo -= step;
+      BreakOffCandidate c;
+      c.placement = p;
+      c.target = target;
+      c.target_position = table.balls[static_cast<size_t>(target)].position;
+      c.right = right;
+      c.cut = 0;
+      c.cut_lo = lo;
+      c.cut_hi = hi;
+      c.heading = *HeadingForCut(p, c.target_position, 0.0, r);
+      c.speed = options.soft_speed;
+      c.soft = true;
       out.push_back(c);
     }
   }

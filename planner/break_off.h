@@ -32,6 +32,15 @@
 // (4 deg potted the cue ball in a third of the runs). tests/planner/break_off_test.cc
 // plays each candidate's nominal stroke at 6, 6.5 and 7 m/s.
 //
+// The soft break (SoftBreakCandidates) is the other way to open a frame: from the
+// same placements, the nearest red whose full-ball line meets a red first (never the
+// pink or the blue in front of the pack), at a pace that leaves the cue ball near
+// the pack and the reds nearly where they were. An opponent who pots as well as
+// this planner punishes the red or two that a thin break at 6-7 m/s knocks loose
+// (docs/frame-play.md measures it), and a stroke into the pack leaves fewer. Both
+// kinds are searched, alternately, and the Monte Carlo of each searched stroke
+// decides between them.
+//
 // The rack is untouched when every one of the 15 reds lies within rack_tolerance of
 // a distinct position of the opening triangle (physics::TableModel::reds()): a
 // rack set by hand is off by a millimetre or two and vision adds its 0.2 mm, while
@@ -68,6 +77,10 @@ struct BreakOffOptions {
   double max_cut = 85.0 * physics::kPi / 180;
   /// A red within this of its rack position is untouched, m.
   double rack_tolerance = 0.005;
+  /// Also offer the soft break: the nearest red whose centre line from the
+  /// placement meets a red first, taken nearly full at soft_speed (m/s), no side.
+  bool soft_break = true;
+  double soft_speed = 1.6;
 };
 
 struct BreakOffCandidate {
@@ -94,6 +107,8 @@ struct BreakOffCandidate {
   /// from the left; no topspin.
   double speed = 0;
   double sidespin = 0;
+  /// A soft break (nearly full on the nearest red), not the thin contact on an end red.
+  bool soft = false;
 };
 
 /// The candidates for the break-off on `table_without_cue` (no cue ball; the reds
@@ -103,6 +118,14 @@ struct BreakOffCandidate {
 std::vector<BreakOffCandidate> BreakOffCandidates(const TableState& table_without_cue,
                                                   const physics::TableModel& model,
                                                   const BreakOffOptions& options = {});
+
+/// The soft break's candidates on the same table: from each placement of
+/// BreakOffCandidates, the nearest red whose centre line from it meets a red first,
+/// nearly full (cuts within 6 deg of it), at options.soft_speed, no side. Empty
+/// when options.soft_break is off.
+std::vector<BreakOffCandidate> SoftBreakCandidates(const TableState& table_without_cue,
+                                                   const physics::TableModel& model,
+                                                   const BreakOffOptions& options = {});
 
 /// True when the striker is to break off: the cue ball is in hand (`cue_in_hand`
 /// and no cue ball on the table) and the rack is untouched (15 reds, each within

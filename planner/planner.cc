@@ -121,8 +121,8 @@ Candidate FromBreakOff(const BreakOffCandidate& b, int table) {
   const double lo = std::max(b.cut_lo, b.cut - range), hi = std::min(b.cut_hi, b.cut + range);
   c.aim_base = 0.5 * (lo + hi);
   c.aim_range = std::max(0.5 * (hi - lo), 1e-3);
-  c.speed_lo = b.speed - 1.0;
-  c.speed_hi = b.speed + 1.0;
+  c.speed_lo = b.soft ? 0.5 * b.speed : b.speed - 1.0;
+  c.speed_hi = b.soft ? 1.5 * b.speed : b.speed + 1.0;
   c.table = table;
   c.cue_start = b.placement;
   c.estimate.probability = 1;
@@ -300,7 +300,17 @@ bool PlanRun::AddBreakOff() {
   if (!request_.kinds.Has(ShotKind::kBreakOff) || !IsBreakOffTable(table_, request_.cue_in_hand, *config_.table)) {
     return false;
   }
-  for (const BreakOffCandidate& b : BreakOffCandidates(table_, *config_.table)) {
+  // Soft and thin breaks alternate: the budget searches only the first few (a
+  // break into the pack is a long simulation), and the Monte Carlo then picks
+  // between the kinds.
+  const std::vector<BreakOffCandidate> soft = SoftBreakCandidates(table_, *config_.table);
+  const std::vector<BreakOffCandidate> thin = BreakOffCandidates(table_, *config_.table);
+  std::vector<BreakOffCandidate> all;
+  for (size_t k = 0; k < std::max(soft.size(), thin.size()); ++k) {
+    if (k < soft.size()) all.push_back(soft[k]);
+    if (k < thin.size()) all.push_back(thin[k]);
+  }
+  for (const BreakOffCandidate& b : all) {
     tables_.push_back(WithCueBall(table_, b.placement));
     candidates_.push_back(FromBreakOff(b, static_cast<int>(tables_.size()) - 1));
   }

@@ -170,6 +170,67 @@ TEST(BreakOffTest, AMovedEndRedLosesItsSide) {
   EXPECT_EQ(BreakOffCandidates(blocked, Model()).size(), 5u);
 }
 
+// The soft break: from each placement of the thin break, a red whose line meets a
+// red first at every cut of its range (never the pink or blue in front of the
+// pack), full ball included; its nominal stroke, and the same at 1.5 times the
+// pace, pots nothing, and at its pace moves the back row by under 5 cm.
+TEST(BreakOffTest, SoftBreaksMeetARedFirstAndLeaveThePackNearlyWhole) {
+  const TableState rack = Rack();
+  const auto thin = BreakOffCandidates(rack, Model());
+  const auto soft = SoftBreakCandidates(rack, Model());
+  ASSERT_EQ(soft.size(), thin.size());
+  const double r = Model().ball_radius();
+  for (size_t k = 0; k < soft.size(); ++k) {
+    const BreakOffCandidate& c = soft[k];
+    EXPECT_TRUE(c.soft);
+    EXPECT_EQ(c.placement, thin[k].placement);
+    EXPECT_EQ(rack.balls[static_cast<size_t>(c.target)].kind, BallKind::kRed);
+    EXPECT_LE(c.cut_lo, 0.0);
+    EXPECT_GE(c.cut_hi, 0.0);
+    EXPECT_EQ(c.cut, 0.0);
+    EXPECT_EQ(c.sidespin, 0.0);
+    for (double cut = c.cut_lo; cut <= c.cut_hi + 1e-12; cut += 0.25 * physics::kPi / 180) {
+      TableState t = rack;
+      t.balls.push_back({BallKind::kCue, c.placement});
+      physics::Shot shot;
+      shot.speed = c.speed;
+      shot.heading = *HeadingForCut(c.placement, c.target_position, cut, r);
+      ShotSimulator sim(Model(), physics::SimParams{});
+      const int cue = static_cast<int>(t.balls.size()) - 1;
+      const ShotSetup setup{&t, cue, c.target, physics::PocketId::kTopRight, BallOn::kRed};
+      const ShotOutcome& out = sim.Run(setup, shot, {}, ShotSimulator::Mode::kFull, {});
+      ASSERT_EQ(out.status, physics::SimStatus::kAtRest) << k << " " << cut;
+      ASSERT_GE(out.first_hit, 0) << k << " " << cut;
+      EXPECT_EQ(t.balls[static_cast<size_t>(out.first_hit)].kind, BallKind::kRed) << k << " " << cut;
+    }
+    for (double pace : {1.0, 1.5}) {
+      TableState t = rack;
+      t.balls.push_back({BallKind::kCue, c.placement});
+      physics::Shot shot;
+      shot.speed = pace * c.speed;
+      shot.heading = c.heading;
+      ShotSimulator sim(Model(), physics::SimParams{});
+      const int cue = static_cast<int>(t.balls.size()) - 1;
+      const ShotSetup setup{&t, cue, c.target, physics::PocketId::kTopRight, BallOn::kRed};
+      const ShotOutcome& out = sim.Run(setup, shot, {}, ShotSimulator::Mode::kFull, {});
+      ASSERT_EQ(out.status, physics::SimStatus::kAtRest);
+      EXPECT_TRUE(out.potted.empty()) << k << " pace " << pace;
+      // The back row (the rack's last five reds) stays within a few centimetres.
+      double moved = 0;
+      for (size_t i = 0; i < rack.balls.size(); ++i) {
+        if (rack.balls[i].kind != BallKind::kRed || rack.balls[i].position.y() < Model().reds()[10].y() - 1e-9) continue;
+        moved = std::max(moved, (sim.final_balls()[i].r - rack.balls[i].position).norm());
+      }
+      if (pace == 1.0) {
+        EXPECT_LT(moved, 0.05) << k;
+      }
+    }
+  }
+  BreakOffOptions off;
+  off.soft_break = false;
+  EXPECT_TRUE(SoftBreakCandidates(rack, Model(), off).empty());
+}
+
 // The Monte Carlo's true racks, drawn around the rack seen with 0.2 mm of vision
 // noise: every ball clear of every other and on the bed, and the break-off's
 // nominal stroke simulates from each of them.
