@@ -55,7 +55,8 @@ Players:
                    centuries, penaltyPoints (from the opponent's fouls), shots, stalls,
                    planMsP50, planMsP99, safetyOutlook and safetyOutlookP50 (the
                    opponent's best pot probability after each safety of the player's,
-                   mean and median; null: none played)
+                   mean and median; null: none played), breakOffOutlook and
+                   breakOffOutlookP50 (the same after each of its break-offs)
 Noise (standard deviations; the same options as snooker selfplay):
 )";
 constexpr const char* kHelpTail = R"(Planner:
@@ -152,7 +153,9 @@ void PrintJson(const Parsed& p, const planner::MatchReport& r, std::ostream& out
       << ", \"stalls" << x << "\": " << s.stalls << ", \"planMsP50" << x << "\": " << Number(s.plan_ms_p50)
       << ", \"planMsP99" << x << "\": " << Number(s.plan_ms_p99) << ", \"safetyOutlook" << x
       << "\": " << Number(s.mean_safety_outlook) << ", \"safetyOutlookP50" << x
-      << "\": " << Number(s.median_safety_outlook);
+      << "\": " << Number(s.median_safety_outlook) << ", \"breakOffOutlook" << x << "\": "
+      << Number(s.mean_break_off_outlook) << ", \"breakOffOutlookP50" << x << "\": "
+      << Number(s.median_break_off_outlook);
     j << ", \"kinds" << x << "\": {";
     for (int k = 0; k < planner::kShotKindCount; ++k) {
       j << (k ? ", " : "") << "\"" << planner::ToString(static_cast<planner::ShotKind>(k)) << "\": " << s.kinds[static_cast<size_t>(k)];
@@ -196,6 +199,9 @@ void PrintText(const planner::MatchReport& r, std::ostream& out) {
   row("planning ms, 99th pct", a.plan_ms_p99, b.plan_ms_p99);
   if (std::isfinite(a.mean_safety_outlook) || std::isfinite(b.mean_safety_outlook)) {
     row("opponent's pot after safety", a.mean_safety_outlook, b.mean_safety_outlook);
+  }
+  if (std::isfinite(a.mean_break_off_outlook) || std::isfinite(b.mean_break_off_outlook)) {
+    row("opponent's pot after break-off", a.mean_break_off_outlook, b.mean_break_off_outlook);
   }
   out << "frames stopped at the shot cap: " << r.frames_capped << " (" << r.frames_undecided
       << " level); re-spotted blacks: " << r.black_respots << "; strokes not simulated to rest: "

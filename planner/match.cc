@@ -319,6 +319,10 @@ void MatchRunner::Play(FrameState& f, const TurnChoice& c, Rng& rng, FrameSummar
     report_.players[static_cast<size_t>(1 - r.striker)].penalty_points += r.judgement.penalty;
   }
   if (r.visit_over && r.break_points > 0) p.breaks.push_back(r.break_points);
+  if (turn == TurnType::kBreakOff && o_.outlook && !f.over && f.striker != r.striker) {
+    const double v = o_.outlook(f.table, f.cue_in_hand, f.ball_on);
+    if (std::isfinite(v)) p.break_off_outlook.push_back(v);
+  }
   if (c.kind == ShotKind::kSafety && !c.stall) {
     ++p.safeties;
     if (o_.outlook && !f.over && f.striker != r.striker) {
@@ -370,6 +374,13 @@ MatchReport MatchRunner::Finish() {
     p.plan_ms_p99 = Percentile(p.plan_ms, 0.99);
     p.median_safety_outlook = p.safety_outlook.empty() ? std::numeric_limits<double>::quiet_NaN()
                                                        : Percentile(p.safety_outlook, 0.5);
+    p.median_break_off_outlook = p.break_off_outlook.empty() ? std::numeric_limits<double>::quiet_NaN()
+                                                             : Percentile(p.break_off_outlook, 0.5);
+    p.mean_break_off_outlook =
+        p.break_off_outlook.empty()
+            ? std::numeric_limits<double>::quiet_NaN()
+            : std::accumulate(p.break_off_outlook.begin(), p.break_off_outlook.end(), 0.0) /
+                  static_cast<double>(p.break_off_outlook.size());
     p.mean_safety_outlook =
         p.safety_outlook.empty()
             ? std::numeric_limits<double>::quiet_NaN()

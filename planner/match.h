@@ -131,6 +131,11 @@ struct PlayerStats {
   std::vector<double> safety_outlook;
   double mean_safety_outlook = 0;
   double median_safety_outlook = 0;
+  /// The same after each of its break-offs (the frame's first stroke, whatever was
+  /// played) that handed the table over, and its mean and median.
+  std::vector<double> break_off_outlook;
+  double mean_break_off_outlook = 0;
+  double median_break_off_outlook = 0;
 };
 
 struct FrameSummary {

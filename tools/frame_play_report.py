@@ -92,6 +92,8 @@ def player_table(d):
         ("planning ms, 99th percentile", "planMsP99", 1),
         ("opponent's best pot after a safety, mean", "safetyOutlook", 2),
         ("opponent's best pot after a safety, median", "safetyOutlookP50", 2),
+        ("opponent's best pot after a break-off, mean", "breakOffOutlook", 2),
+        ("opponent's best pot after a break-off, median", "breakOffOutlookP50", 2),
     ]
     out = f"| | A: {d['playerA']} | B: {d['playerB']} |\n|---|---:|---:|\n"
     for label, key, digits in rows:
@@ -254,6 +256,13 @@ def direct_pots_section(runs):
             "frames in five. The target's anchor, the Deep Green robot, credits its 80 % to lookahead; here the "
             "lookahead's worth against `one-ply` (below) is a few points of share, where 80 % needs "
             f"{max(0.0, 80 - 100 * won):.0f} more against `direct-pots`.\n")
+    if d.get("breakOffOutlookA") is not None and d.get("breakOffOutlookB") is not None:
+        out += ("\nThe break-off opens every frame. After the default's break-offs (the thin break on an end red "
+                "or the soft break into the pack, whichever its Monte Carlo prefers: planner/break_off.h) "
+                f"`direct-pots`' best pot had a mean probability of {d['breakOffOutlookA']:.2f} (median "
+                f"{d['breakOffOutlookP50A']:.2f}); after `direct-pots`' own, a firm straight shot into the pack, the "
+                f"default's had {d['breakOffOutlookB']:.2f} (median {d['breakOffOutlookP50B']:.2f}). Both by the "
+                "planner's fast estimate on the table as it lay.\n")
     return out
 
 

@@ -44,7 +44,8 @@ TEST(CliMatchTest, JsonHasTheContractedNames) {
       "highestBreakB", "centuriesA",   "centuriesB",     "penaltyPointsA",    "penaltyPointsB",
       "shotsA",       "shotsB",        "stallsA",        "stallsB",           "planMsP50A",
       "planMsP50B",   "planMsP99A",    "planMsP99B",     "safetyOutlookA",    "safetyOutlookB",
-      "safetyOutlookP50A", "safetyOutlookP50B", "kindsA", "kindsB", "routesA", "routesB", "planMsByTurn"};
+      "safetyOutlookP50A", "safetyOutlookP50B", "breakOffOutlookA", "breakOffOutlookB", "breakOffOutlookP50A",
+      "breakOffOutlookP50B", "kindsA", "kindsB", "routesA", "routesB", "planMsByTurn"};
   std::set<std::string> all = contract;
   all.insert(more.begin(), more.end());
   EXPECT_EQ(Keys(json), all);
@@ -60,7 +61,8 @@ TEST(CliMatchTest, JsonHasTheContractedNames) {
   EXPECT_LE(f.at("planMsP50").number_value(), f.at("planMsP99").number_value());
   // The opponent's pot chance after a safety: a probability, or null when the
   // player played none.
-  for (const char* key : {"safetyOutlookA", "safetyOutlookB", "safetyOutlookP50A", "safetyOutlookP50B"}) {
+  for (const char* key : {"safetyOutlookA", "safetyOutlookB", "safetyOutlookP50A", "safetyOutlookP50B",
+                          "breakOffOutlookA", "breakOffOutlookB", "breakOffOutlookP50A", "breakOffOutlookP50B"}) {
     const auto& v = f.at(key);
     if (v.has_null_value()) continue;
     EXPECT_GE(v.number_value(), 0) << key;

@@ -176,10 +176,16 @@ TEST(MatchTest, AShortMatchIsConsistent) {
     EXPECT_EQ(std::accumulate(p.breaks.begin(), p.breaks.end(), 0) + p.penalty_points, p.points);
     EXPECT_LE(static_cast<int>(p.safety_outlook.size()), p.safeties);
     for (const double v : p.safety_outlook) EXPECT_EQ(v, 0.25);
+    // One break-off each in two frames, measured when it handed the table over.
+    EXPECT_LE(p.break_off_outlook.size(), 1u);
+    for (const double v : p.break_off_outlook) EXPECT_EQ(v, 0.25);
   }
   EXPECT_EQ(r.players[0].kind, PlayerKind::kDefault);
   EXPECT_EQ(r.players[1].kind, PlayerKind::kDirectPots);
-  EXPECT_EQ(outlooks, static_cast<int>(r.players[0].safety_outlook.size() + r.players[1].safety_outlook.size()));
+  EXPECT_EQ(outlooks, static_cast<int>(r.players[0].safety_outlook.size() + r.players[1].safety_outlook.size() +
+                                       r.players[0].break_off_outlook.size() + r.players[1].break_off_outlook.size()));
+  // Each frame's break-off hands the table over unless it pots a red.
+  EXPECT_GE(r.players[0].break_off_outlook.size() + r.players[1].break_off_outlook.size(), 1u);
 }
 
 TEST(MatchTest, AMatchIsAFunctionOfItsSeed) {
