@@ -229,6 +229,13 @@ def lookahead_section(runs, selfplay):
     return out
 
 
+def lookahead_worth(runs):
+    """A few words on what the one-ply matches resolve of the lookahead's worth."""
+    rows = [d for o, v, d, w in runs if o == "one-ply"]
+    above = [d for d in rows if (wilson(d["framesWonA"], d["framesWonA"] + d["framesWonB"]) or (0, 0))[0] > 0.5]
+    return "is a few points of share" if above else "is too small for a hundred frames to resolve"
+
+
 def direct_pots_section(runs):
     """Why the default's share against direct-pots is what it is, from that match's figures."""
     rows = [d for o, v, d, w in runs if o == "direct-pots" and v == "0.2"]
@@ -254,8 +261,8 @@ def direct_pots_section(runs):
             "players who make centuries are decided mostly on those visits, where the default's edge is its mean "
             "break, not a different game; the turns where it plays a different game are too few to carry four "
             "frames in five. The target's anchor, the Deep Green robot, credits its 80 % to lookahead; here the "
-            "lookahead's worth against `one-ply` (below) is a few points of share, where 80 % needs "
-            f"{max(0.0, 80 - 100 * won):.0f} more against `direct-pots`.\n")
+            f"lookahead's worth against `one-ply` (below) {lookahead_worth(runs)}, where 80 % needs "
+            f"{max(0.0, 80 - 100 * won):.0f} more points of share against `direct-pots`.\n")
     if d.get("breakOffOutlookA") is not None and d.get("breakOffOutlookB") is not None:
         out += ("\nThe break-off opens every frame. After the default's break-offs (the thin break on an end red "
                 "or the soft break into the pack, whichever its Monte Carlo prefers: planner/break_off.h) "
