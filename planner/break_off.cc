@@ -70,30 +70,29 @@ std::optional<std::pair<double, double>> ClearCuts(const TableState& table, cons
   return run;
 }
 
-// The ball a cue ball rolling straight from `from` along unit `u` meets first, or -1.
-int FirstMet(const TableState& table, const Vec2& from, const Vec2& u, double radius) {
-  int first = -1;
-  double nearest = std::numeric_limits<double>::infinity();
-  for (size_t j = 0; j < table.balls.size(); ++j) {
-    const Vec2 to = table.balls[j].position - from;
-    const double along = to.dot(u);
-    const double across = u.x() * to.y() - u.y() * to.x();
-    if (along <= 0 || std::abs(across) >= 2 * radius) continue;
-    const double travel = along - std::sqrt(4 * radius * radius - across * across);
-    if (travel < nearest) {
-      nearest = travel;
-      first = static_cast<int>(j);
-    }
-  }
-  return first;
-}
-
 // The cut of `target` from `from` meets a red first (the target or another).
 bool MeetsARed(const TableState& table, const Vec2& from, int target, double cut, double radius) {
   const auto h = HeadingForCut(from, table.balls[static_cast<size_t>(target)].position, cut, radius);
   if (!h) return false;
-  const int first = FirstMet(table, from, Vec2(std::cos(*h), std::sin(*h)), radius);
+  const int first = FirstBallMet(table, from, *h, radius);
   return first >= 0 && table.balls[static_cast<size_t>(first)].kind == BallKind::kRed;
+}
+
+// The free placements on one side (right: towards the yellow), from the brown
+// outwards: placements_per_side points evenly between the brown spot and the side's
+// spot, line_inset behind the baulk line, each ball_clearance clear of every ball.
+std::vector<Vec2> Placements(const TableState& table, const physics::TableModel& model, const BreakOffOptions& o,
+                             bool right) {
+  const Vec2 brown = model.spot(physics::Colour::kBrown);
+  const double sign = right ? 1.0 : -1.0;
+  const int n = std::clamp(o.placements_per_side, 0, kMaxPlacementsPerSide);
+  std::vector<Vec2> out;
+  for (int k = 1; k <= n; ++k) {
+    const double f = static_cast<double>(k) / (n + 1);
+    const Vec2 p(brown.x() + sign * f * model.spec().d_radius, brown.y() - o.line_inset);
+    if (Free(p, table, 2 * model.ball_radius() + o.ball_clearance)) out.push_back(p);
+  }
+  return out;
 }
 
 // A soft break's cuts: this either side of the full ball, rad.
@@ -105,17 +104,12 @@ std::vector<BreakOffCandidate> BreakOffCandidates(const TableState& table, const
                                                   const BreakOffOptions& options) {
   std::vector<BreakOffCandidate> out;
   const double r = model.ball_radius();
-  const Vec2 brown = model.spot(physics::Colour::kBrown);
-  const int n = std::clamp(options.placements_per_side, 0, kMaxPlacementsPerSide);
   for (const bool right : {true, false}) {
     const Vec2 slot = model.reds()[static_cast<size_t>(right ? kBackRight : kBackLeft)];
     const int target = RedAt(table, slot, options.rack_tolerance);
     if (target < 0) continue;
     const double sign = right ? 1.0 : -1.0;
-    for (int k = 1; k <= n; ++k) {
-      const double f = static_cast<double>(k) / (n + 1);
-      const Vec2 p(brown.x() + sign * f * model.spec().d_radius, brown.y() - options.line_inset);
-      if (!Free(p, table, 2 * r + options.ball_clearance)) continue;
+    for (const Vec2& p : Placements(table, model, options, right)) {
       const auto cuts = ClearCuts(table, p, target, sign, r, options);
       if (!cuts) continue;
       BreakOffCandidate c;
@@ -141,14 +135,8 @@ std::vector<BreakOffCandidate> SoftBreakCandidates(const TableState& table, cons
   std::vector<BreakOffCandidate> out;
   if (!options.soft_break) return out;
   const double r = model.ball_radius();
-  const Vec2 brown = model.spot(physics::Colour::kBrown);
-  const int n = std::clamp(options.placements_per_side, 0, kMaxPlacementsPerSide);
   for (const bool right : {true, false}) {
-    const double sign = right ? 1.0 : -1.0;
-    for (int k = 1; k <= n; ++k) {
-      const double f = static_cast<double>(k) / (n + 1);
-      const Vec2 p(brown.x() + sign * f * model.spec().d_radius, brown.y() - options.line_inset);
-      if (!Free(p, table, 2 * r + options.ball_clearance)) continue;
+    for (const Vec2& p : Placements(table, model, options, right)) {
       // The nearest red whose centre line from p meets a red first.
       int target = -1;
       double nearest = std::numeric_limits<double>::infinity();

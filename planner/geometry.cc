@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "physics/core/shot.h"
+
 namespace snooker::planner {
 
 using physics::Vec2;
@@ -34,6 +36,25 @@ std::optional<GhostAim> AimAlong(const Vec2& cue, const Vec2& object, double obj
   aim.cut = WrapAngle(object_direction - aim.heading);
   if (!(std::abs(aim.cut) < physics::kPi / 2)) return std::nullopt;
   return aim;
+}
+
+int FirstBallMet(const TableState& table, const Vec2& from, double heading, double radius, int skip) {
+  const Vec2 u = physics::HeadingVector(heading);
+  int first = -1;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < table.balls.size(); ++i) {
+    if (static_cast<int>(i) == skip) continue;
+    const Vec2 to = table.balls[i].position - from;
+    const double along = to.dot(u);
+    const double across = Cross(u, to);
+    if (along <= 0 || std::abs(across) >= 2 * radius) continue;
+    const double travel = along - std::sqrt(4 * radius * radius - across * across);
+    if (travel < nearest) {
+      nearest = travel;
+      first = static_cast<int>(i);
+    }
+  }
+  return first;
 }
 
 double SegmentDistance(const Vec2& a, const Vec2& b, const Vec2& p) {

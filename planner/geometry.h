@@ -47,6 +47,12 @@ struct GhostAim {
 std::optional<GhostAim> AimAlong(const physics::Vec2& cue, const physics::Vec2& object,
                                  double object_direction, double radius);
 
+/// The ball of `table` a ball of `radius` (m) moving straight from `from` along
+/// `heading` (rad) meets first, skipping the index `skip` (the moving ball itself
+/// when it is in the table), or -1. A ball it touches and leaves behind is not met.
+int FirstBallMet(const TableState& table, const physics::Vec2& from, double heading, double radius,
+                 int skip = -1);
+
 /// Distance from p to the segment [a, b]. m.
 double SegmentDistance(const physics::Vec2& a, const physics::Vec2& b, const physics::Vec2& p);
 

@@ -37,28 +37,6 @@ constexpr double kSettleAir = 1e-7;
 constexpr int kSettleSweeps = 8;
 constexpr int kCentury = 100;
 
-// The first ball the cue ball at index `cue` meets going straight along `heading`
-// (balls of radius `radius`), or -1. A ball it touches and leaves behind is not met.
-int FirstBallAlong(const TableState& t, int cue, double heading, double radius) {
-  const Vec2 c = t.balls[static_cast<size_t>(cue)].position;
-  const Vec2 u = physics::HeadingVector(heading);
-  int first = -1;
-  double nearest = std::numeric_limits<double>::infinity();
-  for (size_t i = 0; i < t.balls.size(); ++i) {
-    if (static_cast<int>(i) == cue) continue;
-    const Vec2 to = t.balls[i].position - c;
-    const double along = to.dot(u);
-    const double across = Cross(u, to);
-    if (along <= 0 || std::abs(across) >= 2 * radius) continue;
-    const double travel = along - std::sqrt(4 * radius * radius - across * across);
-    if (travel < nearest) {
-      nearest = travel;
-      first = static_cast<int>(i);
-    }
-  }
-  return first;
-}
-
 // A straight shot at a ball on: the ball it meets first, and whether that is a ball
 // on (the path is clear of balls not on).
 struct Aim {
@@ -86,7 +64,7 @@ Aim NearestOn(const TableState& t, int cue, BallOn on, const std::vector<int>& t
     Aim a;
     a.target = index;
     a.distance = (t.balls[i].position - c).norm();
-    a.first = FirstBallAlong(t, cue, Direction(t.balls[i].position - c), radius);
+    a.first = FirstBallMet(t, c, Direction(t.balls[i].position - c), radius, cue);
     a.clear = a.first >= 0 && IsLegalTarget(on, t.balls[static_cast<size_t>(a.first)].kind);
     if (a.Better(best)) best = a;
   }

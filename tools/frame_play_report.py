@@ -141,6 +141,12 @@ def timing_table(runs):
     return out
 
 
+def above_half(d):
+    """Whether A's whole 95 % interval of the decided frames lies above one half."""
+    interval = wilson(d["framesWonA"], d["framesWonA"] + d["framesWonB"])
+    return interval is not None and interval[0] > 0.5
+
+
 def targets_table(runs, selfplay):
     """The targets the planner is held to, each with what was measured."""
     rows = []
@@ -210,7 +216,7 @@ def lookahead_section(runs, selfplay):
         a, b = sp["default (lookahead)"], sp["one-ply"]
         out += (f"- in self-play the mean break is {a['meanBreak']:.1f} with it and {b['meanBreak']:.1f} without, "
                 f"planning p50 {a['planMsP50']:.1f} and {b['planMsP50']:.1f} ms.\n")
-    above = [(v, d) for v, d in rows if (wilson(d["framesWonA"], d["framesWonA"] + d["framesWonB"]) or (0, 0))[0] > 0.5]
+    above = [(v, d) for v, d in rows if above_half(d)]
     reference = [d for v, d in rows if v == "0.2"]
     met = bool(reference) and reference[0]["framesWonA"] / max(1, reference[0]["framesWonA"] + reference[0]["framesWonB"]) >= 0.55
     if above:
@@ -232,8 +238,7 @@ def lookahead_section(runs, selfplay):
 def lookahead_worth(runs):
     """A few words on what the one-ply matches resolve of the lookahead's worth."""
     rows = [d for o, v, d, w in runs if o == "one-ply"]
-    above = [d for d in rows if (wilson(d["framesWonA"], d["framesWonA"] + d["framesWonB"]) or (0, 0))[0] > 0.5]
-    return "is a few points of share" if above else "is too small for a hundred frames to resolve"
+    return "is a few points of share" if any(above_half(d) for d in rows) else "is too small for a hundred frames to resolve"
 
 
 def direct_pots_section(runs):
