@@ -15,7 +15,6 @@
 
 #include "physics/table/placement_repair.h"
 #include "server/limits.h"
-#include "server/model_convert.h"
 
 namespace snooker::server {
 namespace {
@@ -478,15 +477,7 @@ physics::BallBallParams BallBallParamsFrom(const v1::CollisionParameters& p, con
   if (p.has_restitution()) c.e = p.restitution();
   if (p.has_slip_gain()) c.slip_gain = p.slip_gain();
   if (p.has_slip_decay()) c.slip_decay = p.slip_decay();
-  switch (p.friction_law()) {
-    case v1::BALL_BALL_FRICTION_LAW_CONSTANT: c.friction_law = physics::BallBallFrictionLaw::kConstant; break;
-    case v1::BALL_BALL_FRICTION_LAW_MARLOW: c.friction_law = physics::BallBallFrictionLaw::kMarlow; break;
-    case v1::BALL_BALL_FRICTION_LAW_EXPONENTIAL: c.friction_law = physics::BallBallFrictionLaw::kExponential; break;
-    case v1::BALL_BALL_FRICTION_LAW_EXPONENTIAL_IMPACT_SPEED:
-      c.friction_law = physics::BallBallFrictionLaw::kExponentialImpactSpeed;
-      break;
-    default: break;  // unspecified: the base model's law
-  }
+  if (const auto law = FrictionLawFromProto(p.friction_law())) c.friction_law = *law;  // else the base model's
   return c;
 }
 

@@ -42,6 +42,16 @@ std::string CushionFrom(const v1::CushionParameters& c, physics::CushionParams* 
 
 }  // namespace
 
+std::optional<physics::BallBallFrictionLaw> FrictionLawFromProto(int law) {
+  switch (law) {
+    case v1::BALL_BALL_FRICTION_LAW_CONSTANT: return physics::BallBallFrictionLaw::kConstant;
+    case v1::BALL_BALL_FRICTION_LAW_MARLOW: return physics::BallBallFrictionLaw::kMarlow;
+    case v1::BALL_BALL_FRICTION_LAW_EXPONENTIAL: return physics::BallBallFrictionLaw::kExponential;
+    case v1::BALL_BALL_FRICTION_LAW_EXPONENTIAL_IMPACT_SPEED: return physics::BallBallFrictionLaw::kExponentialImpactSpeed;
+    default: return std::nullopt;
+  }
+}
+
 const char* FrictionLawName(physics::BallBallFrictionLaw law) {
   switch (law) {
     case physics::BallBallFrictionLaw::kMarlow: return "marlow";
@@ -63,19 +73,11 @@ std::string ModelFromProto(const v1::PhysicsModel& f, physics::Model* m) {
   Take(f.cloth(), &L::has_gravity, &L::gravity, &m->cloth.g);
   using P = v1::BallBallParameters;
   const P& bb = f.ball_ball();
-  switch (bb.friction_law()) {
-    case v1::BALL_BALL_FRICTION_LAW_UNSPECIFIED: break;
-    case v1::BALL_BALL_FRICTION_LAW_CONSTANT: m->ball_ball.friction_law = physics::BallBallFrictionLaw::kConstant; break;
-    case v1::BALL_BALL_FRICTION_LAW_MARLOW: m->ball_ball.friction_law = physics::BallBallFrictionLaw::kMarlow; break;
-    case v1::BALL_BALL_FRICTION_LAW_EXPONENTIAL:
-      m->ball_ball.friction_law = physics::BallBallFrictionLaw::kExponential;
-      break;
-    case v1::BALL_BALL_FRICTION_LAW_EXPONENTIAL_IMPACT_SPEED:
-      m->ball_ball.friction_law = physics::BallBallFrictionLaw::kExponentialImpactSpeed;
-      break;
-    default:
-      return "ball_ball.friction_law = " + std::to_string(bb.friction_law()) +
-             " (must be CONSTANT, MARLOW, EXPONENTIAL or EXPONENTIAL_IMPACT_SPEED)";
+  if (const auto law = FrictionLawFromProto(bb.friction_law())) {
+    m->ball_ball.friction_law = *law;
+  } else if (bb.friction_law() != v1::BALL_BALL_FRICTION_LAW_UNSPECIFIED) {
+    return "ball_ball.friction_law = " + std::to_string(bb.friction_law()) +
+           " (must be CONSTANT, MARLOW, EXPONENTIAL or EXPONENTIAL_IMPACT_SPEED)";
   }
   Take(bb, &P::has_mu_bb, &P::mu_bb, &m->ball_ball.mu_bb);
   Take(bb, &P::has_slip_gain, &P::slip_gain, &m->ball_ball.slip_gain);

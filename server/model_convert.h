@@ -3,6 +3,7 @@
 // write, and GetModel's `physics`.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "physics/model/model.h"
@@ -17,6 +18,10 @@ std::string ModelFromProto(const v1::PhysicsModel& file, physics::Model* model);
 
 /// Every field of `model` (the restitution curve's knots when it has one).
 void ModelToProto(const physics::Model& model, v1::PhysicsModel* out);
+
+/// The library's law for an API value; nullopt for UNSPECIFIED and for values not
+/// listed (the callers keep a base law or name the bad value).
+std::optional<physics::BallBallFrictionLaw> FrictionLawFromProto(int law);
 
 /// "constant", "marlow", "exponential" or "exponential-impact-speed".
 const char* FrictionLawName(physics::BallBallFrictionLaw law);
