@@ -195,7 +195,11 @@ struct Numbered {
 };
 std::vector<Numbered> Grouped(const std::vector<std::pair<int, physics::Vec2>>& points, double near) {
   std::vector<Numbered> groups;
-  for (const auto& [number, at] : points) {
+  for (const auto& point : points) {
+    // Named copies, not a structured binding: a lambda may not capture one before C++20
+    // compilers such as clang 14 (the sanitizer build's).
+    const int number = point.first;
+    const physics::Vec2 at = point.second;
     auto it = std::find_if(groups.begin(), groups.end(), [&](const Numbered& g) { return (g.at - at).norm() < near; });
     if (it == groups.end()) {
       groups.push_back({at, {number}});
