@@ -2,6 +2,7 @@
 // of snooker by the rules (planner/match.h), and the frames, points, breaks, fouls,
 // safeties, stalls and planning times of each are reported.
 #include <cmath>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -22,7 +23,7 @@ constexpr const char* kHelpHead = R"(usage: snooker match --frames N --seed S [-
                      [--budget-ms MS] [--noise-heading-deg X] [--noise-speed X]
                      [--noise-spin X] [--noise-position-mm X] [--cue-clearance-m X]
                      [--max-simulations N] [--samples N] [--threads N]
-                     [--max-shots N] [--progress] [--json]
+                     [--max-shots N] [--progress] [--strokes out.jsonl] [--json]
 
 Two players play whole frames of snooker by the rules: the standard start (15 reds,
 the colours on their spots, the cue ball in hand for the break-off; player A breaks
@@ -67,6 +68,13 @@ constexpr const char* kHelpTail = R"(Planner:
 Match:
   --max-shots N          strokes after which a frame is stopped (1 to 200, default 200)
   --progress             print each frame's score on stderr as it ends
+  --strokes out.jsonl    write one JSON line per stroke, as it is played: {"frame",
+                         "stroke", "striker" ("A" or "B"), "turn" ("on table", "in
+                         hand", "break-off"), "kind", "route", "stall",
+                         "potProbability" (the plan's Monte Carlo, pots only, else
+                         null), "planScore" (its ranking score, points), "potted",
+                         "foul" ("none" or the foul), "points", "penalty", "scoreA",
+                         "scoreB", "planMs"}; frames count from 0, strokes from 1
   --help                 this text
 )";
 
@@ -175,6 +183,19 @@ void PrintJson(const Parsed& p, const planner::MatchReport& r, std::ostream& out
   out << j.str();
 }
 
+// One stroke as a JSON line (--strokes).
+void PrintStroke(const planner::StrokeRecord& s, std::ostream& out) {
+  std::ostringstream j;
+  j << "{\"frame\": " << s.frame << ", \"stroke\": " << s.stroke << ", \"striker\": \"" << (s.striker == 0 ? "A" : "B")
+    << "\", \"turn\": \"" << planner::ToString(s.turn) << "\", \"kind\": \"" << planner::ToString(s.kind)
+    << "\", \"route\": \"" << planner::ToString(s.route) << "\", \"stall\": " << (s.stall ? "true" : "false")
+    << ", \"potProbability\": " << Number(s.pot_probability) << ", \"planScore\": " << Number(s.plan_score)
+    << ", \"potted\": " << s.potted << ", \"foul\": \"" << planner::ToString(s.foul) << "\", \"points\": " << s.points
+    << ", \"penalty\": " << s.penalty << ", \"scoreA\": " << s.score[0] << ", \"scoreB\": " << s.score[1]
+    << ", \"planMs\": " << Number(s.plan_ms) << "}\n";
+  out << j.str();
+}
+
 void PrintText(const planner::MatchReport& r, std::ostream& out) {
   const planner::PlayerStats& a = r.players[0];
   const planner::PlayerStats& b = r.players[1];
@@ -216,7 +237,7 @@ void PrintText(const planner::MatchReport& r, std::ostream& out) {
 }  // namespace
 
 int RunMatch(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
-  std::set<std::string> valued = {"frames", "seed", "player-a", "player-b", "max-shots"};
+  std::set<std::string> valued = {"frames", "seed", "player-a", "player-b", "max-shots", "strokes"};
   valued.insert(std::begin(kPlayFlagNames), std::end(kPlayFlagNames));
   Args args(argv, valued, {"json", "help", "progress"});
   if (args.error().empty() && args.Switch("help")) {
@@ -248,7 +269,23 @@ int RunMatch(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   p.options.outlook = [&ctx](const planner::TableState& table, bool /*cue_in_hand*/, planner::BallOn on) {
     return planner::EvaluateOutlook(table, on, ctx, planner::OutlookOptions{}).pot_probability;
   };
+  // The stroke log is opened before the first frame: a path that cannot be written
+  // fails now, not after the match.
+  std::ofstream strokes;
+  const std::string strokes_path = args.Text("strokes", "").value_or("");
+  if (!strokes_path.empty()) {
+    strokes.open(strokes_path);
+    if (!strokes) {
+      err << "snooker match: cannot write --strokes '" << strokes_path << "'\n";
+      return kExitFailure;
+    }
+    p.options.on_stroke = [&strokes](const planner::StrokeRecord& s) { PrintStroke(s, strokes); };
+  }
   const planner::MatchReport r = planner::RunMatch(planner, p.options, progress);
+  if (strokes.is_open() && !strokes.flush()) {
+    err << "snooker match: cannot write --strokes '" << strokes_path << "'\n";
+    return kExitFailure;
+  }
   if (args.Switch("json")) {
     PrintJson(p, r, out);
   } else {

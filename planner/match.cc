@@ -167,6 +167,8 @@ struct TurnChoice {
   PotRoute route = PotRoute::kDirect;
   bool stall = false;
   double plan_ms = 0;
+  double pot_probability = std::numeric_limits<double>::quiet_NaN();
+  double plan_score = std::numeric_limits<double>::quiet_NaN();
 };
 
 // The colour a shot plays first, as its nomination when a colour is on.
@@ -198,7 +200,7 @@ class MatchRunner {
 
  private:
   TurnChoice Choose(const FrameState& f, int frame, Rng& rng) const;
-  void Play(FrameState& f, const TurnChoice& c, Rng& rng, FrameSummary& summary);
+  void Play(int frame, FrameState& f, const TurnChoice& c, Rng& rng, FrameSummary& summary);
 
   const Planner& planner_;
   const MatchOptions& o_;
@@ -247,6 +249,8 @@ TurnChoice MatchRunner::Choose(const FrameState& f, int frame, Rng& rng) const {
       c.cue = p.cue;
       c.kind = p.kind;
       c.route = p.route;
+      if (p.kind == ShotKind::kPot) c.pot_probability = p.pot_probability;
+      c.plan_score = p.score;
       c.nominated = NominationFor(f, p.first_ball >= 0 ? p.first_ball : p.object_ball);
       return c;
     }
@@ -260,7 +264,7 @@ TurnChoice MatchRunner::Choose(const FrameState& f, int frame, Rng& rng) const {
   return c;
 }
 
-void MatchRunner::Play(FrameState& f, const TurnChoice& c, Rng& rng, FrameSummary& summary) {
+void MatchRunner::Play(int frame, FrameState& f, const TurnChoice& c, Rng& rng, FrameSummary& summary) {
   Stroke s;
   s.cue_start = c.cue_start;
   s.nominated = c.nominated;
@@ -279,6 +283,25 @@ void MatchRunner::Play(FrameState& f, const TurnChoice& c, Rng& rng, FrameSummar
   }
   const TurnType turn = !f.cue_in_hand ? TurnType::kOnTable : f.shots == 0 ? TurnType::kBreakOff : TurnType::kInHand;
   const StrokeResult r = ApplyStroke(f, s, model_);
+  if (o_.on_stroke) {
+    StrokeRecord rec;
+    rec.frame = frame;
+    rec.stroke = f.shots;
+    rec.striker = r.striker;
+    rec.turn = turn;
+    rec.kind = c.kind;
+    rec.route = c.route;
+    rec.stall = c.stall;
+    rec.pot_probability = c.pot_probability;
+    rec.plan_score = c.plan_score;
+    rec.potted = static_cast<int>(s.potted.size());
+    rec.foul = r.judgement.foul;
+    rec.points = r.judgement.points;
+    rec.penalty = r.judgement.penalty;
+    rec.score = f.score;
+    rec.plan_ms = c.plan_ms;
+    o_.on_stroke(rec);
+  }
   PlayerStats& p = report_.players[static_cast<size_t>(r.striker)];
   ++p.shots;
   p.plan_ms.push_back(c.plan_ms);
@@ -318,7 +341,7 @@ FrameSummary MatchRunner::PlayFrame(int frame) {
   FrameState f = StartFrame(DeriveSeed(o_.seed, index, kTieCoinStream), summary.breaker, model_);
   f.max_shots = o_.max_shots_per_frame;
   // Each stroke counts towards the frame's own cap; this bound only backs it up.
-  for (int k = 0; k <= kFrameShotCap && !f.over; ++k) Play(f, Choose(f, frame, rng), rng, summary);
+  for (int k = 0; k <= kFrameShotCap && !f.over; ++k) Play(frame, f, Choose(f, frame, rng), rng, summary);
   summary.score = f.score;
   summary.winner = f.winner;
   summary.end = f.end;

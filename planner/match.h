@@ -47,6 +47,38 @@ std::optional<PlayerKind> ParsePlayerKind(std::string_view name);
 /// Sets the request fields the player chooses (kinds, routes, lookahead).
 void ConfigureRequest(PlayerKind kind, PlanRequest* request);
 
+/// The kinds of turn whose planning times a match reports apart.
+enum class TurnType : std::uint8_t { kOnTable, kInHand, kBreakOff };
+/// "on table", "in hand", "break-off".
+const char* ToString(TurnType t);
+
+/// One stroke of a match as it was chosen and played, for a log of the match
+/// (MatchOptions::on_stroke; `snooker match --strokes`).
+struct StrokeRecord {
+  /// Frame (0-based) and stroke within it (1-based); who played it (0 A, 1 B) and
+  /// the kind of turn.
+  int frame = 0;
+  int stroke = 0;
+  int striker = 0;
+  TurnType turn = TurnType::kOnTable;
+  /// What the plan labelled the shot (meaningless for a stall: the match's own
+  /// straight shot), its Monte Carlo pot probability (NaN for shots other than pots
+  /// and for stalls) and its ranking score, points (NaN for a stall).
+  ShotKind kind = ShotKind::kPot;
+  PotRoute route = PotRoute::kDirect;
+  bool stall = false;
+  double pot_probability = 0;
+  double plan_score = 0;
+  /// What the stroke did: balls potted (the cue ball included), the foul, the
+  /// striker's points and the opponent's penalty, and the score after it.
+  int potted = 0;
+  Foul foul = Foul::kNone;
+  int points = 0;
+  int penalty = 0;
+  std::array<int, 2> score{0, 0};
+  double plan_ms = 0;
+};
+
 /// How good a table is for the side to play: its best pot probability in [0, 1],
 /// NaN when unknown. Given the table (no cue ball when it is in hand) and the ball
 /// on. Supplied by whoever can evaluate one (a planner's outlook); optional.
@@ -73,6 +105,8 @@ struct MatchOptions {
   /// The world the strokes are played in (sim-to-real: a table unlike the
   /// planner's model); none: the planner's own model.
   std::optional<physics::Model> world;
+  /// Called after every stroke, in the order of play; unset: no log.
+  std::function<void(const StrokeRecord&)> on_stroke;
 };
 
 /// Empty when `options` can be played; otherwise the bad values, named.
@@ -149,11 +183,6 @@ struct FrameSummary {
   int fouls = 0;
   bool black_respotted = false;
 };
-
-/// The kinds of turn whose planning times a match reports apart.
-enum class TurnType : std::uint8_t { kOnTable, kInHand, kBreakOff };
-/// "on table", "in hand", "break-off".
-const char* ToString(TurnType t);
 
 struct MatchReport {
   int frames = 0;

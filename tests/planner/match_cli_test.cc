@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cctype>
+#include <fstream>
 #include <set>
 #include <string>
 
@@ -90,6 +91,50 @@ TEST(CliMatchTest, TheSameSeedPlaysTheSameMatch) {
   }
   EXPECT_TRUE(google::protobuf::util::MessageDifferencer::Equals(ja, jb)) << a.out << b.out;
   EXPECT_GT(ja.fields().at("shots").number_value(), 0);
+}
+
+// --strokes: one JSON line per stroke, as many as the match's "shots", the last
+// line of each frame carrying its score; a path that cannot be written fails before
+// any frame is played.
+TEST(CliMatchTest, TheStrokeLogHasALinePerStroke) {
+  const std::string path = testing::TempDir() + "match_strokes.jsonl";
+  const RunResult r = RunCli(std::string(kShortMatch) + " --strokes " + path);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  Struct json;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &json).ok()) << r.out;
+  std::ifstream in(path);
+  std::string line;
+  int lines = 0;
+  double points_a = 0, points_b = 0;
+  const std::set<std::string> names = {"frame", "stroke", "striker", "turn", "kind", "route", "stall",
+                                       "potProbability", "planScore", "potted", "foul", "points", "penalty",
+                                       "scoreA", "scoreB", "planMs"};
+  Struct previous;
+  while (std::getline(in, line)) {
+    Struct s;
+    ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(line, &s).ok()) << line;
+    EXPECT_EQ(Keys(s), names) << line;
+    const auto& f = s.fields();
+    EXPECT_TRUE(f.at("striker").string_value() == "A" || f.at("striker").string_value() == "B") << line;
+    // A frame's last line holds its final score.
+    if (lines > 0 && f.at("frame").number_value() != previous.fields().at("frame").number_value()) {
+      points_a += previous.fields().at("scoreA").number_value();
+      points_b += previous.fields().at("scoreB").number_value();
+    }
+    previous = s;
+    ++lines;
+  }
+  ASSERT_GT(lines, 0);
+  points_a += previous.fields().at("scoreA").number_value();
+  points_b += previous.fields().at("scoreB").number_value();
+  EXPECT_EQ(lines, json.fields().at("shots").number_value());
+  EXPECT_EQ(points_a, json.fields().at("pointsA").number_value());
+  EXPECT_EQ(points_b, json.fields().at("pointsB").number_value());
+
+  const RunResult bad = RunCli(std::string(kShortMatch) + " --strokes /nonexistent-dir/strokes.jsonl");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("cannot write --strokes '/nonexistent-dir/strokes.jsonl'"), std::string::npos) << bad.err;
+  EXPECT_TRUE(bad.out.empty()) << bad.out;
 }
 
 TEST(CliMatchTest, ReadableOutputNamesThePlayers) {

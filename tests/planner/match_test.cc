@@ -188,6 +188,54 @@ TEST(MatchTest, AShortMatchIsConsistent) {
   EXPECT_GE(r.players[0].break_off_outlook.size() + r.players[1].break_off_outlook.size(), 1u);
 }
 
+// The stroke log (MatchOptions::on_stroke) replays the match: one record per stroke
+// in order, and its points and penalties add up to each frame's score.
+TEST(MatchTest, TheStrokeLogAddsUpToTheFrames) {
+  MatchOptions o = ShortMatch();
+  std::vector<StrokeRecord> log;
+  o.on_stroke = [&log](const StrokeRecord& s) { log.push_back(s); };
+  const MatchReport r = RunMatch(Planner::Default(), o);
+  ASSERT_EQ(static_cast<int>(log.size()), r.shots);
+  size_t k = 0;
+  int safeties = 0, stalls = 0;
+  for (int frame = 0; frame < r.frames; ++frame) {
+    const FrameSummary& f = r.records[static_cast<size_t>(frame)];
+    std::array<int, 2> score{0, 0};
+    for (int stroke = 1; stroke <= f.shots; ++stroke, ++k) {
+      const StrokeRecord& s = log[k];
+      EXPECT_EQ(s.frame, frame);
+      EXPECT_EQ(s.stroke, stroke);
+      EXPECT_EQ(s.turn == TurnType::kBreakOff, stroke == 1);
+      if (stroke == 1) {
+        EXPECT_EQ(s.striker, f.breaker);
+      }
+      score[static_cast<size_t>(s.striker)] += s.points;
+      score[static_cast<size_t>(1 - s.striker)] += s.penalty;
+      EXPECT_EQ(s.score, score) << "frame " << frame << " stroke " << stroke;
+      EXPECT_EQ(s.foul == Foul::kNone, s.penalty == 0);
+      if (s.foul != Foul::kNone) {
+        EXPECT_EQ(s.points, 0);
+      }
+      if (s.stall) {
+        ++stalls;
+        EXPECT_TRUE(std::isnan(s.plan_score));
+      } else {
+        EXPECT_TRUE(std::isfinite(s.plan_score));
+        if (s.kind == ShotKind::kSafety) ++safeties;
+      }
+      if (!s.stall && s.kind == ShotKind::kPot) {
+        EXPECT_GE(s.pot_probability, 0);
+        EXPECT_LE(s.pot_probability, 1);
+      } else {
+        EXPECT_TRUE(std::isnan(s.pot_probability));
+      }
+    }
+    EXPECT_EQ(score, f.score);
+  }
+  EXPECT_EQ(stalls, r.stalls);
+  EXPECT_EQ(safeties, r.players[0].safeties + r.players[1].safeties);
+}
+
 TEST(MatchTest, AMatchIsAFunctionOfItsSeed) {
   const MatchOptions o = ShortMatch();
   const MatchReport a = RunMatch(Planner::Default(), o);
