@@ -300,11 +300,12 @@ bool PlanRun::AddBreakOff() {
   if (!request_.kinds.Has(ShotKind::kBreakOff) || !IsBreakOffTable(table_, request_.cue_in_hand, *config_.table)) {
     return false;
   }
-  // Soft and thin breaks alternate: the budget searches only the first few (a
-  // break into the pack is a long simulation), and the Monte Carlo then picks
-  // between the kinds.
+  // The soft breaks; with the thin break on, the two alternate: the budget searches
+  // only the first few (a break into the pack is a long simulation), and the Monte
+  // Carlo then picks between the kinds.
   const std::vector<BreakOffCandidate> soft = SoftBreakCandidates(table_, *config_.table);
-  const std::vector<BreakOffCandidate> thin = BreakOffCandidates(table_, *config_.table);
+  const std::vector<BreakOffCandidate> thin =
+      config_.thin_break_off ? BreakOffCandidates(table_, *config_.table) : std::vector<BreakOffCandidate>{};
   std::vector<BreakOffCandidate> all;
   for (size_t k = 0; k < std::max(soft.size(), thin.size()); ++k) {
     if (k < soft.size()) all.push_back(soft[k]);

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "planner/break_off.h"
 #include "planner/frame.h"
 #include "planner/planner.h"
 #include "planner/placement.h"
@@ -190,6 +191,27 @@ TEST(ShotKindsTest, TheBreakOffHitsARedAndKeepsTheCueBall) {
     EXPECT_LT(s.foul_probability, 0.2);
     EXPECT_GT(s.monte_carlo_samples, 0);
   }
+}
+
+// The default break-off is the soft break into the pack, at most half again its
+// nominal pace (planner.cc's FromBreakOff); the thin break (5.5-7.5 m/s) is searched
+// beside it only when the configuration asks for it.
+TEST(ShotKindsTest, TheBreakOffIsSoftUnlessTheThinBreakIsAsked) {
+  const FrameState frame = StartFrame(1, 0);
+  PlanRequest r = Request(frame.table, 1500);
+  r.cue_in_hand = true;
+  const PlanAnswer soft = Planner::Default().Plan(r);
+  ASSERT_FALSE(soft.shots.empty()) << soft.reason;
+  for (const PlannedShot& s : soft.shots) {
+    EXPECT_EQ(s.kind, ShotKind::kBreakOff);
+    EXPECT_LE(s.shot.speed, 1.5 * BreakOffOptions{}.soft_speed + 1e-9);
+  }
+  EXPECT_FALSE(Planner::Config{}.thin_break_off);
+  Planner::Config config;
+  config.thin_break_off = true;
+  const PlanAnswer both = Planner(config).Plan(r);
+  ASSERT_FALSE(both.shots.empty()) << both.reason;
+  EXPECT_GT(both.searched, soft.searched);
 }
 
 TEST(ShotKindsTest, WithTheCueBallInHandAPotIsPlayedFromTheD) {
