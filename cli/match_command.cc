@@ -23,7 +23,8 @@ constexpr const char* kHelpHead = R"(usage: snooker match --frames N --seed S [-
                      [--budget-ms MS] [--noise-heading-deg X] [--noise-speed X]
                      [--noise-spin X] [--noise-position-mm X] [--cue-clearance-m X]
                      [--max-simulations N] [--samples N] [--threads N]
-                     [--max-shots N] [--progress] [--strokes out.jsonl] [--json]
+                     [--max-shots N] [--progress] [--strokes out.jsonl]
+                     [--thin-break-off] [--json]
 
 Two players play whole frames of snooker by the rules: the standard start (15 reds,
 the colours on their spots, the cue ball in hand for the break-off; player A breaks
@@ -52,11 +53,12 @@ Players:
                    "shots", "planMsP50", "planMsP99"} and more: the players and
                    settings, "framesCapped" (frames stopped at the shot cap),
                    "framesUndecided" (of those, level), "blackRespots",
-                   "simulationFailures", and per player (suffix A or B) highestBreak,
-                   centuries, penaltyPoints (from the opponent's fouls), shots, stalls,
-                   planMsP50, planMsP99, safetyOutlook and safetyOutlookP50 (the
-                   opponent's best pot probability after each safety of the player's,
-                   mean and median; null: none played), breakOffOutlook and
+                   "simulationFailures", "thinBreakOff" (--thin-break-off), and per
+                   player (suffix A or B) highestBreak, centuries, penaltyPoints
+                   (from the opponent's fouls), shots, stalls, planMsP50,
+                   planMsP99, safetyOutlook and safetyOutlookP50 (the opponent's
+                   best pot probability after each safety of the player's, mean
+                   and median; null: none played), breakOffOutlook and
                    breakOffOutlookP50 (the same after each of its break-offs)
 Noise (standard deviations; the same options as snooker selfplay):
 )";
@@ -68,6 +70,9 @@ constexpr const char* kHelpTail = R"(Planner:
 Match:
   --max-shots N          strokes after which a frame is stopped (1 to 200, default 200)
   --progress             print each frame's score on stderr as it ends
+  --thin-break-off       the planners also search the thin break-off on an end red
+                         beside the soft break into the pack (PlannerConfig::
+                         thin_break_off; off by default: docs/whole-frame-planner.md)
   --strokes out.jsonl    write one JSON line per stroke, as it is played: {"frame",
                          "stroke", "striker" ("A" or "B"), "turn" ("on table", "in
                          hand", "break-off"), "kind", "route", "stall",
@@ -82,6 +87,7 @@ struct Parsed {
   planner::MatchOptions options;
   double budget_ms = 80;
   std::optional<physics::Model> model;  // the planners' (--model)
+  bool thin_break_off = false;          // --thin-break-off
 };
 
 // The options from the flags; an error message naming the flag and value otherwise.
@@ -144,6 +150,7 @@ void PrintJson(const Parsed& p, const planner::MatchReport& r, std::ostream& out
   j << ", \"playerA\": \"" << planner::ToString(a.kind) << "\", \"playerB\": \"" << planner::ToString(b.kind)
     << "\", \"seed\": " << o.seed << ", \"budgetMs\": " << Number(p.budget_ms)
     << ", \"maxSimulations\": " << o.max_simulations
+    << ", \"thinBreakOff\": " << (p.thin_break_off ? "true" : "false")
     << ", \"noiseHeadingDeg\": " << Number(physics::RadToDeg(o.noise.heading))
     << ", \"noiseSpeed\": " << Number(o.noise.speed_fraction) << ", \"noiseSpin\": " << Number(o.noise.topspin)
     << ", \"noiseAimDeg\": " << Number(physics::RadToDeg(o.noise.aim))
@@ -239,7 +246,7 @@ void PrintText(const planner::MatchReport& r, std::ostream& out) {
 int RunMatch(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
   std::set<std::string> valued = {"frames", "seed", "player-a", "player-b", "max-shots", "strokes"};
   valued.insert(std::begin(kPlayFlagNames), std::end(kPlayFlagNames));
-  Args args(argv, valued, {"json", "help", "progress"});
+  Args args(argv, valued, {"json", "help", "progress", "thin-break-off"});
   if (args.error().empty() && args.Switch("help")) {
     out << kHelpHead << kPlayFlagsHelp << kHelpTail;
     return kExitOk;
@@ -260,7 +267,12 @@ int RunMatch(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   // After each safety: the opponent's best pot probability, by the planner's own
   // fast estimate (outlook.h; from the D when the cue ball is in hand).
   std::optional<planner::Planner> own;
-  if (p.model) own.emplace(planner::PlannerConfig{}.WithModel(*p.model));
+  p.thin_break_off = args.Switch("thin-break-off");
+  if (p.model || p.thin_break_off) {
+    planner::PlannerConfig config = p.model ? planner::PlannerConfig{}.WithModel(*p.model) : planner::PlannerConfig{};
+    config.thin_break_off = p.thin_break_off;
+    own.emplace(config);
+  }
   const planner::Planner& planner = own ? *own : planner::Planner::Default();
   planner::PlanRequest seen;
   seen.noise = p.options.noise;

@@ -41,7 +41,7 @@ TEST(CliMatchTest, JsonHasTheContractedNames) {
   const std::set<std::string> more = {
       "playerA",      "playerB",       "seed",           "budgetMs",          "maxSimulations",
       "noiseHeadingDeg", "noiseSpeed", "noiseSpin", "noiseAimDeg", "noiseCueSpeed", "noiseTipMm", "noiseElevationDeg", "noisePositionMm",   "maxShots",
-      "framesCapped", "framesUndecided", "blackRespots", "simulationFailures", "highestBreakA",
+      "framesCapped", "framesUndecided", "blackRespots", "simulationFailures", "thinBreakOff", "highestBreakA",
       "highestBreakB", "centuriesA",   "centuriesB",     "penaltyPointsA",    "penaltyPointsB",
       "shotsA",       "shotsB",        "stallsA",        "stallsB",           "planMsP50A",
       "planMsP50B",   "planMsP99A",    "planMsP99B",     "safetyOutlookA",    "safetyOutlookB",
@@ -54,6 +54,7 @@ TEST(CliMatchTest, JsonHasTheContractedNames) {
   EXPECT_EQ(f.at("frames").number_value(), 2);
   EXPECT_EQ(f.at("playerA").string_value(), "default");
   EXPECT_EQ(f.at("playerB").string_value(), "direct-pots");
+  EXPECT_FALSE(f.at("thinBreakOff").bool_value());
   EXPECT_LE(f.at("framesWonA").number_value() + f.at("framesWonB").number_value(), 2);
   EXPECT_GT(f.at("shots").number_value(), 0);
   EXPECT_LE(f.at("shots").number_value(), 16);
@@ -135,6 +136,19 @@ TEST(CliMatchTest, TheStrokeLogHasALinePerStroke) {
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.err.find("cannot write --strokes '/nonexistent-dir/strokes.jsonl'"), std::string::npos) << bad.err;
   EXPECT_TRUE(bad.out.empty()) << bad.out;
+}
+
+// --thin-break-off: the planners search the thin break beside the soft one, and the
+// JSON says so; one frame's break-off only.
+TEST(CliMatchTest, TheThinBreakOffIsAskedForByFlag) {
+  const RunResult r = RunCli(
+      "match --frames 1 --seed 5 --json --max-simulations 60 --samples 8 --budget-ms 30000 --max-shots 1 "
+      "--thin-break-off");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  Struct json;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &json).ok()) << r.out;
+  EXPECT_TRUE(json.fields().at("thinBreakOff").bool_value());
+  EXPECT_EQ(json.fields().at("shots").number_value(), 1);
 }
 
 TEST(CliMatchTest, ReadableOutputNamesThePlayers) {
