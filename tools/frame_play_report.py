@@ -3,11 +3,13 @@
 
 Usage: tools/frame_play_report.py DATA_DIR OUTPUT COMMAND [REVISION]
 Reads DATA_DIR/frame-play-<opponent>-<vision>-mm.json (and the wall time in the .time
-file beside each, when there is one) for the opponents direct-pots and one-ply and the
+file beside each, and the stroke log of `snooker match --strokes`, gzipped, in the
+.strokes.jsonl.gz file, when there are) for the opponents direct-pots and one-ply and the
 vision noises 0.2 and 0.5 mm; the matches missing are left out, none is an error.
 COMMAND is the command that made the data, REVISION the commit measured; both are
 named in the document. Standard library only.
 """
+import gzip
 import json
 import math
 import os
@@ -40,6 +42,110 @@ def load(data_dir):
                     wall = float(f.read().strip())
             runs.append((opponent, vision, d, wall))
     return runs
+
+
+def load_strokes(data_dir, opponent, vision):
+    """The stroke log of a match (a list of dicts, in the order of play), or None."""
+    path = os.path.join(data_dir, f"frame-play-{opponent}-{vision}-mm.strokes.jsonl.gz")
+    if not os.path.exists(path):
+        return None
+    with gzip.open(path, "rt") as f:
+        return [json.loads(line) for line in f if line.strip()]
+
+
+def frames_of(strokes):
+    """The log's strokes by frame, in frame order."""
+    frames = {}
+    for s in strokes:
+        frames.setdefault(s["frame"], []).append(s)
+    return [frames[k] for k in sorted(frames)]
+
+
+def visits_of(frame):
+    """A frame's visits: (striker, points scored, its strokes)."""
+    visits = []
+    for s in frame:
+        if not visits or visits[-1][0] != s["striker"]:
+            visits.append([s["striker"], 0, []])
+        visits[-1][1] += s["points"]
+        visits[-1][2].append(s)
+    return visits
+
+
+# What handed the winner the visit that won the frame: the loser's last stroke before it.
+CAUSES = (
+    ("stall", "the loser had no shot (no pot for direct-pots: the straight shot at the nearest ball on)"),
+    ("miss high", "the loser missed a pot its plan rated at least 0.9"),
+    ("miss low", "the loser missed a pot its plan rated below 0.9"),
+    ("foul", "the loser fouled"),
+    ("safety", "after the loser's safety or escape"),
+    ("break-off", "after the loser's break-off"),
+    ("first", "the winner's own first visit (it broke off and scored)"),
+)
+
+
+def cause(visits, k):
+    """Why visit k came to its striker: CAUSES' key."""
+    if k == 0:
+        return "first"
+    last = visits[k - 1][2][-1]
+    if last["stall"]:
+        return "stall"
+    if last["foul"] != "none":
+        return "foul"
+    if last["turn"] == "break-off":
+        return "break-off"
+    if last["kind"] == "POT":
+        p = last["potProbability"]
+        return "miss high" if p is not None and p >= 0.9 else "miss low"
+    return "safety"
+
+
+def decided_section(strokes, d):
+    """How the frames of a match were decided, from its stroke log."""
+    if not strokes:
+        return ""
+    frames = frames_of(strokes)
+    by_breaker = {"A": [0, 0], "B": [0, 0]}
+    answer = {"A": {"potted": 0, "missed": 0, "stall": 0}, "B": {"potted": 0, "missed": 0, "stall": 0}}
+    causes = {key: [0, 0] for key, _ in CAUSES}
+    for frame in frames:
+        last = frame[-1]
+        breaker = frame[0]["striker"]
+        if len(frame) > 1 and frame[1]["striker"] != breaker:
+            nxt = frame[1]
+            kind = "stall" if nxt["stall"] else ("potted" if nxt["points"] > 0 else "missed")
+            answer[breaker][kind] += 1
+        if last["scoreA"] == last["scoreB"]:
+            continue
+        winner = "A" if last["scoreA"] > last["scoreB"] else "B"
+        by_breaker[breaker][0 if winner == "A" else 1] += 1
+        visits = visits_of(frame)
+        best = max((k for k, v in enumerate(visits) if v[0] == winner), key=lambda k: visits[k][1])
+        causes[cause(visits, best)][0 if winner == "A" else 1] += 1
+    a, b = d["playerA"], d["playerB"]
+    out = "\n## How the frames were decided\n\n"
+    out += ("From the match's stroke log (`snooker match --strokes`, saved gzipped beside its JSON). "
+            f"By who broke off: when `{a}` broke off it won {by_breaker['A'][0]} of "
+            f"{sum(by_breaker['A'])} decided frames, when `{b}` did, {by_breaker['B'][0]} of "
+            f"{sum(by_breaker['B'])}. The stroke after each break-off that handed the table over: after `{a}`'s, "
+            f"`{b}` potted a ball {answer['A']['potted']} times, missed a pot {answer['A']['missed']} times and "
+            f"had no pot {answer['A']['stall']} times; after `{b}`'s, `{a}` potted {answer['B']['potted']} "
+            f"times and missed or played another kind of shot {answer['B']['missed']} times.\n\n")
+    out += ("A frame's winning visit is the winner's highest-scoring one; what handed it the table is the "
+            "loser's last stroke before it.\n\n")
+    out += f"| what handed the winner its winning visit | frames won by `{a}` | frames won by `{b}` |\n|---|---:|---:|\n"
+    for key, what in CAUSES:
+        out += f"| {what} | {causes[key][0]} | {causes[key][1]} |\n"
+    lost = sum(v[1] for v in causes.values())
+    if lost:
+        missed = causes["miss high"][1] + causes["miss low"][1]
+        out += (f"\nOf the {lost} frames `{b}` won, {missed} came after `{a}` missed a pot "
+                f"({causes['miss high'][1]} of them rated at least 0.9 by its plan), {causes['foul'][1]} after its "
+                f"fouls and {causes['safety'][1]} after its safeties. Of the {sum(v[0] for v in causes.values())} "
+                f"`{a}` won, {causes['stall'][0]} came after `{b}` had no pot. `{a}` loses frames in its potting, "
+                f"where `{b}` is the same planner, and wins them where `{b}` has no shot.\n")
+    return out
 
 
 def wilson(wins, n, z=1.96):
@@ -269,8 +375,8 @@ def direct_pots_section(runs):
             f"lookahead's worth against `one-ply` (below) {lookahead_worth(runs)}, where 80 % needs "
             f"{max(0.0, 80 - 100 * won):.0f} more points of share against `direct-pots`.\n")
     if d.get("breakOffOutlookA") is not None and d.get("breakOffOutlookB") is not None:
-        out += ("\nThe break-off opens every frame. After the default's break-offs (the thin break on an end red "
-                "or the soft break into the pack, whichever its Monte Carlo prefers: planner/break_off.h) "
+        out += ("\nThe break-off opens every frame. After the default's break-offs (the soft break into the "
+                "pack: planner/break_off.h) "
                 f"`direct-pots`' best pot had a mean probability of {d['breakOffOutlookA']:.2f} (median "
                 f"{d['breakOffOutlookP50A']:.2f}); after `direct-pots`' own, a firm straight shot into the pack, the "
                 f"default's had {d['breakOffOutlookB']:.2f} (median {d['breakOffOutlookP50B']:.2f}). Both by the "
@@ -299,7 +405,8 @@ def selfplay_table(runs):
     return out
 
 
-def document(runs, command, revision, selfplay=()):
+def document(runs, command, revision, selfplay=(), strokes=None):
+    strokes = strokes or {}
     first = runs[0][2]
     frames = first["frames"]
     budget = first["budgetMs"]
@@ -346,6 +453,9 @@ plans end on the clock, so a rerun on a loaded machine differs in its details.
 """
     out += targets_table(runs, selfplay)
     out += direct_pots_section(runs)
+    for opponent, vision, d, wall in runs:
+        if opponent == "direct-pots" and vision == "0.2":
+            out += decided_section(strokes.get((opponent, vision)), d)
     out += lookahead_section(runs, selfplay)
     out += """
 ## All matches
@@ -385,7 +495,8 @@ def main(argv):
         print(f"frame_play_report.py: no frame-play-*.json in {data_dir}", file=sys.stderr)
         return 1
     with open(output, "w") as f:
-        f.write(document(runs, command, revision, load_selfplay(data_dir)))
+        strokes = {(o, v): load_strokes(data_dir, o, v) for o, v, _, _ in runs}
+        f.write(document(runs, command, revision, load_selfplay(data_dir), strokes))
     return 0
 
 
