@@ -44,7 +44,7 @@
 // which judges what a break leaves by the opponent's best pots (outlook.h), rates
 // the two kinds alike (about -15 to -30 points each) while in whole frames against
 // direct-pots the thin break let it pot a red at once in 32 of 50 frames and the
-// soft break in none of 50.
+// soft break in none of 50 (docs/whole-frame-planner.md §9).
 //
 // The rack is untouched when every one of the 15 reds lies within rack_tolerance of
 // a distinct position of the opening triangle (physics::TableModel::reds()): a

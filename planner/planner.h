@@ -271,7 +271,7 @@ struct PlannerConfig {
   /// thin break on an end red. Off: the Monte Carlo rates the two alike, but in whole
   /// frames against an opponent who pots as well as this planner the thin break
   /// handed it a red to pot at once in 32 of 50 frames and the soft break in none
-  /// (docs/frame-play.md).
+  /// (docs/whole-frame-planner.md §9).
   bool thin_break_off = false;
   /// Safeties are searched only when no pot's fast estimate reaches this: a table
   /// with a near-certain pot is not one to play safe on.
