@@ -143,8 +143,10 @@ def decided_section(strokes, d):
         out += (f"\nOf the {lost} frames `{b}` won, {missed} came after `{a}` missed a pot "
                 f"({causes['miss high'][1]} of them rated at least 0.9 by its plan), {causes['foul'][1]} after its "
                 f"fouls and {causes['safety'][1]} after its safeties. Of the {sum(v[0] for v in causes.values())} "
-                f"`{a}` won, {causes['stall'][0]} came after `{b}` had no pot. `{a}` loses frames in its potting, "
-                f"where `{b}` is the same planner, and wins them where `{b}` has no shot.\n")
+                f"`{a}` won, {causes['stall'][0]} came after `{b}` had no pot"
+                f"{' (its straight shot at the nearest ball on)' if causes['stall'][0] else ''}: `{a}` wins where "
+                f"`{b}` plays a different game from its own, and loses after its own misses and safeties, against an opponent "
+                "that is its own pot search.\n")
     return out
 
 
@@ -368,10 +370,9 @@ def direct_pots_section(runs):
             f"{d['foulsA']}), and {d['safetiesA']} safeties after which its best pot had a median probability of "
             f"{d['safetyOutlookP50A']:.2f}. On the visits that score, both pot like the strong players they are: "
             f"mean break {d['meanBreakA']:.1f} against {d['meanBreakB']:.1f}, centuries {d['centuriesA']} "
-            f"against {d['centuriesB']}, highest {d['highestBreakA']} against {d['highestBreakB']}. Frames between "
-            "players who make centuries are decided mostly on those visits, where the default's edge is its mean "
-            "break, not a different game; the turns where it plays a different game are too few to carry four "
-            "frames in five. The target's anchor, the Deep Green robot, credits its 80 % to lookahead; here the "
+            f"against {d['centuriesB']}, highest {d['highestBreakA']} against {d['highestBreakB']}. Which turns "
+            "decide the frames is below, from the match's stroke log. The target's anchor, the Deep Green robot, "
+            "credits its 80 % to lookahead; here the "
             f"lookahead's worth against `one-ply` (below) {lookahead_worth(runs)}, where 80 % needs "
             f"{max(0.0, 80 - 100 * won):.0f} more points of share against `direct-pots`.\n")
     if d.get("breakOffOutlookA") is not None and d.get("breakOffOutlookB") is not None:
