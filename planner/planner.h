@@ -268,9 +268,10 @@ struct PlannerConfig {
   /// The physical model it plans with (taken from `full` and `cue`).
   physics::Model model() const { return physics::ModelOf(full, cue); }
   /// The break-off: the soft break into the pack only (break_off.h), or also the
-  /// thin break on an end red. Off: the Monte Carlo rates the two alike, but in whole
-  /// frames against an opponent who pots as well as this planner the thin break
-  /// handed it a red to pot at once in 32 of 50 frames and the soft break in none
+  /// thin break on an end red. Off: the search's noiseless score prefers the thin
+  /// break, so it is the one that reaches the Monte Carlo, but in whole frames
+  /// against an opponent who pots as well as this planner it handed that opponent a
+  /// red to pot at once in 32 of 50 frames and the soft break in none
   /// (docs/whole-frame-planner.md §9).
   bool thin_break_off = false;
   /// Safeties are searched only when no pot's fast estimate reaches this: a table
