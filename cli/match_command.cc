@@ -121,6 +121,7 @@ std::string Parse(Args& args, Parsed* p) {
   o.monte_carlo_samples = play.monte_carlo_samples;
   o.threads = play.threads;
   o.max_shots_per_frame = static_cast<int>(*shots);
+  p->thin_break_off = args.Switch("thin-break-off");
   o.world = play.world;
   p->model = play.model;
   return planner::MatchOptionsError(o);
@@ -267,7 +268,6 @@ int RunMatch(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   // After each safety: the opponent's best pot probability, by the planner's own
   // fast estimate (outlook.h; from the D when the cue ball is in hand).
   std::optional<planner::Planner> own;
-  p.thin_break_off = args.Switch("thin-break-off");
   if (p.model || p.thin_break_off) {
     planner::PlannerConfig config = p.model ? planner::PlannerConfig{}.WithModel(*p.model) : planner::PlannerConfig{};
     config.thin_break_off = p.thin_break_off;

@@ -24,6 +24,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -67,8 +68,8 @@ struct StrokeRecord {
   ShotKind kind = ShotKind::kPot;
   PotRoute route = PotRoute::kDirect;
   bool stall = false;
-  double pot_probability = 0;
-  double plan_score = 0;
+  double pot_probability = std::numeric_limits<double>::quiet_NaN();
+  double plan_score = std::numeric_limits<double>::quiet_NaN();
   /// What the stroke did: balls potted (the cue ball included), the foul, the
   /// striker's points and the opponent's penalty, and the score after it.
   int potted = 0;

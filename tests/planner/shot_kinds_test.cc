@@ -170,11 +170,17 @@ TEST(ShotKindsTest, ASafetyPlaysABallOnAndFoulsNothing) {
   }
 }
 
-TEST(ShotKindsTest, TheBreakOffHitsARedAndKeepsTheCueBall) {
+// The opening table, the cue ball in hand, 1500 simulations.
+PlanRequest BreakOffRequest() {
   const FrameState frame = StartFrame(1, 0);
-  ASSERT_TRUE(frame.cue_in_hand);
+  EXPECT_TRUE(frame.cue_in_hand);
   PlanRequest r = Request(frame.table, 1500);
   r.cue_in_hand = true;
+  return r;
+}
+
+TEST(ShotKindsTest, TheBreakOffHitsARedAndKeepsTheCueBall) {
+  const PlanRequest r = BreakOffRequest();
   const PlanAnswer answer = Planner::Default().Plan(r);
   ASSERT_FALSE(answer.shots.empty()) << answer.reason;
   for (const PlannedShot& s : answer.shots) {
@@ -197,9 +203,7 @@ TEST(ShotKindsTest, TheBreakOffHitsARedAndKeepsTheCueBall) {
 // nominal pace (planner.cc's FromBreakOff); the thin break (5.5-7.5 m/s) is searched
 // beside it only when the configuration asks for it.
 TEST(ShotKindsTest, TheBreakOffIsSoftUnlessTheThinBreakIsAsked) {
-  const FrameState frame = StartFrame(1, 0);
-  PlanRequest r = Request(frame.table, 1500);
-  r.cue_in_hand = true;
+  const PlanRequest r = BreakOffRequest();
   const PlanAnswer soft = Planner::Default().Plan(r);
   ASSERT_FALSE(soft.shots.empty()) << soft.reason;
   for (const PlannedShot& s : soft.shots) {
