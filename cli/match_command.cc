@@ -150,7 +150,8 @@ void PrintJson(const Parsed& p, const planner::MatchReport& r, std::ostream& out
     << ", \"planMsP99\": " << Number(r.plan_ms_p99);
   j << ", \"playerA\": \"" << planner::ToString(a.kind) << "\", \"playerB\": \"" << planner::ToString(b.kind)
     << "\", \"seed\": " << o.seed << ", \"budgetMs\": " << Number(p.budget_ms)
-    << ", \"maxSimulations\": " << o.max_simulations
+    << ", \"maxSimulations\": " << o.max_simulations << ", \"samples\": " << o.monte_carlo_samples
+    << ", \"threads\": " << o.threads
     << ", \"thinBreakOff\": " << (p.thin_break_off ? "true" : "false")
     << ", \"noiseHeadingDeg\": " << Number(physics::RadToDeg(o.noise.heading))
     << ", \"noiseSpeed\": " << Number(o.noise.speed_fraction) << ", \"noiseSpin\": " << Number(o.noise.topspin)

@@ -39,7 +39,7 @@ TEST(CliMatchTest, JsonHasTheContractedNames) {
                                           "foulsB",     "safetiesA",  "safetiesB",  "stalls",    "shots",
                                           "planMsP50",  "planMsP99"};
   const std::set<std::string> more = {
-      "playerA",      "playerB",       "seed",           "budgetMs",          "maxSimulations",
+      "playerA",      "playerB",       "seed",           "budgetMs",          "maxSimulations", "samples", "threads",
       "noiseHeadingDeg", "noiseSpeed", "noiseSpin", "noiseAimDeg", "noiseCueSpeed", "noiseTipMm", "noiseElevationDeg", "noisePositionMm",   "maxShots",
       "framesCapped", "framesUndecided", "blackRespots", "simulationFailures", "thinBreakOff", "highestBreakA",
       "highestBreakB", "centuriesA",   "centuriesB",     "penaltyPointsA",    "penaltyPointsB",
@@ -55,6 +55,10 @@ TEST(CliMatchTest, JsonHasTheContractedNames) {
   EXPECT_EQ(f.at("playerA").string_value(), "default");
   EXPECT_EQ(f.at("playerB").string_value(), "direct-pots");
   EXPECT_FALSE(f.at("thinBreakOff").bool_value());
+  // The settings a rerun needs, as given (kShortMatch) or defaulted.
+  EXPECT_EQ(f.at("maxSimulations").number_value(), 60);
+  EXPECT_EQ(f.at("samples").number_value(), 8);
+  EXPECT_EQ(f.at("threads").number_value(), 2);
   EXPECT_LE(f.at("framesWonA").number_value() + f.at("framesWonB").number_value(), 2);
   EXPECT_GT(f.at("shots").number_value(), 0);
   EXPECT_LE(f.at("shots").number_value(), 16);
