@@ -101,6 +101,81 @@ def cause(visits, k):
     return "safety"
 
 
+# How a scoring visit ended: its last stroke (the frame's end when it was the frame's last).
+ENDINGS = (
+    ("frame end", "the frame ended"),
+    ("miss high", "a missed pot the plan rated at least 0.9"),
+    ("miss low", "a missed pot the plan rated below 0.9"),
+    ("foul", "a foul"),
+    ("safety", "a safety or escape"),
+    ("stall", "no shot (the straight shot at the nearest ball on)"),
+)
+
+# The bins of the plan's pot probability, as [low, high).
+POT_BINS = ((0.0, 0.5), (0.5, 0.7), (0.7, 0.8), (0.8, 0.9), (0.9, 0.95), (0.95, 1.01))
+
+
+def potted(stroke):
+    """Whether a pot stroke dropped a ball on: it scored and was no foul."""
+    return stroke["points"] > 0 and stroke["foul"] == "none"
+
+
+def endings_table(frames, a, b):
+    """How each player's scoring visits ended, with their mean points."""
+    tally = {side: {key: [] for key, _ in ENDINGS} for side in "AB"}
+    for frame in frames:
+        visits = visits_of(frame)
+        for k, (striker, points, strokes) in enumerate(visits):
+            if points == 0:
+                continue
+            last = strokes[-1]
+            if k == len(visits) - 1:
+                key = "frame end"
+            elif last["foul"] != "none":
+                key = "foul"
+            elif last["stall"]:
+                key = "stall"
+            elif last["kind"] == "POT":
+                p = last["potProbability"]
+                key = "miss high" if p is not None and p >= 0.9 else "miss low"
+            else:
+                key = "safety"
+            tally[striker][key].append(points)
+    out = f"| a scoring visit ended with | `{a}`: visits | mean break | `{b}`: visits | mean break |\n|---|---:|---:|---:|---:|\n"
+    for key, what in ENDINGS:
+        cells = []
+        for side in "AB":
+            v = tally[side][key]
+            cells += [str(len(v)), f"{sum(v) / len(v):.1f}" if v else "-"]
+        out += f"| {what} | " + " | ".join(cells) + " |\n"
+    return out
+
+
+def calibration_table(frames, a, b):
+    """The plan's pot probability against the pots' played results, per player."""
+    bins = {side: [[0, 0, 0.0] for _ in POT_BINS] for side in "AB"}
+    for frame in frames:
+        for s in frame:
+            p = s["potProbability"]
+            if s["kind"] != "POT" or s["stall"] or p is None:
+                continue
+            for i, (lo, hi) in enumerate(POT_BINS):
+                if lo <= p < hi:
+                    cell = bins[s["striker"]][i]
+                    cell[0] += 1
+                    cell[1] += potted(s)
+                    cell[2] += p
+    out = (f"| plan's pot probability | `{a}`: pots | planned | dropped | `{b}`: pots | planned | dropped |\n"
+           "|---|---:|---:|---:|---:|---:|---:|\n")
+    for i, (lo, hi) in enumerate(POT_BINS):
+        cells = []
+        for side in "AB":
+            n, ok, psum = bins[side][i]
+            cells += [str(n), f"{psum / n:.3f}" if n else "-", f"{ok / n:.3f}" if n else "-"]
+        out += f"| {lo:.2f}-{min(hi, 1.0):.2f} | " + " | ".join(cells) + " |\n"
+    return out
+
+
 def decided_section(strokes, d):
     """How the frames of a match were decided, from its stroke log."""
     if not strokes:
@@ -147,6 +222,22 @@ def decided_section(strokes, d):
                 f"{' (its straight shot at the nearest ball on)' if causes['stall'][0] else ''}: `{a}` wins where "
                 f"`{b}` plays a different game from its own, and loses after its own misses and safeties, against an opponent "
                 "that is its own pot search.\n")
+    out += ("\nHow the visits that scored ended (a visit that ended the frame is counted there, whatever "
+            "its last stroke):\n\n")
+    out += endings_table(frames, a, b)
+    out += ("\nThe plan's pot probability (its Monte Carlo) against what the pots it chose did when played, "
+            "stalls apart. A ball on that dropped counts, on any route; the planned column is the mean of "
+            "the plans' probabilities in the bin.\n\n")
+    out += calibration_table(frames, a, b)
+    sure = [s for frame in frames for s in frame
+            if s["striker"] == "A" and s["kind"] == "POT" and not s["stall"] and (s["potProbability"] or 0) >= 0.95]
+    if sure:
+        planned = sum(s["potProbability"] for s in sure) / len(sure)
+        dropped = sum(potted(s) for s in sure) / len(sure)
+        out += (f"\nThe plans' probabilities hold when played: `{a}`'s {len(sure)} pots rated at least 0.95 "
+                f"dropped {100 * dropped:.1f} % of the time against {100 * planned:.1f} % planned. Its misses of "
+                "near-certain pots are the execution and vision noise the Monte Carlo already counts, not an "
+                "optimistic plan; each hands the table to an opponent that pots as well as it does.\n")
     return out
 
 
