@@ -4,9 +4,10 @@
 //   planner_report estimate [POSITION_MM]  the fast pot estimate against Monte Carlo
 //       with the full simulator: seeded two-ball positions, every candidate pocket,
 //       the plain rolling pot the estimate assumes (RollingPotShot), 400 samples.
-//   planner_report fidelity                what the search's cheaper settings cost and
-//       change: the same shots at several impact tolerances, with and without the
-//       early stop, against the full-fidelity run.
+//   planner_report fidelity                what the planner's simulator tiers and
+//       cheaper settings cost and change: the same shots at the search's and the
+//       default tier and with the solvers alone at several tolerances, with and
+//       without the early stop, against the converged tier run to the end.
 //   planner_report search                  the search's choices at equal work: local
 //       algorithm, global stage, throw prediction; each variant plans the same
 //       tables and its best shot is judged by an independent Monte Carlo.
@@ -18,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "physics/sim/fidelity.h"
 #include "planner/planner.h"
 #include "planner/robustness.h"
 #include "planner/selfplay.h"
@@ -130,11 +132,34 @@ std::vector<TestShot> SearchLikeShots(int frames) {
   return shots;
 }
 
+// One simulator setting of the fidelity comparison.
+struct FidelitySetting {
+  const char* name;
+  double tolerance;  // the impact solvers' (kSearch: its own kSearchTolerance)
+  physics::SimParams params;
+};
+
+std::vector<FidelitySetting> FidelitySettings() {
+  using physics::Fidelity;
+  using physics::FidelityParams;
+  std::vector<FidelitySetting> out;
+  out.push_back({"the search's tier", physics::kSearchTolerance, FidelityParams(Fidelity::kSearch)});
+  out.push_back({"the default tier", physics::SimParams::kShotTolerance, FidelityParams(Fidelity::kDefault)});
+  // The adaptive solvers alone (no impact tables) at a sweep of tolerances.
+  for (const double tol : {1e-10, 1e-8, 1e-6, 1e-4, 1e-3}) {
+    physics::SimParams p;
+    p.impact_tables = false;
+    p.ball_ball_solver.tolerance = p.cushion_solver.tolerance = tol;
+    out.push_back({"solvers only", tol, p});
+  }
+  return out;
+}
+
 int Fidelity() {
   std::vector<TestShot> shots = SearchLikeShots(40);
   const physics::TableModel& table = physics::DefaultTable();
-  // Reference: full fidelity, run to the end.
-  ShotSimulator full(table, physics::SimParams{});
+  // Reference: the converged tier (DOP853 at 1e-12, every impact solved), run to the end.
+  ShotSimulator full(table, physics::FidelityParams(physics::Fidelity::kReference));
   struct Ref {
     bool success;
     double offset;
@@ -147,13 +172,15 @@ int Fidelity() {
     ref.push_back({o.success, o.line.offset, o.line.valid,
                    full.final_balls()[static_cast<size_t>(s.setup.cue)].r});
   }
-  std::printf("{\"shots\": %zu, \"settings\": [\n", shots.size());
+  // A change of the object ball's line that matters: a tenth of a millimetre, far
+  // inside a pocket's tolerance.
+  constexpr double kLineChange = 1e-4;
+  std::printf("{\"shots\": %zu, \"reference\": \"DOP853 at 1e-12, no impact tables\", \"settings\": [\n",
+              shots.size());
   bool first = true;
-  for (const double tol : {1e-10, 1e-8, 1e-6, 1e-4, 1e-3}) {
+  for (const FidelitySetting& setting : FidelitySettings()) {
     for (const bool early : {false, true}) {
-      physics::SimParams p;
-      p.ball_ball_solver.tolerance = p.cushion_solver.tolerance = tol;
-      ShotSimulator sim(table, p);
+      ShotSimulator sim(table, setting.params);
       const auto mode = early ? ShotSimulator::Mode::kDecide : ShotSimulator::Mode::kFull;
       // CPU time: the fastest of 5 passes over all shots (interference only adds).
       double best = 1e9;
@@ -164,26 +191,38 @@ int Fidelity() {
         for (const TestShot& s : shots) events += sim.Run(s.setup, s.shot, {}, mode, {}).events;
         best = std::min(best, ThreadCpuSeconds() - t0);
       }
-      int disagree = 0, successes = 0;
+      int disagree = 0, successes = 0, lines = 0, lines_changed = 0;
       double max_offset = 0, max_end = 0, sum_end = 0;
+      std::vector<double> ends;
       for (size_t i = 0; i < shots.size(); ++i) {
         const ShotOutcome& o = sim.Run(shots[i].setup, shots[i].shot, {}, mode, {});
         disagree += o.success != ref[i].success;
-        if (o.line.valid && ref[i].line) max_offset = std::max(max_offset, std::abs(o.line.offset - ref[i].offset));
+        if (o.line.valid && ref[i].line) {
+          const double change = std::abs(o.line.offset - ref[i].offset);
+          max_offset = std::max(max_offset, change);
+          ++lines;
+          lines_changed += change > kLineChange;
+        }
         if (o.success && ref[i].success) {
           const double d = (sim.final_balls()[static_cast<size_t>(shots[i].setup.cue)].r - ref[i].cue_end).norm();
           max_end = std::max(max_end, d);
           sum_end += d;
+          ends.push_back(d);
           ++successes;
         }
       }
-      std::printf("%s{\"tolerance\": %g, \"early_stop\": %s, \"cpu_us_per_shot\": %.3f, "
-                  "\"events_per_shot\": %.2f, \"verdicts_changed\": %d, \"max_line_offset_change_mm\": %.6f, "
-                  "\"mean_cue_end_change_mm\": %.6f, \"max_cue_end_change_mm\": %.6f}",
-                  first ? "" : ",\n", tol, early ? "true" : "false",
+      std::sort(ends.begin(), ends.end());
+      const double median_end = ends.empty() ? 0.0 : ends[ends.size() / 2];
+      std::printf("%s{\"setting\": \"%s\", \"tolerance\": %g, \"impact_tables\": %s, \"early_stop\": %s, "
+                  "\"cpu_us_per_shot\": %.3f, \"events_per_shot\": %.2f, \"verdicts_changed\": %d, "
+                  "\"lines_compared\": %d, \"lines_changed_over_0_1_mm\": %d, \"max_line_offset_change_mm\": %.6f, "
+                  "\"mean_cue_end_change_mm\": %.6f, \"median_cue_end_change_mm\": %.6f, "
+                  "\"max_cue_end_change_mm\": %.6f}",
+                  first ? "" : ",\n", setting.name, setting.tolerance,
+                  setting.params.impact_tables ? "true" : "false", early ? "true" : "false",
                   best / static_cast<double>(shots.size()) * 1e6,
-                  static_cast<double>(events) / static_cast<double>(shots.size()), disagree,
-                  max_offset * 1e3, successes ? sum_end / successes * 1e3 : 0.0, max_end * 1e3);
+                  static_cast<double>(events) / static_cast<double>(shots.size()), disagree, lines, lines_changed,
+                  max_offset * 1e3, successes ? sum_end / successes * 1e3 : 0.0, median_end * 1e3, max_end * 1e3);
       first = false;
     }
   }
