@@ -146,7 +146,7 @@ std::vector<FidelitySetting> FidelitySettings() {
   out.push_back({"the search's tier", physics::kSearchTolerance, FidelityParams(Fidelity::kSearch)});
   out.push_back({"the default tier", physics::SimParams::kShotTolerance, FidelityParams(Fidelity::kDefault)});
   // The adaptive solvers alone (no impact tables) at a sweep of tolerances.
-  for (const double tol : {1e-10, 1e-8, 1e-6, 1e-4, 1e-3}) {
+  for (const double tol : {1e-10, 1e-8, 1e-7, 1e-6, 1e-4, 1e-3}) {
     physics::SimParams p;
     p.impact_tables = false;
     p.ball_ball_solver.tolerance = p.cushion_solver.tolerance = tol;
