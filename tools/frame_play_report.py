@@ -234,10 +234,13 @@ def decided_section(strokes, d):
     if sure:
         planned = sum(s["potProbability"] for s in sure) / len(sure)
         dropped = sum(potted(s) for s in sure) / len(sure)
-        out += (f"\nThe plans' probabilities hold when played: `{a}`'s {len(sure)} pots rated at least 0.95 "
-                f"dropped {100 * dropped:.1f} % of the time against {100 * planned:.1f} % planned. Its misses of "
-                "near-certain pots are the execution and vision noise the Monte Carlo already counts, not an "
-                "optimistic plan; each hands the table to an opponent that pots as well as it does.\n")
+        expected = sum(1 - s["potProbability"] for s in sure)
+        missed = sum(not potted(s) for s in sure)
+        out += (f"\n`{a}`'s {len(sure)} pots rated at least 0.95 dropped {100 * dropped:.1f} % of the time against "
+                f"{100 * planned:.1f} % planned: its plans expected {expected:.0f} misses among them and {missed} "
+                "happened. Most of its misses of near-certain pots are the execution and vision noise the Monte "
+                "Carlo counts; the rest is the small optimism of taking the best of a few estimates (48 samples "
+                "each). Each miss hands the table to an opponent that pots as well as it does.\n")
     return out
 
 
