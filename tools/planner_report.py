@@ -229,14 +229,14 @@ def main():
         cut_table += f"| {lo}-{hi} | {n} | {m:.3f} | {w:.3f} |\n"
 
     fid_rows = fid["settings"]
-    def fid_row(name, early):
-        return next(s for s in fid_rows if s["setting"] == name and s["early_stop"] == early)
+    def fid_row(name, early, tolerance=None):
+        return next(s for s in fid_rows if s["setting"] == name and s["early_stop"] == early
+                    and (tolerance is None or s["tolerance"] == tolerance))
     base = fid_row("the default tier", False)
     search_tier = fid_row("the search's tier", True)
-    fine = next(s for s in fid_rows if s["setting"] == "solvers only" and s["tolerance"] == 1e-10 and not s["early_stop"])
-    fine_early = next(s for s in fid_rows if s["setting"] == "solvers only" and s["tolerance"] == 1e-10 and s["early_stop"])
-    same = next(s for s in fid_rows if s["setting"] == "solvers only" and s["tolerance"] == base["tolerance"]
-                and not s["early_stop"])
+    fine = fid_row("solvers only", False, 1e-10)
+    fine_early = fid_row("solvers only", True, 1e-10)
+    same = fid_row("solvers only", False, base["tolerance"])
     fid_table = ("| setting | impact tolerance | impact tables | early stop | CPU us per shot | relative cost | "
                  "events per shot | verdicts changed | object-ball lines changed by > 0.1 mm | largest line change (mm) | "
                  "median / mean / largest change of the cue ball's end (mm) |\n"
