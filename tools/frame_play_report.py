@@ -84,11 +84,8 @@ CAUSES = (
 )
 
 
-def cause(visits, k):
-    """Why visit k came to its striker: CAUSES' key."""
-    if k == 0:
-        return "first"
-    last = visits[k - 1][2][-1]
+def handover(last):
+    """What a visit's last stroke, which handed the table over, was: CAUSES' key."""
     if last["stall"]:
         return "stall"
     if last["foul"] != "none":
@@ -101,6 +98,11 @@ def cause(visits, k):
     return "safety"
 
 
+def cause(visits, k):
+    """Why visit k came to its striker: CAUSES' key."""
+    return "first" if k == 0 else handover(visits[k - 1][2][-1])
+
+
 # How a scoring visit ended: its last stroke (the frame's end when it was the frame's last).
 ENDINGS = (
     ("frame end", "the frame ended"),
@@ -108,6 +110,7 @@ ENDINGS = (
     ("miss low", "a missed pot the plan rated below 0.9"),
     ("foul", "a foul"),
     ("safety", "a safety or escape"),
+    ("break-off", "a break-off"),
     ("stall", "no shot (the straight shot at the nearest ball on)"),
 )
 
@@ -128,18 +131,7 @@ def endings_table(frames, a, b):
         for k, (striker, points, strokes) in enumerate(visits):
             if points == 0:
                 continue
-            last = strokes[-1]
-            if k == len(visits) - 1:
-                key = "frame end"
-            elif last["foul"] != "none":
-                key = "foul"
-            elif last["stall"]:
-                key = "stall"
-            elif last["kind"] == "POT":
-                p = last["potProbability"]
-                key = "miss high" if p is not None and p >= 0.9 else "miss low"
-            else:
-                key = "safety"
+            key = "frame end" if k == len(visits) - 1 else handover(strokes[-1])
             tally[striker][key].append(points)
     out = f"| a scoring visit ended with | `{a}`: visits | mean break | `{b}`: visits | mean break |\n|---|---:|---:|---:|---:|\n"
     for key, what in ENDINGS:
@@ -151,8 +143,8 @@ def endings_table(frames, a, b):
     return out
 
 
-def calibration_table(frames, a, b):
-    """The plan's pot probability against the pots' played results, per player."""
+def calibration_bins(frames):
+    """Per player and POT_BINS bin: [pots, pots that dropped, sum of the plans' probabilities]."""
     bins = {side: [[0, 0, 0.0] for _ in POT_BINS] for side in "AB"}
     for frame in frames:
         for s in frame:
@@ -165,6 +157,11 @@ def calibration_table(frames, a, b):
                     cell[0] += 1
                     cell[1] += potted(s)
                     cell[2] += p
+    return bins
+
+
+def calibration_table(bins, a, b):
+    """The plan's pot probability against the pots' played results, per player."""
     out = (f"| plan's pot probability | `{a}`: pots | planned | dropped | `{b}`: pots | planned | dropped |\n"
            "|---|---:|---:|---:|---:|---:|---:|\n")
     for i, (lo, hi) in enumerate(POT_BINS):
@@ -228,15 +225,13 @@ def decided_section(strokes, d):
     out += ("\nThe plan's pot probability (its Monte Carlo) against what the pots it chose did when played, "
             "stalls apart. A ball on that dropped counts, on any route; the planned column is the mean of "
             "the plans' probabilities in the bin.\n\n")
-    out += calibration_table(frames, a, b)
-    sure = [s for frame in frames for s in frame
-            if s["striker"] == "A" and s["kind"] == "POT" and not s["stall"] and (s["potProbability"] or 0) >= 0.95]
-    if sure:
-        planned = sum(s["potProbability"] for s in sure) / len(sure)
-        dropped = sum(potted(s) for s in sure) / len(sure)
-        expected = sum(1 - s["potProbability"] for s in sure)
-        missed = sum(not potted(s) for s in sure)
-        out += (f"\n`{a}`'s {len(sure)} pots rated at least 0.95 dropped {100 * dropped:.1f} % of the time against "
+    bins = calibration_bins(frames)
+    out += calibration_table(bins, a, b)
+    # The last bin: the pots rated at least 0.95.
+    n, ok, psum = bins["A"][-1]
+    if n:
+        planned, dropped, expected, missed = psum / n, ok / n, n - psum, n - ok
+        out += (f"\n`{a}`'s {n} pots rated at least 0.95 dropped {100 * dropped:.1f} % of the time against "
                 f"{100 * planned:.1f} % planned: its plans expected {expected:.0f} misses among them and {missed} "
                 "happened. Most of its misses of near-certain pots are the execution and vision noise the Monte "
                 "Carlo counts; the rest is the small optimism of taking the best of a few estimates (48 samples "
