@@ -143,11 +143,11 @@ std::vector<FieldError> ValidateCollideRequest(const v1::CollideRequest& r) {
                 physics::limits::kSpinDecel, "rad/s^2");
   CheckEnum(&errors, p.friction_law(), v1::BallBallFrictionLaw_IsValid(p.friction_law()),
             "parameters.friction_law", v1::BallBallFrictionLaw_descriptor());
-  CheckOptional(&errors, p, &P::has_slip_gain, &P::slip_gain, "parameters.slip_gain",
-                physics::limits::kFrictionCoefficient);
-  CheckOptional(&errors, p, &P::has_slip_decay, &P::slip_decay, "parameters.slip_decay", physics::Range{0, 100},
-                "s/m");
-  if (p.has_slip_gain() && p.slip_gain() + (p.has_mu_bb() ? p.mu_bb() : physics::BallBallParams{}.mu_bb) > 1) {
+  CheckOptional(&errors, p, &P::has_slip_gain, &P::slip_gain, "parameters.slip_gain", physics::limits::kSlipGain);
+  CheckOptional(&errors, p, &P::has_slip_decay, &P::slip_decay, "parameters.slip_decay",
+                physics::limits::kSlipDecay, "s/m");
+  if (p.has_slip_gain() && p.slip_gain() + (p.has_mu_bb() ? p.mu_bb() : physics::BallBallParams{}.mu_bb) >
+                                physics::limits::kFrictionCoefficient.hi) {
     errors.push_back({"parameters.slip_gain", Num(p.slip_gain()), "must be at most 1 - mu_bb (mu(0) <= 1)"});
   }
   using S = v1::ImpulseSolverOptions;

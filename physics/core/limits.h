@@ -26,6 +26,11 @@ namespace limits {
 /// mu_bb <= 1 with mu_s <= 1 keeps the normal relative velocity strictly falling
 /// during an impact, which bounds the impulse and the integrators' step count.
 inline constexpr Range kFrictionCoefficient{0, 1};
+/// The exponential friction laws' b (dimensionless) and c (s/m), mu = a + b exp(-c s)
+/// (core/params.h); b also keeps mu at zero speed, a + b, a friction coefficient
+/// (kFrictionCoefficient), so that the bound on the impulse above holds for it.
+inline constexpr Range kSlipGain{0, 1};
+inline constexpr Range kSlipDecay{0, 100};
 /// Energetic coefficient of restitution (Stronge).
 inline constexpr Range kRestitution{0, 1};
 /// Ball mass, kg, and radius, m, an API may ask for: from a marble to a bowling ball.

@@ -43,10 +43,10 @@ std::string ValidateBallBallParams(const BallBallParams& p) {
   Check(out, limits::kRestitution.Contains(p.e), "e", p.e, "in [0, 1]");
   if (IsExponentialLaw(p.friction_law)) {
     // mu(0) = a + b <= 1 keeps the same bound on the impulse as mu_bb <= 1.
-    Check(out, Finite(p.slip_gain) && p.slip_gain >= 0 && p.mu_bb + p.slip_gain <= 1, "slip_gain",
-          p.slip_gain, "finite, >= 0, with mu_bb + slip_gain <= 1");
-    Check(out, Finite(p.slip_decay) && p.slip_decay >= 0 && p.slip_decay <= 100, "slip_decay",
-          p.slip_decay, "in [0, 100] s/m");
+    Check(out,
+          limits::kSlipGain.Contains(p.slip_gain) && limits::kFrictionCoefficient.Contains(p.mu_bb + p.slip_gain),
+          "slip_gain", p.slip_gain, "finite, >= 0, with mu_bb + slip_gain <= 1");
+    Check(out, limits::kSlipDecay.Contains(p.slip_decay), "slip_decay", p.slip_decay, "in [0, 100] s/m");
   }
   const int law = static_cast<int>(p.friction_law);
   Check(out, law >= 0 && law <= static_cast<int>(BallBallFrictionLaw::kExponentialImpactSpeed),

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <string>
 
+#include "physics/core/limits.h"
+
 namespace snooker::physics {
 
 /// A snooker ball: a uniform solid sphere.
@@ -81,6 +83,14 @@ inline FrictionCurve FrictionCurveOf(const BallBallParams& p) {
 /// Is `law` one of the two exponential forms, whose three numbers are free?
 inline bool IsExponentialLaw(BallBallFrictionLaw law) {
   return law == BallBallFrictionLaw::kExponential || law == BallBallFrictionLaw::kExponentialImpactSpeed;
+}
+
+/// Whether an exponential law's b and c are in their ranges (limits::kSlipGain,
+/// kSlipDecay) with mu at zero speed, mu_bb + b, a friction coefficient; mu_bb's own
+/// range is checked apart. No allocation: the impact solver asks on every call.
+inline bool ExponentialLawInRange(double mu_bb, double slip_gain, double slip_decay) {
+  return limits::kSlipGain.Contains(slip_gain) && limits::kFrictionCoefficient.Contains(mu_bb + slip_gain) &&
+         limits::kSlipDecay.Contains(slip_decay);
 }
 
 /// `p` with the law mu = f.a + f.b exp(-f.c s) in the form `law` (kExponential, or

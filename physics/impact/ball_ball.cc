@@ -26,8 +26,7 @@ bool OptionsValid(const ImpulseSolverOptions& o) {
 bool InUnit(double x) { return std::isfinite(x) && x >= 0 && x <= 1; }
 bool ParamsValid(const BallParams& ball, const BallBallParams& contact, double mu_s) {
   if (IsExponentialLaw(contact.friction_law) &&
-      !(InUnit(contact.slip_gain) && contact.mu_bb + contact.slip_gain <= 1 &&
-        std::isfinite(contact.slip_decay) && contact.slip_decay >= 0 && contact.slip_decay <= 100)) {
+      !ExponentialLawInRange(contact.mu_bb, contact.slip_gain, contact.slip_decay)) {
     return false;
   }
   return std::isfinite(ball.mass) && ball.mass > 0 && std::isfinite(ball.radius) &&

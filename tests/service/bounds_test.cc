@@ -165,6 +165,31 @@ TEST(CollideBoundsTest, UnknownEnumValuesAreRejected) {
   EXPECT_TRUE(Mentions(st.message, "IMPULSE_INTEGRATOR_FIXED_STEP (2)")) << st.message;
 }
 
+// The exponential law's b and c are checked against physics/core/limits.h's ranges,
+// named by their fields; mu at zero speed, mu_bb + b, may reach 1 and no more.
+TEST(CollideBoundsTest, ExponentialLawNumbersOutsideTheirRangesAreRejectedByName) {
+  v1::CollideRequest r = req::PaperCollide();
+  r.mutable_parameters()->set_friction_law(v1::BALL_BALL_FRICTION_LAW_EXPONENTIAL);
+  r.mutable_parameters()->set_mu_bb(0.05);
+  r.mutable_parameters()->set_slip_gain(0.95);
+  r.mutable_parameters()->set_slip_decay(physics::limits::kSlipDecay.hi);
+  v1::CollideResponse resp;
+  ASSERT_EQ(Collide(r, &resp).code, Code::kOk);
+
+  r.mutable_parameters()->set_slip_gain(0.96);
+  r.mutable_parameters()->set_slip_decay(physics::limits::kSlipDecay.hi + 1);
+  const ApiStatus st = Collide(r, &resp);
+  EXPECT_EQ(st.code, Code::kInvalidArgument);
+  EXPECT_TRUE(Mentions(st.message, "parameters.slip_gain = 0.96 (must be at most 1 - mu_bb")) << st.message;
+  EXPECT_TRUE(Mentions(st.message, "parameters.slip_decay = 101")) << st.message;
+
+  r.mutable_parameters()->set_slip_gain(-0.1);
+  r.mutable_parameters()->set_slip_decay(1);
+  const ApiStatus negative = Collide(r, &resp);
+  EXPECT_EQ(negative.code, Code::kInvalidArgument);
+  EXPECT_TRUE(Mentions(negative.message, "parameters.slip_gain = -0.1")) << negative.message;
+}
+
 TEST(SimulateBoundsTest, UnknownBallKindIsRejected) {
   v1::SimulateRequest r = req::BreakOff(1, 0, 0);
   r.mutable_table()->mutable_balls(2)->set_kind(v1::BallKind(99));

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <iomanip>
 #include <sstream>
 #include <array>
@@ -436,6 +437,38 @@ TEST(AdaptiveTest, ExponentialFrictionLawOutOfRangeIsRejectedByName) {
   EXPECT_NE(ValidateImpact(in, {}, law, 0.21, Adaptive(1e-10)).find("slip_decay = -1"), std::string::npos);
   law.slip_decay = 1;
   EXPECT_EQ(ValidateImpact(in, {}, law, 0.21, Adaptive(1e-10)), "");
+}
+
+// The exponential law's ranges live in physics/core/limits.h; the solver's quiet
+// check on every call (ExponentialLawInRange) and the validator that names the bad
+// value must agree everywhere, at the bounds and just outside them, NaN and
+// infinities included.
+TEST(AdaptiveTest, ExponentialLawRangeCheckAgreesWithTheValidator) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double hi_gain = limits::kSlipGain.hi, hi_decay = limits::kSlipDecay.hi;
+  int valid = 0, invalid = 0;
+  for (const double mu_bb : {0.0, 0.05, 0.5, 1.0}) {
+    for (const double gain : {-1e-9, 0.0, 0.3, 0.95, 0.950001, hi_gain, hi_gain + 1e-9, nan, inf}) {
+      for (const double decay : {-1e-9, 0.0, 3.0, hi_decay, hi_decay * (1 + 1e-12), nan, -inf}) {
+        BallBallParams law{.mu_bb = mu_bb, .e = 0.89, .friction_law = BallBallFrictionLaw::kExponential};
+        law.slip_gain = gain;
+        law.slip_decay = decay;
+        const bool in_range = ExponentialLawInRange(mu_bb, gain, decay);
+        EXPECT_EQ(in_range, ValidateBallBallParams(law).empty())
+            << "mu_bb " << mu_bb << " b " << gain << " c " << decay << ": " << ValidateBallBallParams(law);
+        EXPECT_EQ(in_range, ResolveImpact(PaperIncidentState(1.0, 0.0, 0.0, 0.3), {}, law, 0.21, Adaptive(1e-8))
+                                    .status != ImpactStatus::kInvalidInput)
+            << "mu_bb " << mu_bb << " b " << gain << " c " << decay;
+        (in_range ? valid : invalid) += 1;
+      }
+    }
+  }
+  // Both answers occur: mu(0) = 1 exactly is in range, 1 + 1e-9 is not.
+  EXPECT_TRUE(ExponentialLawInRange(0.05, 0.95, hi_decay));
+  EXPECT_FALSE(ExponentialLawInRange(0.05, 0.950001, 0));
+  EXPECT_GT(valid, 20);
+  EXPECT_GT(invalid, 100);
 }
 
 // The impact-speed form is the constant law at mu = a + b exp(-c v_n), v_n the
