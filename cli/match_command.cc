@@ -79,7 +79,11 @@ Match:
                          "potProbability" (the plan's Monte Carlo, pots only, else
                          null), "planScore" (its ranking score, points), "potted",
                          "foul" ("none" or the foul), "points", "penalty", "scoreA",
-                         "scoreB", "planMs"}; frames count from 0, strokes from 1
+                         "scoreB", "planMs", "handoverPot" (when the stroke handed
+                         the table over and the frame goes on, the incoming
+                         player's best pot probability by the planner's fast
+                         estimate, as safetyOutlook measures it; else null)};
+                         frames count from 0, strokes from 1
   --help                 this text
 )";
 
@@ -201,7 +205,7 @@ void PrintStroke(const planner::StrokeRecord& s, std::ostream& out) {
     << ", \"potProbability\": " << Number(s.pot_probability) << ", \"planScore\": " << Number(s.plan_score)
     << ", \"potted\": " << s.potted << ", \"foul\": \"" << planner::ToString(s.foul) << "\", \"points\": " << s.points
     << ", \"penalty\": " << s.penalty << ", \"scoreA\": " << s.score[0] << ", \"scoreB\": " << s.score[1]
-    << ", \"planMs\": " << Number(s.plan_ms) << "}\n";
+    << ", \"planMs\": " << Number(s.plan_ms) << ", \"handoverPot\": " << Number(s.handover_outlook) << "}\n";
   out << j.str();
 }
 

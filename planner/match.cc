@@ -283,6 +283,9 @@ void MatchRunner::Play(int frame, FrameState& f, const TurnChoice& c, Rng& rng, 
   }
   const TurnType turn = !f.cue_in_hand ? TurnType::kOnTable : f.shots == 0 ? TurnType::kBreakOff : TurnType::kInHand;
   const StrokeResult r = ApplyStroke(f, s, model_);
+  // The incoming player's outlook, when the stroke handed the table over.
+  double handover = std::numeric_limits<double>::quiet_NaN();
+  if (o_.outlook && !f.over && f.striker != r.striker) handover = o_.outlook(f.table, f.cue_in_hand, f.ball_on);
   if (o_.on_stroke) {
     StrokeRecord rec;
     rec.frame = frame;
@@ -300,6 +303,7 @@ void MatchRunner::Play(int frame, FrameState& f, const TurnChoice& c, Rng& rng, 
     rec.penalty = r.judgement.penalty;
     rec.score = f.score;
     rec.plan_ms = c.plan_ms;
+    rec.handover_outlook = handover;
     o_.on_stroke(rec);
   }
   PlayerStats& p = report_.players[static_cast<size_t>(r.striker)];
@@ -320,16 +324,10 @@ void MatchRunner::Play(int frame, FrameState& f, const TurnChoice& c, Rng& rng, 
     report_.players[static_cast<size_t>(1 - r.striker)].penalty_points += r.judgement.penalty;
   }
   if (r.visit_over && r.break_points > 0) p.breaks.push_back(r.break_points);
-  if (turn == TurnType::kBreakOff && o_.outlook && !f.over && f.striker != r.striker) {
-    const double v = o_.outlook(f.table, f.cue_in_hand, f.ball_on);
-    if (std::isfinite(v)) p.break_off_outlook.push_back(v);
-  }
+  if (turn == TurnType::kBreakOff && std::isfinite(handover)) p.break_off_outlook.push_back(handover);
   if (c.kind == ShotKind::kSafety && !c.stall) {
     ++p.safeties;
-    if (o_.outlook && !f.over && f.striker != r.striker) {
-      const double v = o_.outlook(f.table, f.cue_in_hand, f.ball_on);
-      if (std::isfinite(v)) p.safety_outlook.push_back(v);
-    }
+    if (std::isfinite(handover)) p.safety_outlook.push_back(handover);
   }
 }
 

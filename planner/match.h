@@ -78,6 +78,12 @@ struct StrokeRecord {
   int penalty = 0;
   std::array<int, 2> score{0, 0};
   double plan_ms = 0;
+  /// When the stroke handed the table to the other player and the frame goes on:
+  /// that player's best pot probability by MatchOptions::outlook (what a safety is
+  /// measured by, here after every kind of stroke, so that a plan's belief about
+  /// what a miss leaves can be checked against what the opponent then did). NaN
+  /// otherwise, or with no outlook set.
+  double handover_outlook = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// How good a table is for the side to play: its best pot probability in [0, 1],

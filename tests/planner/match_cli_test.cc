@@ -113,7 +113,7 @@ TEST(CliMatchTest, TheStrokeLogHasALinePerStroke) {
   double points_a = 0, points_b = 0;
   const std::set<std::string> names = {"frame", "stroke", "striker", "turn", "kind", "route", "stall",
                                        "potProbability", "planScore", "potted", "foul", "points", "penalty",
-                                       "scoreA", "scoreB", "planMs"};
+                                       "scoreA", "scoreB", "planMs", "handoverPot"};
   Struct previous;
   while (std::getline(in, line)) {
     Struct s;

@@ -135,6 +135,8 @@ TEST(MatchTest, AShortMatchIsConsistent) {
     ++outlooks;
     return 0.25;
   };
+  std::vector<StrokeRecord> log;
+  o.on_stroke = [&log](const StrokeRecord& s) { log.push_back(s); };
   int frames_seen = 0;
   const MatchReport r = RunMatch(Planner::Default(), o, [&](int frame, const FrameSummary&) {
     EXPECT_EQ(frame, frames_seen);
@@ -182,8 +184,23 @@ TEST(MatchTest, AShortMatchIsConsistent) {
   }
   EXPECT_EQ(r.players[0].kind, PlayerKind::kDefault);
   EXPECT_EQ(r.players[1].kind, PlayerKind::kDirectPots);
-  EXPECT_EQ(outlooks, static_cast<int>(r.players[0].safety_outlook.size() + r.players[1].safety_outlook.size() +
-                                       r.players[0].break_off_outlook.size() + r.players[1].break_off_outlook.size()));
+  // The outlook is asked once per handover (the next stroke of the frame is the
+  // other player's), logged with that stroke, and the safeties' and break-offs'
+  // figures are those strokes' values.
+  int handovers = 0;
+  for (size_t k = 0; k < log.size(); ++k) {
+    const bool handed_over = k + 1 < log.size() && log[k + 1].frame == log[k].frame &&
+                             log[k + 1].striker != log[k].striker;
+    EXPECT_EQ(std::isfinite(log[k].handover_outlook), handed_over) << "stroke " << k;
+    if (!handed_over) continue;
+    ++handovers;
+    EXPECT_EQ(log[k].handover_outlook, 0.25);
+  }
+  EXPECT_GT(handovers, 0);
+  EXPECT_EQ(outlooks, handovers);
+  EXPECT_LE(r.players[0].safety_outlook.size() + r.players[1].safety_outlook.size() +
+                r.players[0].break_off_outlook.size() + r.players[1].break_off_outlook.size(),
+            static_cast<size_t>(handovers));
   // Each frame's break-off hands the table over unless it pots a red.
   EXPECT_GE(r.players[0].break_off_outlook.size() + r.players[1].break_off_outlook.size(), 1u);
 }
