@@ -171,6 +171,7 @@ class PlanRun {
   void Allocate();
   void SearchAndVerify();
   ShotSetup SetupFor(const Candidate& cand) const;
+  ShotSetup SetupFor(const PlannedShot& ps) const;
   std::optional<PlannedShot> Verify(Worker& w, const Candidate& cand, const ShotCandidate& sc, size_t task);
   std::vector<const ShotCandidate*> Alternatives(const Candidate& cand, const SearchResult& r) const;
   void Fallback();
@@ -434,33 +435,91 @@ ShotSetup PlanRun::SetupFor(const Candidate& cand) const {
           TouchingBallOn(table, on_, *config_.table)};
 }
 
+namespace {
+
+// `setup` as the pot of `object` into `pocket` that a stroke searched as another kind
+// turned out to be: the first ball it hit names a plant when that is another ball.
+ShotSetup AsPot(ShotSetup setup, int object, physics::PocketId pocket, int first_hit) {
+  setup.kind = ShotKind::kPot;
+  setup.object = object;
+  setup.pocket = pocket;
+  setup.first = first_hit != object ? first_hit : -1;
+  return setup;
+}
+
+}  // namespace
+
+// A verified shot's setup: its candidate's, unless verification found it a pot of
+// another kind's search (Verify), which its labels then describe.
+ShotSetup PlanRun::SetupFor(const PlannedShot& ps) const {
+  const Candidate& cand = candidates_[static_cast<size_t>(ps.source)];
+  const ShotSetup setup = SetupFor(cand);
+  if (ps.kind == cand.kind) return setup;
+  return AsPot(setup, ps.object_ball, ps.pocket, ps.first_ball);
+}
+
+namespace {
+
+// The first ball on that `out` dropped legally (the visit goes on), or -1.
+int LegalPotOf(const TableState& table, BallOn on, const ShotOutcome& out) {
+  const std::optional<BallKind> nominated =
+      out.first_hit >= 0 ? std::optional<BallKind>(table.balls[static_cast<size_t>(out.first_hit)].kind) : std::nullopt;
+  const ShotJudgement j = JudgeShot(table, on, nominated, out.first_hit, out.potted);
+  if (j.legal_pots == 0 || !j.potted_kind) return -1;
+  for (const int i : out.potted) {
+    if (table.balls[static_cast<size_t>(i)].kind == *j.potted_kind) return i;
+  }
+  return -1;
+}
+
+}  // namespace
+
 // The candidate's best shot simulated again at full fidelity, to the end. Its labels
 // (kind, route, object ball, pocket) are what this simulation did, not what was
-// intended.
+// intended: a safety or an escape that drops a ball on continues the visit, so it is
+// that ball's pot (by the route it took), simulated again as one so that its object
+// ball is followed (and the Monte Carlo counts its drops), or dropped when the
+// request does not take such a pot.
 std::optional<PlannedShot> PlanRun::Verify(Worker& w, const Candidate& cand, const ShotCandidate& sc,
                                            size_t task) {
-  const ShotSetup setup = SetupFor(cand);
+  ShotSetup setup = SetupFor(cand);
   const TableState& table = *setup.table;
-  const ShotOutcome& out =
-      w.full.Run(setup, sc.shot, {}, ShotSimulator::Mode::kFull, schedule_.final.AsInterrupt());
-  const bool pot = cand.kind == ShotKind::kPot;
-  const PotRoute route = pot ? RouteOf(out, cand.object) : PotRoute::kDirect;
+  const physics::Interrupt interrupt = schedule_.final.AsInterrupt();
+  const ShotOutcome* run = &w.full.Run(setup, sc.shot, {}, ShotSimulator::Mode::kFull, interrupt);
+  bool relabelled = false;
+  if ((cand.kind == ShotKind::kSafety || cand.kind == ShotKind::kEscape) && run->success) {
+    if (const int dropped = LegalPotOf(table, on_, *run); dropped >= 0) {
+      if (!request_.kinds.Has(ShotKind::kPot)) {
+        failed_verification_[task] = 1;
+        return std::nullopt;
+      }
+      const int pocket = w.full.simulator().pocket_of(dropped);
+      setup = AsPot(setup, dropped, static_cast<physics::PocketId>(pocket), run->first_hit);
+      run = &w.full.Run(setup, sc.shot, {}, ShotSimulator::Mode::kFull, interrupt);
+      relabelled = true;
+    }
+  }
+  const ShotOutcome& out = *run;
+  const bool pot = setup.kind == ShotKind::kPot;
+  const PotRoute route = pot ? RouteOf(out, setup.object) : PotRoute::kDirect;
   if (!out.success || (pot && !request_.routes.Has(route))) {
     // An interrupted check says nothing about the shot: it is dropped unverified.
     if (out.status != physics::SimStatus::kInterrupted) failed_verification_[task] = 1;
     return std::nullopt;
   }
   PlannedShot ps;
-  ps.kind = cand.kind;
+  ps.kind = setup.kind;
   ps.route = route;
   ps.cue_start = cand.cue_start;
   ps.cue = sc.cue;
   ps.shot = sc.shot;
   ps.cut = sc.cut;
   ps.first_ball = out.first_hit;
-  ps.object_ball = pot ? cand.object : out.first_hit;
+  ps.object_ball = pot ? setup.object : out.first_hit;
   if (pot) ps.pocket = static_cast<physics::PocketId>(out.object_pocket);
-  ps.pot_probability = pot ? sc.pot_estimate : 0;
+  // A relabelled stroke has no estimate from its search (which judged another kind):
+  // its nominal run drops the ball, and the Monte Carlo gives the probability.
+  ps.pot_probability = pot ? (relabelled ? 1.0 : sc.pot_estimate) : 0;
   ps.pocket_probability = ps.pot_probability;
   ps.pot_estimate = ps.pot_probability;
   const auto events = w.full.simulator().events();
@@ -473,7 +532,7 @@ std::optional<PlannedShot> PlanRun::Verify(Worker& w, const Candidate& cand, con
                                                    : std::nullopt});
   }
   ps.cue_ball_end = finals[static_cast<size_t>(setup.cue)];
-  const Leave leave = pot ? ScoreLeave(table, on_, cand.object, finals, out.potted, sc.pot_estimate, after_ctx_, settings_)
+  const Leave leave = pot ? ScoreLeave(table, on_, setup.object, finals, out.potted, ps.pot_probability, after_ctx_, settings_)
                           : ScoreSafety(table, on_, out.first_hit, finals, out.potted, after_ctx_, settings_);
   ps.position_value = leave.position.value;
   ps.position_points = leave.position.expected_points;
@@ -599,7 +658,7 @@ double PlanRun::NextShotValue(Worker& w, const PlannedShot& ps, int evaluations,
     if (ps.balls_end[i].pocket) potted.push_back(static_cast<int>(i));
   }
   const TableState after = ApplyShot(table, on_, finals, potted, false, *config_.table);
-  const auto next_on = NextBallOn(on_, table.balls[static_cast<size_t>(cand.object)].kind, after);
+  const auto next_on = NextBallOn(on_, table.balls[static_cast<size_t>(ps.object_ball)].kind, after);
   if (!next_on || after.cue_index() < 0) return 0;
   const CandidateSet next = EnumerateCandidates(after, *next_on, after_ctx_);
   SearchSettings s = settings_;
@@ -674,13 +733,12 @@ void PlanRun::RankByMonteCarlo() {
   ParallelFor(request_.threads, n * blocks, [&](int task, int worker) {
     const int s = task / blocks, b = task % blocks;
     const PlannedShot& ps = shots_[static_cast<size_t>(s)];
-    const Candidate& cand = candidates_[static_cast<size_t>(ps.source)];
     // Streams keyed by the shot itself (kind, object, pocket) and the block, so a
     // shot's samples do not depend on the other shots ranked with it.
     const std::uint64_t key = (static_cast<std::uint64_t>(ps.kind) * 64 + static_cast<std::uint64_t>(ps.object_ball + 1)) * 8 +
                               static_cast<std::uint64_t>(ps.pocket);
     tallies[static_cast<size_t>(task)] =
-        RunSamples(SetupFor(cand), ps.cue, ctx_, settings_, workers_[static_cast<size_t>(worker)]->full,
+        RunSamples(SetupFor(ps), ps.cue, ctx_, settings_, workers_[static_cast<size_t>(worker)]->full,
                    schedule_.monte_carlo, DeriveSeed(request_.seed, key, static_cast<std::uint64_t>(b)), kBlock);
   });
   for (int s = 0; s < n; ++s) {

@@ -8,8 +8,8 @@ namespace snooker::planner {
 
 enum class ShotKind : std::uint8_t {
   kPot,       ///< pots a ball on
-  kSafety,    ///< plays a ball on and leaves the opponent as little as it can
-  kEscape,    ///< out of a snooker: a ball on hit first, through one or more cushions
+  kSafety,    ///< plays a ball on, leaves the opponent as little as it can, drops no ball on
+  kEscape,    ///< out of a snooker: a ball on hit first, through cushions; drops no ball on
   kBreakOff,  ///< the frame's first shot, from the D into the reds
 };
 inline constexpr int kShotKindCount = 4;

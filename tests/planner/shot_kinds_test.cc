@@ -170,6 +170,47 @@ TEST(ShotKindsTest, ASafetyPlaysABallOnAndFoulsNothing) {
   }
 }
 
+// Labels say what a stroke does: a stroke the safety search found that drops a ball on
+// continues the visit, so it is a pot of that ball (named, with its pocket and route),
+// never a safety. On tables whose pots are long (no estimate near certain, so safeties
+// are searched beside them), no shot labelled a safety or an escape drops a ball on
+// when replayed,
+// and every pot does what its labels say; asked for safeties alone, the planner
+// answers only strokes that drop nothing.
+TEST(ShotKindsTest, AStrokeThatPotsABallOnIsNeverLabelledASafety) {
+  const double length = Table().spec().length, width = Table().spec().width;
+  int safeties = 0, pots = 0;
+  for (const Vec2& red : {Vec2(0.45, 2.6), Vec2(0.3, 2.2), Vec2(1.3, 2.9), Vec2(0.2, 1.0)}) {
+    TableState t;
+    t.balls = {{BallKind::kCue, Vec2(1.2, 1.1)},
+               {BallKind::kRed, red},
+               {BallKind::kRed, Vec2(width / 2, length - 0.2)},
+               {BallKind::kBlack, Table().spot(physics::Colour::kBlack)}};
+    for (const bool safeties_only : {false, true}) {
+      PlanRequest r = Request(t);
+      if (safeties_only) r.kinds = ShotKinds::Of(ShotKind::kSafety);
+      const PlanAnswer answer = Planner::Default().Plan(r);
+      for (const PlannedShot& s : answer.shots) {
+        const Replayed p = Replay(r, s);
+        int reds_down = 0;
+        for (const int i : p.out.potted) reds_down += p.table.balls[static_cast<size_t>(i)].kind == BallKind::kRed;
+        if (s.kind == ShotKind::kPot) {
+          ++pots;
+          EXPECT_FALSE(safeties_only);
+          ExpectPotAsLabelled(r, s, s.route);
+        } else {
+          EXPECT_TRUE(s.kind == ShotKind::kSafety || s.kind == ShotKind::kEscape) << ToString(s.kind);
+          ++safeties;
+          ExpectLegal(r, s);
+          EXPECT_EQ(reds_down, 0) << "a safety that pots, red at " << red.transpose();
+        }
+      }
+    }
+  }
+  EXPECT_GT(safeties, 0);
+  EXPECT_GT(pots, 0);
+}
+
 // The opening table, the cue ball in hand, 1500 simulations.
 PlanRequest BreakOffRequest() {
   const FrameState frame = StartFrame(1, 0);
