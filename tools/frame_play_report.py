@@ -2,12 +2,15 @@
 """Writes docs/frame-play.md from the `snooker match --json` outputs of scripts/frame-play.
 
 Usage: tools/frame_play_report.py DATA_DIR OUTPUT COMMAND [REVISION]
+       tools/frame_play_report.py --handover STROKES.jsonl[.gz]...
 Reads DATA_DIR/frame-play-<opponent>-<vision>-mm.json (and the wall time in the .time
 file beside each, and the stroke log of `snooker match --strokes`, gzipped, in the
 .strokes.jsonl.gz file, when there are) for the opponents direct-pots and one-ply and the
 vision noises 0.2 and 0.5 mm; the matches missing are left out, none is an error.
 COMMAND is the command that made the data, REVISION the commit measured; both are
-named in the document. Standard library only.
+named in the document. With --handover it prints only the table of what player A's
+strokes that handed the table over left (handover_table), over the stroke logs given.
+Standard library only.
 """
 import gzip
 import json
@@ -173,6 +176,55 @@ def calibration_table(bins, a, b):
     return out
 
 
+# The bins of the incoming player's best pot probability after a handover, as [low, high).
+HANDOVER_BINS = ((0.0, 0.02), (0.02, 0.5), (0.5, 0.8), (0.8, 0.95), (0.95, 1.01))
+HANDOVER_KINDS = (("miss", "a missed pot"), ("safety", "a safety or escape"), ("break-off", "the break-off"),
+                  ("any", "any stroke"))
+
+
+def handover_bins(frames, side="A"):
+    """Per kind of `side`'s stroke that handed the table over (HANDOVER_KINDS, stalls and
+    fouls apart) and HANDOVER_BINS bin of its handoverPot: [strokes, sum of handoverPot,
+    the opponent's next strokes that were pots, of them those that dropped, the points of
+    the opponent's visit]. Strokes without the field are skipped."""
+    bins = {key: [[0, 0.0, 0, 0, 0] for _ in HANDOVER_BINS] for key, _ in HANDOVER_KINDS}
+    for frame in frames:
+        visits = visits_of(frame)
+        for k in range(len(visits) - 1):
+            last = visits[k][2][-1]
+            p = last.get("handoverPot")
+            if visits[k][0] != side or p is None:
+                continue
+            key = handover(last)
+            if key in ("stall", "foul"):
+                continue
+            key = "miss" if key.startswith("miss") else key
+            nxt = visits[k + 1][2][0]
+            attempt = not nxt["stall"] and nxt["kind"] == "POT"
+            for i, (lo, hi) in enumerate(HANDOVER_BINS):
+                if lo <= p < hi:
+                    for cell in (bins[key][i], bins["any"][i]):
+                        cell[0] += 1
+                        cell[1] += p
+                        cell[2] += attempt
+                        cell[3] += attempt and potted(nxt)
+                        cell[4] += visits[k + 1][1]
+    return bins
+
+
+def handover_table(bins, b):
+    """What player A's handovers left against what the opponent `b` then did."""
+    out = (f"| A's stroke | outlook bin | strokes | outlook, mean | `{b}` played a pot | it dropped | "
+           f"`{b}`'s visit, mean points |\n|---|---|---:|---:|---:|---:|---:|\n")
+    for key, what in HANDOVER_KINDS:
+        for i, (lo, hi) in enumerate(HANDOVER_BINS):
+            n, psum, tried, dropped, points = bins[key][i]
+            if n:
+                out += (f"| {what} | {lo:.2f}-{min(hi, 1.0):.2f} | {n} | {psum / n:.3f} | {tried / n:.2f} | "
+                        f"{dropped / n:.2f} | {points / n:.1f} |\n")
+    return out
+
+
 def decided_section(strokes, d):
     """How the frames of a match were decided, from its stroke log."""
     if not strokes:
@@ -236,6 +288,11 @@ def decided_section(strokes, d):
                 "happened. Most of its misses of near-certain pots are the execution and vision noise the Monte "
                 "Carlo counts; the rest is the small optimism of taking the best of a few estimates (48 samples "
                 "each). Each miss hands the table to an opponent that pots as well as it does.\n")
+    if any(s.get("handoverPot") is not None for s in strokes):
+        out += (f"\nWhat `{a}`'s strokes that handed the table over left `{b}`: the outlook is its best pot "
+                "probability by the planner's fast estimate (what the plans score a miss or a safety by), against "
+                f"whether `{b}`'s next stroke was a pot, whether that dropped, and the points of its visit.\n\n")
+        out += handover_table(handover_bins(frames), b)
     return out
 
 
@@ -575,6 +632,14 @@ plans end on the clock, so a rerun on a loaded machine differs in its details.
 
 
 def main(argv):
+    if len(argv) >= 3 and argv[1] == "--handover":
+        # Frames are numbered per log: each log's frames are kept apart.
+        frames = []
+        for path in argv[2:]:
+            with (gzip.open(path, "rt") if path.endswith(".gz") else open(path)) as f:
+                frames += frames_of([json.loads(line) for line in f if line.strip()])
+        print(handover_table(handover_bins(frames), "B"), end="")
+        return 0
     if len(argv) not in (4, 5):
         print(__doc__, file=sys.stderr)
         return 2
