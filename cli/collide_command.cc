@@ -16,7 +16,7 @@
 namespace snooker::cli {
 namespace {
 
-constexpr const char* kHelp = R"(usage: snooker collide --speed V0 [--topspin wT] [--sidespin wS] [--cut-deg THETA]
+constexpr const char* kCollideHelp = R"(usage: snooker collide --speed V0 [--topspin wT] [--sidespin wS] [--cut-deg THETA]
                        [--steps N | --tolerance X] [--mu-bb X] [--restitution E]
                        [--mu-s X] [--friction-law LAW] [--json]
 
@@ -136,7 +136,7 @@ int RunCollide(const std::vector<std::string>& argv, std::ostream& out, std::ost
              "restitution", "mu-s", "friction-law", "slip-gain", "slip-decay", "model"},
             {"json", "help"});
   if (args.error().empty() && args.Switch("help")) {
-    out << kHelp;
+    out << kCollideHelp;
     return kExitOk;
   }
   v1::CollideRequest req;

@@ -32,7 +32,7 @@
 namespace snooker::cli {
 namespace {
 
-constexpr const char* kHelp = R"(usage: snooker loadtest --target 127.0.0.1:PORT --concurrency C --requests N
+constexpr const char* kLoadtestHelp = R"(usage: snooker loadtest --target 127.0.0.1:PORT --concurrency C --requests N
                         [--method simulate|plan] [--budget-ms MS] [--tables DIR] [--seed S]
                         [--max-seconds S] [--json] [--tls-ca CA.pem ...] [--deadline-ms MS]
 
@@ -250,7 +250,7 @@ std::optional<int> ParseSettings(const std::vector<std::string>& argv, std::ostr
   for (const std::string& flag : ClientFlags("target")) valued.insert(flag);
   Args args(argv, valued, {"json", "help"});
   if (args.error().empty() && args.Switch("help")) {
-    out << kHelp << "\n" << ClientFlagsHelp();
+    out << kLoadtestHelp << "\n" << ClientFlagsHelp();
     return kExitOk;
   }
   const auto concurrency = args.Integer("concurrency", std::nullopt, 1, 256);

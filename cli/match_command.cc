@@ -19,7 +19,7 @@
 namespace snooker::cli {
 namespace {
 
-constexpr const char* kHelpHead = R"(usage: snooker match --frames N --seed S [--player-a NAME] [--player-b NAME]
+constexpr const char* kMatchHelpHead = R"(usage: snooker match --frames N --seed S [--player-a NAME] [--player-b NAME]
                      [--budget-ms MS] [--noise-heading-deg X] [--noise-speed X]
                      [--noise-spin X] [--noise-position-mm X] [--cue-clearance-m X]
                      [--max-simulations N] [--samples N] [--threads N]
@@ -62,7 +62,7 @@ Players:
                    breakOffOutlookP50 (the same after each of its break-offs)
 Noise (standard deviations; the same options as snooker selfplay):
 )";
-constexpr const char* kHelpTail = R"(Planner:
+constexpr const char* kMatchHelpTail = R"(Planner:
   --max-simulations N    per-plan cap on simulations (default: from the budget); set,
                          the whole match is a function of the seed
   --samples N            Monte Carlo samples per ranked shot (default 48)
@@ -254,7 +254,7 @@ int RunMatch(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   valued.insert(std::begin(kPlayFlagNames), std::end(kPlayFlagNames));
   Args args(argv, valued, {"json", "help", "progress", "thin-break-off"});
   if (args.error().empty() && args.Switch("help")) {
-    out << kHelpHead << kPlayFlagsHelp << kHelpTail;
+    out << kMatchHelpHead << kPlayFlagsHelp << kMatchHelpTail;
     return kExitOk;
   }
   Parsed p;

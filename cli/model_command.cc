@@ -13,7 +13,7 @@
 namespace snooker::cli {
 namespace {
 
-constexpr const char* kHelp = R"(usage: snooker model [--model FILE] [--json]
+constexpr const char* kModelHelp = R"(usage: snooker model [--model FILE] [--json]
 
 Prints the physical model the other commands use: the balls, the cloth, the
 ball-ball contact (friction law and restitution), the cushions and the robot's cue.
@@ -21,7 +21,7 @@ ball-ball contact (friction law and restitution), the cushions and the robot's c
 options:
 )";
 
-constexpr const char* kHelpTail = R"(  --json             print it as a model file (JSON of snooker.v1.PhysicsModel,
+constexpr const char* kModelHelpTail = R"(  --json             print it as a model file (JSON of snooker.v1.PhysicsModel,
                      every field set): what --model FILE reads
   --help             this text
 )";
@@ -61,7 +61,7 @@ void PrintText(const physics::Model& m, std::ostream& out) {
 int RunModel(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
   Args args(argv, {"model"}, {"json", "help"});
   if (args.error().empty() && args.Switch("help")) {
-    out << kHelp << kModelFlagHelp << kHelpTail;
+    out << kModelHelp << kModelFlagHelp << kModelHelpTail;
     return kExitOk;
   }
   bool ok = true;

@@ -32,7 +32,7 @@
 namespace snooker::cli {
 namespace {
 
-constexpr const char* kHelp = R"(usage: snooker plan --table T.json|builtin:NAME [--on RED|YELLOW|GREEN|BROWN|BLUE|PINK|BLACK|COLOUR]
+constexpr const char* kPlanHelp = R"(usage: snooker plan --table T.json|builtin:NAME [--on RED|YELLOW|GREEN|BROWN|BLUE|PINK|BLACK|COLOUR]
                     [--budget-ms N] [--shots K] [--seed S] [--json] [--svg out.svg] [--stream]
                     [--vision-tolerance-mm MM]
                     [--noise-aim-deg X] [--noise-cue-speed X] [--noise-tip-mm X]
@@ -288,7 +288,7 @@ std::optional<int> ParsePlanFlags(const std::vector<std::string>& argv, std::ost
   for (const std::string& flag : ClientFlags()) valued.insert(flag);
   Args args(argv, valued, {"json", "help", "pot-only", "stream", "cue-in-hand"});
   if (args.error().empty() && args.Switch("help")) {
-    out << kHelp << kModelFlagHelp << "\n" << ClientFlagsHelp();
+    out << kPlanHelp << kModelFlagHelp << "\n" << ClientFlagsHelp();
     return kExitOk;
   }
   bool model_ok = true;

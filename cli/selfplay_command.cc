@@ -16,7 +16,7 @@
 namespace snooker::cli {
 namespace {
 
-constexpr const char* kHelpHead = R"(usage: snooker selfplay --frames N --seed S [--budget-ms N] [--json]
+constexpr const char* kSelfplayHelpHead = R"(usage: snooker selfplay --frames N --seed S [--budget-ms N] [--json]
                         [--noise-heading-deg X] [--noise-speed X] [--noise-spin X]
                         [--noise-position-mm X] [--cue-clearance-m X] [--pot-only] [--one-ply] [--max-simulations N]
                         [--samples N] [--threads N] [--progress] [--records out.jsonl]
@@ -37,7 +37,7 @@ re-spotted while reds remain.
                    of attempted pots that dropped, ms, ms, count, count)
 Noise (standard deviations; the same options as snooker plan):
 )";
-constexpr const char* kHelpTail = R"(Planner:
+constexpr const char* kSelfplayHelpTail = R"(Planner:
   --pot-only             ignore the position left
   --one-ply              estimate the next shot only (no lookahead search)
   --max-simulations N    per-plan cap on simulations (default: from the budget)
@@ -57,7 +57,7 @@ int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::os
   valued.insert(std::begin(kPlayFlagNames), std::end(kPlayFlagNames));
   Args args(argv, valued, {"json", "help", "pot-only", "one-ply", "progress"});
   if (args.error().empty() && args.Switch("help")) {
-    out << kHelpHead << kPlayFlagsHelp << kHelpTail;
+    out << kSelfplayHelpHead << kPlayFlagsHelp << kSelfplayHelpTail;
     return kExitOk;
   }
   planner::SelfPlayOptions o;

@@ -24,7 +24,7 @@
 namespace snooker::cli {
 namespace {
 
-constexpr const char* kHelp = R"(usage: snooker simulate --table T.json (--shot S.json | --cue C.json) [--json] [--svg out.svg]
+constexpr const char* kSimulateHelp = R"(usage: snooker simulate --table T.json (--shot S.json | --cue C.json) [--json] [--svg out.svg]
                         [--tolerance X] [--no-impact-tables] [--max-events N]
                         [--vision-tolerance-mm MM] [--server HOST:PORT [--tls-ca CA.pem] [--tls-cert C --tls-key K]
                         [--tls-server-name N] [--deadline-ms MS]]
@@ -127,7 +127,7 @@ int RunSimulate(const std::vector<std::string>& argv, std::ostream& out, std::os
   for (const std::string& flag : ClientFlags()) valued.insert(flag);
   Args args(argv, valued, {"json", "help", "no-impact-tables"});
   if (args.error().empty() && args.Switch("help")) {
-    out << kHelp << kModelFlagHelp << "\n" << ClientFlagsHelp();
+    out << kSimulateHelp << kModelFlagHelp << "\n" << ClientFlagsHelp();
     return kExitOk;
   }
   bool model_ok = true;

@@ -8,13 +8,9 @@
 namespace snooker::server {
 namespace {
 
-bool StartsWith(std::string_view s, std::string_view prefix) {
-  return s.substr(0, prefix.size()) == prefix;
-}
-
 // The host of "host:port" or "[host]:port" (the port is required), or nothing.
 bool SplitHost(std::string_view address, std::string_view* host) {
-  if (StartsWith(address, "[")) {
+  if (address.starts_with("[")) {
     const std::size_t close = address.find(']');
     if (close == std::string_view::npos || close + 1 >= address.size() || address[close + 1] != ':') {
       return false;
@@ -32,7 +28,7 @@ bool SplitHost(std::string_view address, std::string_view* host) {
 }  // namespace
 
 std::string CheckListenAddress(std::string_view address) {
-  if (StartsWith(address, "unix:") || StartsWith(address, "unix-abstract:")) return "";
+  if (address.starts_with("unix:") || address.starts_with("unix-abstract:")) return "";
   std::string_view host;
   if (!SplitHost(address, &host)) {
     return "address '" + std::string(address) + "' is not HOST:PORT (an IPv6 host in brackets)";
@@ -52,7 +48,7 @@ std::string CheckListenAddress(std::string_view address) {
 
 bool SplitHostPort(std::string_view address, std::string* host, int* port) {
   std::string_view h;
-  if (StartsWith(address, "unix:") || StartsWith(address, "unix-abstract:") ||
+  if (address.starts_with("unix:") || address.starts_with("unix-abstract:") ||
       !CheckListenAddress(address).empty() || !SplitHost(address, &h)) {
     return false;
   }
@@ -69,9 +65,9 @@ std::string PlaintextRefusal(std::string_view address, bool tls, bool allow_inse
 }
 
 bool IsLoopbackAddress(std::string_view address) {
-  if (StartsWith(address, "unix:") || StartsWith(address, "unix-abstract:")) return true;
+  if (address.starts_with("unix:") || address.starts_with("unix-abstract:")) return true;
   for (std::string_view scheme : {"ipv4:", "ipv6:", "dns:///", "dns:"}) {
-    if (StartsWith(address, scheme)) {
+    if (address.starts_with(scheme)) {
       address.remove_prefix(scheme.size());
       break;
     }

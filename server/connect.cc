@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "server/calibrate_api.h"
+#include "server/call_cost.h"
 #include "server/decode.h"
 #include "server/json_input.h"
 #include "server/limits.h"
@@ -76,12 +77,6 @@ std::string OneLine(std::string text) {
   if (text.size() > limits::kMaxMessageBytes) text.resize(limits::kMaxMessageBytes);
   return text;
 }
-
-std::int64_t SimulationsOf(const v1::CollideResponse&) { return 0; }
-std::int64_t SimulationsOf(const v1::SimulateResponse&) { return 1; }
-std::int64_t SimulationsOf(const v1::GetModelResponse&) { return 0; }
-std::int64_t SimulationsOf(const v1::CalibrateResponse& r) { return r.evaluations(); }
-std::int64_t SimulationsOf(const v1::PlanResponse& r) { return r.simulations(); }
 
 // Decode, run, encode: one unary operation of api.h or calibrate_api.h.
 template <typename Request, typename Response,

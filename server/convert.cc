@@ -22,10 +22,8 @@ namespace {
 namespace plim = physics::limits;
 namespace slim = server::limits;
 
-std::string Num(double x) { return FormatNumber(x); }
-
 std::string RangeText(const physics::Range& r, const char* unit) {
-  std::string out = "must be in [" + Num(r.lo) + ", " + Num(r.hi) + "]";
+  std::string out = "must be in [" + FormatNumber(r.lo) + ", " + FormatNumber(r.hi) + "]";
   if (unit[0] != '\0') out += std::string(" ") + unit;
   return out;
 }
@@ -33,7 +31,7 @@ std::string RangeText(const physics::Range& r, const char* unit) {
 // Adds an error when x is outside r (NaN and infinities always are).
 void CheckRange(std::vector<FieldError>* errors, double x, const char* field,
                 const physics::Range& r, const char* unit = "") {
-  if (!r.Contains(x)) errors->push_back({field, Num(x), RangeText(r, unit)});
+  if (!r.Contains(x)) errors->push_back({field, FormatNumber(x), RangeText(r, unit)});
 }
 
 // The same for an optional field: only when it is set.
@@ -127,7 +125,7 @@ std::vector<FieldError> ValidateCollideRequest(const v1::CollideRequest& r) {
   CheckRange(&errors, r.sidespin(), "sidespin", spin, "rad/s");
   if (!(std::isfinite(r.cut_angle_deg()) &&
         std::abs(r.cut_angle_deg()) < slim::kCutAngleBoundDeg)) {
-    errors.push_back({"cut_angle_deg", Num(r.cut_angle_deg()),
+    errors.push_back({"cut_angle_deg", FormatNumber(r.cut_angle_deg()),
                       "must be in (-90, 90): at 90 deg or more the balls do not meet"});
   }
   using P = v1::CollisionParameters;
@@ -148,7 +146,7 @@ std::vector<FieldError> ValidateCollideRequest(const v1::CollideRequest& r) {
                 physics::limits::kSlipDecay, "s/m");
   if (p.has_slip_gain() && p.slip_gain() + (p.has_mu_bb() ? p.mu_bb() : physics::BallBallParams{}.mu_bb) >
                                 physics::limits::kFrictionCoefficient.hi) {
-    errors.push_back({"parameters.slip_gain", Num(p.slip_gain()), "must be at most 1 - mu_bb (mu(0) <= 1)"});
+    errors.push_back({"parameters.slip_gain", FormatNumber(p.slip_gain()), "must be at most 1 - mu_bb (mu(0) <= 1)"});
   }
   using S = v1::ImpulseSolverOptions;
   const S& s = r.solver();
@@ -223,15 +221,15 @@ std::optional<FieldError> CheckPosition(const v1::Ball& b, const std::string& wh
   for (const auto& [has, axis] : {std::pair{p.has_x(), "x"}, std::pair{p.has_y(), "y"}}) {
     if (!has) return FieldError{where + ".position." + axis, "missing " + ball, "must be given, in metres"};
   }
-  const std::string at = "(" + Num(p.x()) + ", " + Num(p.y()) + ") " + ball;
+  const std::string at = "(" + FormatNumber(p.x()) + ", " + FormatNumber(p.y()) + ") " + ball;
   if (!(std::isfinite(p.x()) && std::isfinite(p.y()))) {
     return FieldError{where + ".position", at, "must be finite, in metres"};
   }
   const double w = table.spec().width, l = table.spec().length;
   if (p.x() < 0 || p.x() > w || p.y() < 0 || p.y() > l) {
     return FieldError{where + ".position", at,
-                      "is off the table: the centre must lie on the bed, x in [0, " + Num(w) + "] m and y in [0, " +
-                          Num(l) + "] m"};
+                      "is off the table: the centre must lie on the bed, x in [0, " + FormatNumber(w) + "] m and y in [0, " +
+                          FormatNumber(l) + "] m"};
   }
   return std::nullopt;
 }
@@ -343,7 +341,7 @@ std::optional<double> VisionTolerance(std::optional<double> requested_mm, double
   if (!requested_mm) return server_mm * 1e-3;
   const physics::Range allowed{0, server_mm};
   if (!allowed.Contains(*requested_mm)) {
-    errors->push_back({field, Num(*requested_mm),
+    errors->push_back({field, FormatNumber(*requested_mm),
                        RangeText(allowed, "mm") +
                            ": the server's vision tolerance is the largest a request may ask for"});
     return std::nullopt;

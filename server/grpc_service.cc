@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "server/calibrate_api.h"
+#include "server/call_cost.h"
 #include "server/convert.h"
 #include "server/decode.h"
 #include "server/service_detail.h"
@@ -125,12 +126,6 @@ namespace {
 using service_detail::ClientDeadlinePassed;
 using service_detail::Flatten;
 using service_detail::IsCancelled;
-
-// Simulations a call ran, from its answer.
-std::int64_t SimulationsOf(const v1::CollideResponse&) { return 0; }
-std::int64_t SimulationsOf(const v1::SimulateResponse&) { return 1; }
-std::int64_t SimulationsOf(const v1::GetModelResponse&) { return 0; }
-std::int64_t SimulationsOf(const v1::CalibrateResponse& r) { return r.evaluations(); }
 
 // Parse, run, serialise: one method of the service on raw bytes.
 template <typename Request, typename Response,

@@ -38,8 +38,6 @@ thread_local bool t_logged = false;
 // expressions then only see short ones).
 constexpr std::size_t kMaxPathBytes = 1024;
 
-bool StartsWith(std::string_view s, std::string_view prefix) { return s.substr(0, prefix.size()) == prefix; }
-
 // "ipv4:127.0.0.1:51000" or "ipv6:[::1]:51000", as gRPC names its peers.
 std::string PeerOf(const httplib::Request& req) {
   if (req.remote_addr.empty()) return "unknown";  // a request line that did not parse
@@ -270,9 +268,9 @@ struct StreamState {
 
 std::string CheckCorsOrigin(std::string_view origin) {
   std::string_view rest = origin;
-  if (StartsWith(rest, "https://")) {
+  if (rest.starts_with("https://")) {
     rest.remove_prefix(8);
-  } else if (StartsWith(rest, "http://")) {
+  } else if (rest.starts_with("http://")) {
     rest.remove_prefix(7);
   } else {
     return "--cors-origin '" + Printable(origin) +
@@ -384,7 +382,7 @@ void HttpServer::Impl::OnGet(const httplib::Request& req, httplib::Response& res
     ReplyText(res, shutting_down ? 503 : 200, shutting_down ? "NOT_SERVING" : "SERVING");
     return;
   }
-  if (StartsWith(req.path, connect::kServicePath)) return ReplyNotAllowed(res, "POST, OPTIONS", true);
+  if (req.path.starts_with(connect::kServicePath)) return ReplyNotAllowed(res, "POST, OPTIONS", true);
   const std::string_view name = req.path == "/" ? std::string_view("index.html") : std::string_view(req.path).substr(1);
   const WebFile* file = name.find('/') == std::string_view::npos ? FindWebFile(name) : nullptr;
   if (file == nullptr) return ReplyText(res, 404, "not found");
@@ -395,7 +393,7 @@ void HttpServer::Impl::OnGet(const httplib::Request& req, httplib::Response& res
 }
 
 void HttpServer::Impl::OnOptions(const httplib::Request& req, httplib::Response& res) {
-  const bool rpc = StartsWith(req.path, connect::kServicePath);
+  const bool rpc = req.path.starts_with(connect::kServicePath);
   res.status = 204;
   res.set_header("Allow", rpc ? "POST, OPTIONS" : "GET, HEAD, OPTIONS");
   if (!rpc || cors_origin.empty()) return;
@@ -410,7 +408,7 @@ void HttpServer::Impl::OnBody(const httplib::Request& req, httplib::Response& re
   std::string body;
   const ApiStatus read =
       ReadBody(req, res, reader, limits::kMaxRequestBytes + connect::kEnvelopePrefixBytes, &body);
-  if (!StartsWith(req.path, connect::kServicePath)) {
+  if (!req.path.starts_with(connect::kServicePath)) {
     const std::string_view name = std::string_view(req.path).substr(1);
     const bool known = req.path == "/" || req.path == "/healthz" || FindWebFile(name) != nullptr;
     return known ? ReplyNotAllowed(res, "GET, HEAD, OPTIONS", false) : ReplyText(res, 404, "not found");

@@ -10,8 +10,11 @@
 #include "server/service_detail.h"
 
 namespace snooker::server {
+namespace {
 
 using Clock = std::chrono::steady_clock;
+
+}  // namespace
 
 Clock::time_point ShotPlannerService::DeadlineOf(Clock::time_point arrival,
                                                  std::optional<std::chrono::milliseconds> timeout) const {
