@@ -16,16 +16,13 @@
 #include "server/decode.h"
 #include "server/limits.h"
 #include "tests/service/requests.h"
+#include "tests/support/text.h"
 
 namespace snooker::server {
 namespace {
 
 namespace req = testing_requests;
 using Code = ApiStatus::Code;
-
-bool Mentions(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 v1::SimulateRequest Stacked(int balls) {
   v1::SimulateRequest r;

@@ -21,6 +21,7 @@
 #include "tests/service/call_support.h"
 #include "tests/support/cli_support.h"
 #include "tests/service/requests.h"
+#include "tests/support/text.h"
 
 namespace snooker {
 namespace {
@@ -32,16 +33,12 @@ using cli_support::TempFile;
 using Clock = std::chrono::steady_clock;
 using std::chrono::milliseconds;
 
-constexpr const char* kShot = R"({"speed": 1.5, "headingDeg": 90})";
-
-bool Mentions(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+constexpr const char* kPlainShot = R"({"speed": 1.5, "headingDeg": 90})";
 
 // `simulate --table PATH` with a good shot file; at most 10 s (a FIFO hung forever).
 RunResult SimulateTable(const std::string& path) {
   return RunShell("timeout 10 " + std::string(SNOOKER_CLI_PATH) + " simulate --table '" + path +
-                  "' --shot " + TempFile("robust_shot.json", kShot));
+                  "' --shot " + TempFile("robust_shot.json", kPlainShot));
 }
 
 void ExpectRefused(const RunResult& r, const std::string& path, const std::string& why) {
@@ -120,7 +117,7 @@ class CliJsonInputTest : public testing::TestWithParam<TableReader> {
     const std::string path = TempFile(std::string(GetParam().name) + "_table.json", table_text);
     args.replace(args.find("TABLE"), 5, path);
     if (const std::size_t shot = args.find("SHOT"); shot != std::string::npos) {
-      args.replace(shot, 4, TempFile("json_input_shot.json", kShot));
+      args.replace(shot, 4, TempFile("json_input_shot.json", kPlainShot));
     }
     const RunResult r = RunShell("timeout 60 " + std::string(SNOOKER_CLI_PATH) + " " + args);
     path_ = path;
@@ -216,7 +213,7 @@ TEST(CliInputFileTest, RunningOutOfMemoryIsReportedNotAnAbort) {
                          R"(", "kind": "CUE", "position": {"x": 0.9, "y": 1}}]})");
   const RunResult r =
       RunShell("ulimit -v 60000; " + std::string(SNOOKER_CLI_PATH) + " simulate --table " + path +
-               " --shot " + TempFile("oom_shot.json", kShot));
+               " --shot " + TempFile("oom_shot.json", kPlainShot));
   EXPECT_EQ(r.exit_code, 1) << r.err.substr(0, 300);  // not -1: no abort
   EXPECT_TRUE(Mentions(r.err, "out of memory")) << r.err.substr(0, 300);
   std::remove(path.c_str());

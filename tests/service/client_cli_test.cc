@@ -15,6 +15,7 @@
 #include "server/convert.h"
 #include "tests/support/cli_support.h"
 #include "tests/service/server_support.h"
+#include "tests/support/text.h"
 
 namespace snooker {
 namespace {
@@ -24,20 +25,16 @@ using cli_support::RunResult;
 using cli_support::TempFile;
 using server_support::TestServer;
 
-bool Mentions(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
-
-constexpr const char* kTable = R"({"balls": [
+constexpr const char* kServerTable = R"({"balls": [
     {"id": "cue", "kind": "CUE", "position": {"x": 0.9, "y": 0.6}},
     {"id": "red-1", "kind": "RED", "position": {"x": 0.9, "y": 1.6}},
     {"id": "black", "kind": "BLACK", "position": {"x": 0.0241, "y": 3.0}}]})";  // a hair past
-constexpr const char* kShot = R"({"speed": 2.5, "headingDeg": 90.3, "topspin": 40, "sidespin": -5})";
+constexpr const char* kServerShot = R"({"speed": 2.5, "headingDeg": 90.3, "topspin": 40, "sidespin": -5})";
 
 TEST(SimulateServerTest, PrintsWhatTheLocalCommandPrints) {
   TestServer s;
   const std::string files =
-      " --table " + TempFile("remote_t.json", kTable) + " --shot " + TempFile("remote_s.json", kShot);
+      " --table " + TempFile("remote_t.json", kServerTable) + " --shot " + TempFile("remote_s.json", kServerShot);
   for (const char* format : {"", " --json"}) {
     const RunResult local = RunCli("simulate" + files + format);
     const RunResult remote = RunCli("simulate" + files + format + " --server " + s.target);
@@ -51,7 +48,7 @@ TEST(SimulateServerTest, PrintsWhatTheLocalCommandPrints) {
 TEST(SimulateServerTest, TheServersErrorsExitAsTheLocalOnes) {
   TestServer s;
   const RunResult bad = RunCli("simulate --server " + s.target + " --table " +
-                               TempFile("remote_bad.json", kTable) + " --shot " +
+                               TempFile("remote_bad.json", kServerTable) + " --shot " +
                                TempFile("remote_bad_s.json", R"({"speed": -3})"));
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_TRUE(Mentions(bad.err, "snooker simulate: INVALID_ARGUMENT from " + s.target +
@@ -59,8 +56,8 @@ TEST(SimulateServerTest, TheServersErrorsExitAsTheLocalOnes) {
       << bad.err;
   s.server->Shutdown(std::chrono::milliseconds(0));
   const RunResult gone = RunCli("simulate --server " + s.target + " --deadline-ms 3000 --table " +
-                                TempFile("remote_t2.json", kTable) + " --shot " +
-                                TempFile("remote_s2.json", kShot));
+                                TempFile("remote_t2.json", kServerTable) + " --shot " +
+                                TempFile("remote_s2.json", kServerShot));
   EXPECT_EQ(gone.exit_code, 1);
   EXPECT_TRUE(Mentions(gone.err, "snooker simulate: UNAVAILABLE from ")) << gone.err;
 }
@@ -71,7 +68,7 @@ google::protobuf::Struct ParseJson(const std::string& text) {
   return j;
 }
 
-double Field(const google::protobuf::Struct& j, const std::string& name) {
+double NumberField(const google::protobuf::Struct& j, const std::string& name) {
   const auto it = j.fields().find(name);
   EXPECT_NE(it, j.fields().end()) << name;
   return it == j.fields().end() ? -1 : it->second.number_value();
@@ -83,17 +80,17 @@ TEST(LoadTestTest, SendsEveryCallAndChecksEveryAnswer) {
       RunCli("loadtest --target " + s.target + " --concurrency 4 --requests 120 --json");
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const google::protobuf::Struct j = ParseJson(r.out);
-  EXPECT_EQ(Field(j, "completed"), 120);
-  EXPECT_EQ(Field(j, "errors"), 0);
-  EXPECT_EQ(Field(j, "badAnswers"), 0);
-  EXPECT_GT(Field(j, "ballsMoved"), 0);  // every fourth table is repaired
+  EXPECT_EQ(NumberField(j, "completed"), 120);
+  EXPECT_EQ(NumberField(j, "errors"), 0);
+  EXPECT_EQ(NumberField(j, "badAnswers"), 0);
+  EXPECT_GT(NumberField(j, "ballsMoved"), 0);  // every fourth table is repaired
   EXPECT_EQ(j.fields().at("statuses").struct_value().fields().at("OK").number_value(), 120);
   EXPECT_EQ(j.fields().at("healthBefore").string_value(), "SERVING");
   const auto& lat = j.fields().at("latencyMs").struct_value();
-  EXPECT_LE(Field(lat, "p50"), Field(lat, "p90"));
-  EXPECT_LE(Field(lat, "p90"), Field(lat, "p99"));
-  EXPECT_LE(Field(lat, "p99"), Field(lat, "max"));
-  EXPECT_GT(Field(lat, "p50"), 0);
+  EXPECT_LE(NumberField(lat, "p50"), NumberField(lat, "p90"));
+  EXPECT_LE(NumberField(lat, "p90"), NumberField(lat, "p99"));
+  EXPECT_LE(NumberField(lat, "p99"), NumberField(lat, "max"));
+  EXPECT_GT(NumberField(lat, "p50"), 0);
   // The server saw them all.
   EXPECT_EQ(s.server->counts().with(grpc::StatusCode::OK), 120 + 1);  // and GetModel
 }
@@ -104,7 +101,7 @@ TEST(LoadTestTest, ErrorsAreCountedByStatusCodeAndFailTheRun) {
   TestServer s;
   const std::string dir = testing::TempDir() + "loadtest_errors_" + std::to_string(getpid());
   ASSERT_EQ(system(("mkdir -p " + dir).c_str()), 0);
-  std::ofstream(dir + "/good.json") << kTable;
+  std::ofstream(dir + "/good.json") << kServerTable;
   std::ofstream(dir + "/overlap.json")
       << R"({"balls": [{"id": "cue", "kind": "CUE", "position": {"x": 0.5, "y": 0.5}},
                        {"id": "red", "kind": "RED", "position": {"x": 0.5505, "y": 0.5}}]})";
@@ -142,7 +139,7 @@ TEST(LoadTestTest, TakesTablesFromAFolder) {
   // broken c.json.
   ASSERT_EQ(system(("rm -rf " + dir + " && mkdir -p " + dir).c_str()), 0);
   {
-    std::ofstream(dir + "/a.json") << kTable;
+    std::ofstream(dir + "/a.json") << kServerTable;
     std::ofstream(dir + "/b.json")
         << R"({"balls": [{"id": "c", "kind": "CUE", "position": {"x": 0.5, "y": 0.5}},
                          {"id": "p", "kind": "PINK", "position": {"x": 1.0, "y": 2.5}}]})";
@@ -250,12 +247,12 @@ TEST(LoadTestTest, PlansAreCheckedAgainstTheirLimits) {
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const google::protobuf::Struct j = ParseJson(r.out);
   EXPECT_EQ(j.fields().at("method").string_value(), "plan");
-  EXPECT_EQ(Field(j, "completed"), 40);
-  EXPECT_EQ(Field(j, "errors"), 0);
-  EXPECT_EQ(Field(j, "badAnswers"), 0);
-  EXPECT_EQ(Field(j, "budgetMs"), 20);
-  EXPECT_GT(Field(j, "plansWithShots"), 0);
-  EXPECT_GT(Field(j, "ballsMoved"), 0);  // every fourth table is repaired
+  EXPECT_EQ(NumberField(j, "completed"), 40);
+  EXPECT_EQ(NumberField(j, "errors"), 0);
+  EXPECT_EQ(NumberField(j, "badAnswers"), 0);
+  EXPECT_EQ(NumberField(j, "budgetMs"), 20);
+  EXPECT_GT(NumberField(j, "plansWithShots"), 0);
+  EXPECT_GT(NumberField(j, "ballsMoved"), 0);  // every fourth table is repaired
   EXPECT_EQ(j.fields().at("statuses").struct_value().fields().at("OK").number_value(), 40);
   EXPECT_EQ(s.server->counts().with(grpc::StatusCode::OK), 40 + 1);  // and GetModel
 }

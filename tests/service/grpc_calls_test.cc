@@ -24,6 +24,7 @@
 #include "snooker/v1/service.grpc.pb.h"
 #include "tests/service/call_support.h"
 #include "tests/service/requests.h"
+#include "tests/support/text.h"
 
 namespace snooker::server {
 namespace {
@@ -34,10 +35,6 @@ using call_support::HeavyCallsForTheWork;
 using call_support::kWork;
 using Clock = std::chrono::steady_clock;
 using std::chrono::milliseconds;
-
-bool Mentions(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 class CallsTest : public testing::Test {
  protected:

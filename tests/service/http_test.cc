@@ -25,6 +25,7 @@
 #include "tests/service/requests.h"
 #include "tests/service/server_support.h"
 #include "tests/support/cli_support.h"
+#include "tests/support/text.h"
 
 // Last: through <resolv.h> it defines the macro _res, a name Eigen's headers use.
 #include <httplib.h>
@@ -33,10 +34,7 @@ namespace snooker::server {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-bool Mentions(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using server_support::ShotsOf;
 
 std::string Json(const google::protobuf::Message& m) {
   std::string out;
@@ -82,12 +80,6 @@ v1::PlanRequest LongPlan() {
 const v1::PlanRequest& LongPlanRequest() {
   static const v1::PlanRequest r = LongPlan();
   return r;
-}
-
-std::string ShotsOf(const v1::PlanResponse& r) {
-  std::string out;
-  for (const v1::PlannedShot& s : r.shots()) out += s.SerializeAsString() + "|";
-  return out;
 }
 
 // The envelopes of a streaming answer: (flags, message).

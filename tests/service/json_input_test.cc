@@ -10,6 +10,7 @@
 
 #include "snooker/v1/plan.pb.h"
 #include "snooker/v1/table.pb.h"
+#include "tests/support/text.h"
 
 namespace snooker {
 namespace {
@@ -17,10 +18,6 @@ namespace {
 using server::FindJsonSyntaxError;
 using server::JsonSyntaxError;
 using server::ReadJsonMessage;
-
-bool Mentions(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 // Test names from a case's own name.
 template <typename Case>

@@ -25,16 +25,14 @@
 #include "snooker/v1/service.grpc.pb.h"
 #include "tests/service/requests.h"
 #include "tests/service/server_support.h"
+#include "tests/support/text.h"
 
 namespace snooker::server {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using server_support::ShotsOf;
 using std::chrono::milliseconds;
-
-bool Mentions(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 using testing_requests::AddBall;
 
@@ -108,12 +106,6 @@ void ExpectWithinLimits(const v1::PlanRequest& request, const v1::PlanResponse& 
     for (const v1::Ball& b : request.table().balls()) known = known || b.id() == s.object_ball();
     EXPECT_TRUE(known) << s.object_ball();
   }
-}
-
-std::string ShotsOf(const v1::PlanResponse& r) {
-  std::string out;
-  for (const v1::PlannedShot& s : r.shots()) out += s.SerializeAsString() + "|";
-  return out;
 }
 
 class PlanRpcTest : public testing::Test {

@@ -15,6 +15,13 @@
 
 namespace snooker::server_support {
 
+/// A plan's shots as bytes, to compare two answers shot for shot.
+inline std::string ShotsOf(const v1::PlanResponse& r) {
+  std::string out;
+  for (const v1::PlannedShot& s : r.shots()) out += s.SerializeAsString() + "|";
+  return out;
+}
+
 struct TestServer {
   /// Starts a server with `options` on 127.0.0.1 (any free port) unless
   /// options.address names another; logs into `log`.

@@ -29,6 +29,7 @@
 #include "snooker/v1/plan.pb.h"
 #include "tests/service/requests.h"
 #include "tests/support/cli_support.h"
+#include "tests/support/text.h"
 
 namespace snooker::cli {
 namespace {
@@ -36,10 +37,6 @@ namespace {
 using cli_support::RunCli;
 using cli_support::RunResult;
 using cli_support::RunShell;
-
-bool Mentions(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 std::string ReadAll(const std::string& path) {
   std::ifstream f(path);

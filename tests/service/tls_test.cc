@@ -19,13 +19,10 @@
 #include "tests/support/cli_support.h"
 #include "tests/service/requests.h"
 #include "tests/service/server_support.h"
+#include "tests/support/text.h"
 
 namespace snooker::server {
 namespace {
-
-bool Mentions(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 TEST(LoopbackAddressTest, OnlyAddressesOfThisMachineAreLoopback) {
   for (const char* a : {"127.0.0.1:50051", "127.1.2.3:0", "localhost:50051", "[::1]:50051",

@@ -14,15 +14,12 @@
 #include "tests/support/cli_support.h"
 #include "tests/service/requests.h"
 #include "tests/service/server_support.h"
+#include "tests/support/text.h"
 
 namespace snooker::server {
 namespace {
 
 using server_support::TestServer;
-
-bool Mentions(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 const double kR = physics::DefaultTable().ball_radius();
 const double kContact = physics::DefaultTable().cushion_contact_distance();
