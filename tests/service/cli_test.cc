@@ -190,11 +190,11 @@ TEST(CliTest, ServeOnABadAddressFails) {
 constexpr const char* kTable =
     R"({"balls": [{"id": "cue", "kind": "CUE", "position": {"x": 0.9, "y": 0.6}},
                   {"id": "red-1", "kind": "RED", "position": {"x": 0.9, "y": 1.6}}]})";
-constexpr const char* kStunShot = R"({"speed": 1.5, "headingDeg": 90, "topspin": 57.1, "sidespin": 0})";
+constexpr const char* kRollingShot = R"({"speed": 1.5, "headingDeg": 90, "topspin": 57.1, "sidespin": 0})";
 
 TEST(CliSimulateTest, JsonHasTheContractedFields) {
   const RunResult r = RunCli("simulate --table " + TempFile("t.json", kTable) + " --shot " +
-                             TempFile("s.json", kStunShot) + " --json");
+                             TempFile("s.json", kRollingShot) + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   Struct json;
   ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &json).ok()) << r.out;
@@ -228,7 +228,7 @@ TEST(CliSimulateTest, NoImpactTablesIntegratesEveryImpact) {
     return Number(Object(finals.list_value().values(1).struct_value(), "position"), "y");
   };
   const std::string files =
-      " --table " + TempFile("t3.json", kTable) + " --shot " + TempFile("s3.json", kStunShot) + " --json";
+      " --table " + TempFile("t3.json", kTable) + " --shot " + TempFile("s3.json", kRollingShot) + " --json";
   const RunResult tables = RunCli("simulate" + files);
   const RunResult integrated = RunCli("simulate --no-impact-tables" + files);
   ASSERT_EQ(tables.exit_code, 0) << tables.err;
@@ -242,7 +242,7 @@ TEST(CliSimulateTest, NoImpactTablesIntegratesEveryImpact) {
 TEST(CliSimulateTest, SvgDrawsTheTableAndPaths) {
   const std::string svg = testing::TempDir() + std::to_string(getpid()) + "_shot.svg";
   const RunResult r = RunCli("simulate --table " + TempFile("t2.json", kTable) + " --shot " +
-                             TempFile("s2.json", kStunShot) + " --svg " + svg);
+                             TempFile("s2.json", kRollingShot) + " --svg " + svg);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::ifstream f(svg);
   std::stringstream ss;
@@ -257,13 +257,13 @@ TEST(CliSimulateTest, BadFilesAndTablesExitNonZeroNamingTheProblem) {
     std::string table, shot, must_mention;
   };
   const std::vector<Case> cases = {
-      {"{not json", kStunShot, "is not a valid TableState JSON"},
+      {"{not json", kRollingShot, "is not a valid TableState JSON"},
       {R"({"balls": [{"id": "cue", "kind": "CUE", "position": {"x": 0.9, "y": 0.6}},
                      {"id": "red-1", "kind": "RED", "position": {"x": 0.91, "y": 0.6}}]})",
-       kStunShot, "cue and red-1 overlap by 0.0425 m"},
-      {R"({"balls": [{"id": "cue", "kind": "CUE", "position": {"x": 2.5, "y": 0.6}}]})", kStunShot,
+       kRollingShot, "cue and red-1 overlap by 0.0425 m"},
+      {R"({"balls": [{"id": "cue", "kind": "CUE", "position": {"x": 2.5, "y": 0.6}}]})", kRollingShot,
        "cue"},
-      {R"({"balls": [{"id": "cue", "kind": "PURPLE", "position": {"x": 0.9, "y": 0.6}}]})", kStunShot,
+      {R"({"balls": [{"id": "cue", "kind": "PURPLE", "position": {"x": 0.9, "y": 0.6}}]})", kRollingShot,
        "TableState"},
       {kTable, R"({"speed": -3, "headingDeg": 90})", "shot.speed = -3"},
   };
