@@ -83,8 +83,7 @@ def noise_scan_section(runs, scan):
         out += (f"| {scale} | {d['noiseHeadingDeg']:g} | {100 * d['noiseSpeed']:g} | {d['noiseSpin']:g} | "
                 f"{d['noisePositionMm']:g} | {d['frames']} | {share(d)} | {d['meanBreakA']:.1f} | "
                 f"{d['meanBreakB']:.1f} | {d['centuriesA']} | {d['stallsB']} |\n")
-    met = [scale for scale, d in rows
-           if d["framesWonA"] + d["framesWonB"] and d["framesWonA"] / (d["framesWonA"] + d["framesWonB"]) >= 0.8]
+    met = [scale for scale, d in rows if (won_share(d) or 0) >= 0.8]
     out += ("\nBoth players pot with the same search; what separates them is the turns `direct-pots` has no "
             "direct pot and the misses that hand either the table. With less noise both miss less, and the "
             "default's safeties and the turns `direct-pots` has no pot decide more of the frames. ")
@@ -356,6 +355,12 @@ def wilson(wins, n, z=1.96):
     return max(0.0, centre - half), min(1.0, centre + half)
 
 
+def won_share(d):
+    """A's share of the decided frames, or None when none was decided."""
+    decided = d["framesWonA"] + d["framesWonB"]
+    return d["framesWonA"] / decided if decided else None
+
+
 def share(d):
     decided = d["framesWonA"] + d["framesWonB"]
     interval = wilson(d["framesWonA"], decided)
@@ -472,10 +477,8 @@ def targets_table(runs, selfplay):
     for opponent, goal in (("direct-pots", 0.80), ("one-ply", 0.55)):
         d = match(opponent, "0.2")
         if d:
-            decided = d["framesWonA"] + d["framesWonB"]
-            won = d["framesWonA"] / decided if decided else 0
             rows.append((f"the default wins at least {100 * goal:.0f} % of frames against {opponent}",
-                         share(d), won >= goal))
+                         share(d), (won_share(d) or 0) >= goal))
     medians = [d["safetyOutlookP50A"] for o, v, d, w in runs
                if v == "0.2" and d.get("safetyOutlookP50A") is not None]
     if medians:
@@ -522,7 +525,7 @@ def lookahead_section(runs, selfplay):
                 f"planning p50 {a['planMsP50']:.1f} and {b['planMsP50']:.1f} ms.\n")
     above = [(v, d) for v, d in rows if above_half(d)]
     reference = [d for v, d in rows if v == "0.2"]
-    met = bool(reference) and reference[0]["framesWonA"] / max(1, reference[0]["framesWonA"] + reference[0]["framesWonB"]) >= 0.55
+    met = bool(reference) and (won_share(reference[0]) or 0) >= 0.55
     if above:
         out += ("\nSo the lookahead wins frames at equal time: at "
                 + " and ".join(f"{v} mm" for v, d in above)
