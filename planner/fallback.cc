@@ -6,6 +6,7 @@
 
 #include "planner/cushion_paths.h"
 #include "planner/geometry.h"
+#include "planner/robustness.h"
 
 namespace snooker::planner {
 namespace {
@@ -46,6 +47,18 @@ std::vector<Aim> AimsAt(const TableState& table, int cue, int ball, const PotCon
   return aims;
 }
 
+// The ball a foul nominates: with any colour on the lowest-valued colour on the
+// table (the penalty is at least the nominated ball's value), else `ball`.
+int Nomination(const TableState& table, BallOn on, int ball) {
+  if (on != BallOn::kAnyColour) return ball;
+  int best = ball;
+  for (size_t i = 0; i < table.balls.size(); ++i) {
+    const BallKind k = table.balls[i].kind;
+    if (IsColour(k) && Value(k) < Value(table.balls[static_cast<size_t>(best)].kind)) best = static_cast<int>(i);
+  }
+  return best;
+}
+
 }  // namespace
 
 std::optional<FallbackShot> FindLegalStroke(const TableState& table, int cue, BallOn on, const PotContext& ctx,
@@ -65,8 +78,13 @@ std::optional<FallbackShot> FindLegalStroke(const TableState& table, int cue, Ba
   after_ctx.position_sigma.clear();
   const RobotLimits& lim = settings.limits;
   const std::vector<int> touching = TouchingCueBall(table, *ctx.table);
-  std::optional<FallbackShot> best;
+  std::optional<FallbackShot> best, best_foul;
   int simulations = 0;
+  auto finish = [&]() {
+    std::optional<FallbackShot>& answer = best || !options.allow_foul ? best : best_foul;
+    if (answer) answer->simulations = simulations;
+    return answer;
+  };
   std::vector<Vec2> finals;
   for (const auto& [distance, ball] : balls) {
     for (const Aim& aim : AimsAt(table, cue, ball, ctx, options)) {
@@ -83,10 +101,7 @@ std::optional<FallbackShot> FindLegalStroke(const TableState& table, int cue, Ba
       const auto elevation = CueElevation(table, cue, aim.heading, high, lim.cue, *ctx.table);
       if (!elevation) continue;
       for (const double v : {options.soft, options.firm}) {
-        if (simulations >= options.max_simulations || interrupt.Due()) {
-          if (best) best->simulations = simulations;
-          return best;
-        }
+        if (simulations >= options.max_simulations || interrupt.Due()) return finish();
         const physics::CueParams& cue_params = ctx.cue_params();
         const physics::BallParams& ball_params = sim.params().ball;
         physics::CueStrike k;
@@ -107,9 +122,20 @@ std::optional<FallbackShot> FindLegalStroke(const TableState& table, int cue, Ba
                               TouchingBallOn(table, on, *ctx.table)};
         ++simulations;
         const ShotOutcome& out = sim.Run(setup, shot, {}, ShotSimulator::Mode::kToRest, interrupt);
-        if (!out.success) continue;
+        if (out.status != physics::SimStatus::kAtRest) continue;  // interrupted, or failed
         finals.clear();
         for (const physics::BallState& b : sim.final_balls()) finals.push_back(b.r);
+        if (!out.success) {
+          if (best || !options.allow_foul || out.foul == Foul::kNone) continue;
+          ShotSetup as_foul = setup;
+          as_foul.kind = ShotKind::kFoul;
+          as_foul.object = Nomination(table, on, ball);
+          const double score = MonteCarloScore(as_foul, out, finals, after_ctx, settings);
+          if (!best_foul || score > best_foul->score) {
+            best_foul = FallbackShot{ShotKind::kFoul, as_foul.object, k, shot, score, 0};
+          }
+          continue;
+        }
         const double score = ScoreSafety(table, on, out.first_hit, finals, out.potted, after_ctx, settings).score;
         if (!best || score > best->score) {
           best = FallbackShot{out.cue_cushions_first > 0 ? ShotKind::kEscape : ShotKind::kSafety, out.first_hit, k,
@@ -119,8 +145,7 @@ std::optional<FallbackShot> FindLegalStroke(const TableState& table, int cue, Ba
     }
     if (best) break;  // a legal stroke on the nearest reachable ball will do
   }
-  if (best) best->simulations = simulations;
-  return best;
+  return finish();
 }
 
 }  // namespace snooker::planner

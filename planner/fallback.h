@@ -6,7 +6,11 @@
 // ball on, nearest first, headings across the ball's visible width and then the
 // one- and two-cushion paths to it (cushion_paths.h), each at a soft and a firm
 // speed, simulated to rest; the legal stroke that leaves the opponent least
-// (ScoreSafety) wins. The scan is deterministic and capped in simulations.
+// (ScoreSafety) wins. When every stroke tried fouls (the cue ball hemmed in by
+// balls not on), the foul that costs least (MonteCarloScore: the penalty and what
+// the opponent can expect) is the answer, if the caller allows one: a robot still
+// strikes, and the least harmful way. The scan is deterministic and capped in
+// simulations.
 #pragma once
 
 #include <optional>
@@ -26,19 +30,25 @@ struct FallbackOptions {
   double firm = 2.5;
   /// Balls on tried, nearest first.
   int max_balls = 4;
+  /// With no legal stroke, answer the least costly foul (kind kFoul).
+  bool allow_foul = false;
 };
 
 struct FallbackShot {
-  ShotKind kind = ShotKind::kSafety;  ///< kEscape when it reaches its ball off a cushion
-  int object = -1;                    ///< the ball aimed at
+  /// kEscape when it reaches its ball off a cushion; kFoul when it fouls.
+  ShotKind kind = ShotKind::kSafety;
+  /// The ball aimed at; for a foul the ball nominated (with any colour on, the
+  /// lowest-valued colour).
+  int object = -1;
   physics::CueStrike cue;             ///< the stroke: centre and level, or raised with the tip high
   physics::Shot shot;                 ///< what `cue` gives the cue ball
-  double score = 0;                   ///< ScoreSafety's
+  double score = 0;                   ///< ScoreSafety's; a foul's, MonteCarloScore's
   int simulations = 0;
 };
 
 /// The best legal stroke the scan finds for the cue ball of `table` (index `cue`)
-/// with `on`, or nullopt (no legal stroke found within the cap, or interrupted).
+/// with `on`; else, with options.allow_foul, the least costly foul it played; else
+/// nullopt (nothing found within the cap, or interrupted).
 /// `sim` runs at full fidelity. Shots respect `settings.limits` (speed, room for
 /// the cue).
 std::optional<FallbackShot> FindLegalStroke(const TableState& table, int cue, BallOn on, const PotContext& ctx,

@@ -251,7 +251,8 @@ TurnChoice MatchRunner::Choose(const FrameState& f, int frame, Rng& rng) const {
       c.route = p.route;
       if (p.kind == ShotKind::kPot) c.pot_probability = p.pot_probability;
       c.plan_score = p.score;
-      c.nominated = NominationFor(f, p.first_ball >= 0 ? p.first_ball : p.object_ball);
+      // A foul stroke names the colour it nominates as its object ball.
+      c.nominated = NominationFor(f, p.first_ball >= 0 && p.kind != ShotKind::kFoul ? p.first_ball : p.object_ball);
       return c;
     }
   }

@@ -502,7 +502,12 @@ std::optional<PlannedShot> PlanRun::Verify(Worker& w, const Candidate& cand, con
   const ShotOutcome& out = *run;
   const bool pot = setup.kind == ShotKind::kPot;
   const PotRoute route = pot ? RouteOf(out, setup.object) : PotRoute::kDirect;
-  if (!out.success || (pot && !request_.routes.Has(route))) {
+  // A foul stroke (the fallback's last resort) is what it says when it fouls.
+  const bool foul = setup.kind == ShotKind::kFoul;
+  const bool does_its_job = foul ? out.status == physics::SimStatus::kAtRest && out.foul != Foul::kNone &&
+                                       out.foul != Foul::kSimulationFailed
+                                 : out.success && (!pot || request_.routes.Has(route));
+  if (!does_its_job) {
     // An interrupted check says nothing about the shot: it is dropped unverified.
     if (out.status != physics::SimStatus::kInterrupted) failed_verification_[task] = 1;
     return std::nullopt;
@@ -515,11 +520,12 @@ std::optional<PlannedShot> PlanRun::Verify(Worker& w, const Candidate& cand, con
   ps.shot = sc.shot;
   ps.cut = sc.cut;
   ps.first_ball = out.first_hit;
-  ps.object_ball = pot ? setup.object : out.first_hit;
+  ps.object_ball = pot || foul ? setup.object : out.first_hit;
   if (pot) ps.pocket = static_cast<physics::PocketId>(out.object_pocket);
   // A relabelled stroke has no estimate from its search (which judged another kind):
   // its nominal run drops the ball, and the Monte Carlo gives the probability.
   ps.pot_probability = pot ? (relabelled ? 1.0 : sc.pot_estimate) : 0;
+  ps.foul_probability = foul ? 1.0 : 0.0;  // the nominal run's, until the Monte Carlo's
   ps.pocket_probability = ps.pot_probability;
   ps.pot_estimate = ps.pot_probability;
   const auto events = w.full.simulator().events();
@@ -532,8 +538,14 @@ std::optional<PlannedShot> PlanRun::Verify(Worker& w, const Candidate& cand, con
                                                    : std::nullopt});
   }
   ps.cue_ball_end = finals[static_cast<size_t>(setup.cue)];
-  const Leave leave = pot ? ScoreLeave(table, on_, setup.object, finals, out.potted, ps.pot_probability, after_ctx_, settings_)
-                          : ScoreSafety(table, on_, out.first_hit, finals, out.potted, after_ctx_, settings_);
+  Leave leave;
+  if (pot) {
+    leave = ScoreLeave(table, on_, setup.object, finals, out.potted, ps.pot_probability, after_ctx_, settings_);
+  } else if (foul) {
+    leave.score = MonteCarloScore(setup, out, finals, after_ctx_, settings_);
+  } else {
+    leave = ScoreSafety(table, on_, out.first_hit, finals, out.potted, after_ctx_, settings_);
+  }
   ps.position_value = leave.position.value;
   ps.position_points = leave.position.expected_points;
   ps.next_ball = leave.next_ball;
@@ -622,8 +634,9 @@ void PlanRun::Fallback() {
   physics::Interrupt interrupt;
   interrupt.deadline = request_.deadline;
   interrupt.cancelled = request_.cancel;
-  const auto found = FindLegalStroke(table, table.cue_index(), on_, ctx_, settings_, w.full, interrupt,
-                                     FallbackOptions{});
+  FallbackOptions options;
+  options.allow_foul = request_.kinds.Has(ShotKind::kFoul);
+  const auto found = FindLegalStroke(table, table.cue_index(), on_, ctx_, settings_, w.full, interrupt, options);
   if (!found) return;
   answer_.simulations += found->simulations;
   Candidate c;
@@ -771,7 +784,12 @@ void PlanRun::Conclude() {
   const bool cancelled = request_.cancel != nullptr && request_.cancel->load();
   if (!answer_.shots.empty()) {
     answer_.status = cancelled ? PlanStatus::kCancelled : PlanStatus::kOk;
-    if (cancelled) answer_.reason = "cancelled: the best shots found so far";
+    if (cancelled) {
+      answer_.reason = "cancelled: the best shots found so far";
+    } else if (answer_.shots.front().kind == ShotKind::kFoul) {
+      answer_.reason = (no_candidates_.empty() ? std::string("no shot found") : no_candidates_) +
+                       "; no legal stroke was found, so the shot is the foul that costs least";
+    }
   } else if (cancelled) {
     answer_.status = PlanStatus::kCancelled;
     answer_.reason = "cancelled before any shot was verified";
@@ -803,6 +821,7 @@ const char* ToString(ShotKind kind) {
     case ShotKind::kSafety: return "SAFETY";
     case ShotKind::kEscape: return "ESCAPE";
     case ShotKind::kBreakOff: return "BREAK_OFF";
+    case ShotKind::kFoul: return "FOUL";
   }
   return "UNKNOWN";
 }

@@ -11,9 +11,10 @@ enum class ShotKind : std::uint8_t {
   kSafety,    ///< plays a ball on, leaves the opponent as little as it can, drops no ball on
   kEscape,    ///< out of a snooker: a ball on hit first, through cushions; drops no ball on
   kBreakOff,  ///< the frame's first shot, from the D into the reds
+  kFoul,      ///< no legal stroke was found: the foul that costs the striker least
 };
-inline constexpr int kShotKindCount = 4;
-/// "POT", "SAFETY", "ESCAPE", "BREAK_OFF" (the API's names).
+inline constexpr int kShotKindCount = 5;
+/// "POT", "SAFETY", "ESCAPE", "BREAK_OFF", "FOUL" (the API's names).
 const char* ToString(ShotKind kind);
 
 enum class PotRoute : std::uint8_t {

@@ -281,6 +281,7 @@ v1::ShotKind ToProto(planner::ShotKind kind) {
     case planner::ShotKind::kSafety: return v1::SAFETY;
     case planner::ShotKind::kEscape: return v1::ESCAPE;
     case planner::ShotKind::kBreakOff: return v1::BREAK_OFF;
+    case planner::ShotKind::kFoul: return v1::FOUL;
   }
   return v1::SHOT_KIND_UNSPECIFIED;
 }

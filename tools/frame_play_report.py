@@ -416,7 +416,7 @@ def player_table(d):
 
 def kinds_table(runs):
     """How often each kind of shot and each pot route was played, per player and match."""
-    kinds = ("POT", "SAFETY", "ESCAPE", "BREAK_OFF")
+    kinds = ("POT", "SAFETY", "ESCAPE", "BREAK_OFF", "FOUL")
     routes = ("DIRECT", "PLANT", "DOUBLE", "KICK")
     out = ("| match | player | " + " | ".join(k.lower().replace("_", "-") for k in kinds) + " | "
            + " | ".join(r.lower() for r in routes) + " | stalls | fouls per stroke |\n"
@@ -429,7 +429,7 @@ def kinds_table(runs):
             fouls = d.get("fouls" + side) or 0
             rate = f"{100 * fouls / strokes:.1f} %" if strokes else "-"
             out += (f"| {d['playerA']} v {d['playerB']}, {vision} mm | {d['player' + side]} | "
-                    + " | ".join(str(k.get(x, 0)) for x in kinds) + " | "
+                    + " | ".join(str(k.get(x, "-")) for x in kinds) + " | "
                     + " | ".join(str(r.get(x, 0)) for x in routes)
                     + f" | {d['stalls' + side]} | {rate} |\n")
     return out
@@ -673,7 +673,8 @@ plans end on the clock, so a rerun on a loaded machine differs in its details.
     out += timing_table(runs)
     out += "\n## Shot kinds and pot routes played\n\n"
     out += ("Strokes each player chose (stalls apart), by the kind its plan labelled them with, "
-            "and its pots by route; fouls per stroke played.\n\n")
+            "and its pots by route; fouls per stroke played. A kind the run's data does not "
+            "count (it came later than the run) shows as -.\n\n")
     out += kinds_table(runs)
     if selfplay:
         out += "\n## Self-play\n\n"

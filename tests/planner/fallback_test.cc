@@ -1,13 +1,19 @@
 // The fallback's scan (planner/fallback.h): a legal stroke for a cue ball that only a
-// raised cue can play, within the request's spin limits.
+// raised cue can play, within the request's spin limits; and for a cue ball hemmed in
+// by balls not on, the foul that costs least, only when the caller allows one.
 #include "planner/fallback.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "physics/table/table.h"
+#include "planner/geometry.h"
 #include "planner/planner.h"
+#include "planner/robustness.h"
 
 namespace snooker::planner {
 namespace {
@@ -48,6 +54,106 @@ TEST(FallbackScanTest, RaisesTheCueWithinTheSpinLimits) {
     EXPECT_EQ(res.shot.speed, found->shot.speed);
     EXPECT_EQ(res.shot.topspin, found->shot.topspin);
   }
+}
+
+// The cue ball in a ring of six reds with a colour on: the gaps between the reds (1 mm)
+// are narrower than a ball, so every stroke hits a red first and fouls.
+TableState HemmedIn() {
+  const physics::TableModel& model = physics::DefaultTable();
+  const Vec2 c(0.6, 2.2);
+  const double ring = 2 * model.ball_radius() + 0.001;
+  TableState t;
+  t.balls = {{BallKind::kCue, c}};
+  for (int k = 0; k < 6; ++k) {
+    const double a = k * physics::kPi / 3 + 0.3;
+    t.balls.push_back({BallKind::kRed, c + ring * Vec2(std::cos(a), std::sin(a))});
+  }
+  for (const auto& [kind, colour] : {std::pair{BallKind::kYellow, physics::Colour::kYellow},
+                                     {BallKind::kGreen, physics::Colour::kGreen},
+                                     {BallKind::kBrown, physics::Colour::kBrown},
+                                     {BallKind::kBlue, physics::Colour::kBlue},
+                                     {BallKind::kPink, physics::Colour::kPink},
+                                     {BallKind::kBlack, physics::Colour::kBlack}}) {
+    t.balls.push_back({kind, model.spot(colour)});
+  }
+  return t;
+}
+
+struct Scan {
+  PotContext ctx;
+  SearchSettings settings;
+  ShotSimulator sim{physics::DefaultTable(), Planner::Default().config().full};
+  explicit Scan(const TableState& t) {
+    PlanRequest r;
+    r.table = t;
+    ctx = Planner::Default().ContextFor(r);
+    settings = Planner::Default().config().search_settings;
+  }
+  std::optional<FallbackShot> Find(const TableState& t, bool allow_foul) {
+    FallbackOptions options;
+    options.allow_foul = allow_foul;
+    return FindLegalStroke(t, 0, BallOn::kAnyColour, ctx, settings, sim, physics::Interrupt{}, options);
+  }
+  // What the stroke `shot` aimed at `object` scores when played to rest: the
+  // Monte Carlo's points for one sample without noise.
+  double Score(const TableState& t, int object, const physics::Shot& shot, ShotOutcome* out = nullptr) {
+    const ShotSetup setup{&t, 0, object, physics::PocketId::kBaulkLeft, BallOn::kAnyColour, ShotKind::kFoul, -1, -1};
+    const ShotOutcome& o = sim.Run(setup, shot, {}, ShotSimulator::Mode::kToRest, physics::Interrupt{});
+    std::vector<Vec2> finals;
+    for (const physics::BallState& b : sim.final_balls()) finals.push_back(b.r);
+    PotContext after = ctx;
+    after.position_sigma.clear();
+    if (out != nullptr) *out = o;
+    return MonteCarloScore(setup, o, finals, after, settings);
+  }
+};
+
+TEST(FallbackScanTest, HemmedInItAnswersTheLeastCostlyFoulOnlyWhenAllowed) {
+  const TableState t = HemmedIn();
+  Scan scan(t);
+  EXPECT_FALSE(scan.Find(t, false).has_value()) << "no legal stroke exists, and no foul was allowed";
+  const auto found = scan.Find(t, true);
+  ASSERT_TRUE(found.has_value());
+  EXPECT_EQ(found->kind, ShotKind::kFoul);
+  ASSERT_GE(found->object, 7);  // a colour
+  EXPECT_GT(found->simulations, 0);
+  // Played again it fouls, on a red, and scores what the scan said.
+  ShotOutcome out;
+  EXPECT_DOUBLE_EQ(scan.Score(t, found->object, found->shot, &out), found->score);
+  EXPECT_NE(out.foul, Foul::kNone);
+  ASSERT_GE(out.first_hit, 1);
+  EXPECT_EQ(t.balls[static_cast<size_t>(out.first_hit)].kind, BallKind::kRed);
+  // It nominates the yellow, the cheapest colour: the penalty is 4, the least a foul
+  // can cost, and the score is that and what the opponent can expect.
+  EXPECT_EQ(t.balls[static_cast<size_t>(found->object)].kind, BallKind::kYellow);
+  EXPECT_EQ(FoulPenalty(t, BallOn::kAnyColour, BallKind::kYellow, out.first_hit, out.potted), 4);
+  EXPECT_LE(found->score, -4.0);
+  // It is no worse than the level, central stroke straight at any of the four
+  // nearest colours, soft or firm, where the cue clears: the scan tried those too.
+  const FallbackOptions options;
+  const physics::CueParams& cue = scan.ctx.cue_params();
+  const physics::BallParams& ball = Planner::Default().config().full.ball;
+  std::vector<std::pair<double, int>> colours;
+  for (int i = 7; i < static_cast<int>(t.balls.size()); ++i) {
+    colours.emplace_back((t.balls[static_cast<size_t>(i)].position - t.balls[0].position).norm(), i);
+  }
+  std::sort(colours.begin(), colours.end());
+  colours.resize(static_cast<size_t>(options.max_balls));
+  int compared = 0;
+  for (const auto& [distance, object] : colours) {
+    const Vec2 d = t.balls[static_cast<size_t>(object)].position - t.balls[0].position;
+    if (CueMargin(t, 0, std::atan2(d.y(), d.x()), RobotLimits{}.cue, physics::DefaultTable()) < 0) continue;
+    for (const double v : {options.soft, options.firm}) {
+      physics::CueStrike k;
+      k.heading = std::atan2(d.y(), d.x());
+      k.speed = physics::CueSpeedFor(v, 0.0, 0.0, cue, ball);
+      const physics::StrikeResult s = physics::Strike(k, cue, ball, Planner::Default().config().full.cloth.g);
+      if (s.status != physics::StrikeStatus::kOk) continue;
+      EXPECT_GE(found->score, scan.Score(t, found->object, s.shot) - 1e-9) << "at ball " << object << ", " << v << " m/s";
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 0);
 }
 
 }  // namespace

@@ -371,10 +371,15 @@ TEST(PlanConvertTest, EachKindOfShotInTheApisNames) {
   escape.object_ball = 1;
   escape.first_ball = -1;
   escape.foul_probability = 1;
-  answer.shots = {plant, safety, escape};
+  planner::PlannedShot foul;  // nominates the black, hits r8 first
+  foul.kind = planner::ShotKind::kFoul;
+  foul.object_ball = 3;
+  foul.first_ball = 2;
+  foul.foul_probability = 0.875;
+  answer.shots = {plant, safety, escape, foul};
   v1::PlanResponse response;
   ToProto(answer, table, physics::DefaultTable(), &response);
-  ASSERT_EQ(response.shots_size(), 3);
+  ASSERT_EQ(response.shots_size(), 4);
 
   const v1::PlannedShot& p = response.shots(0);
   EXPECT_EQ(p.kind(), v1::POT);
@@ -402,6 +407,10 @@ TEST(PlanConvertTest, EachKindOfShotInTheApisNames) {
   EXPECT_DOUBLE_EQ(s.foul_probability(), 0.25);
   EXPECT_EQ(response.shots(2).kind(), v1::ESCAPE);
   EXPECT_EQ(response.shots(2).first_ball(), "");
+  EXPECT_EQ(response.shots(3).kind(), v1::FOUL);
+  EXPECT_EQ(response.shots(3).route(), v1::POT_ROUTE_UNSPECIFIED);
+  EXPECT_EQ(response.shots(3).object_ball(), "the-black");
+  EXPECT_EQ(response.shots(3).first_ball(), "r8");
 
   // The JSON names: the contract for tools outside the project.
   const google::protobuf::Struct json = Json(response);
@@ -422,6 +431,8 @@ TEST(PlanConvertTest, EachKindOfShotInTheApisNames) {
   EXPECT_EQ(Text(ShotOf(json, 1), "kind"), "SAFETY");
   EXPECT_EQ(Text(ShotOf(json, 1), "route"), "POT_ROUTE_UNSPECIFIED");
   EXPECT_EQ(Text(ShotOf(json, 2), "kind"), "ESCAPE");
+  EXPECT_EQ(Text(ShotOf(json, 3), "kind"), "FOUL");
+  EXPECT_EQ(ShotOf(json, 3).fields().at("foulProbability").number_value(), 0.875);
 }
 
 TEST(PlanConvertTest, TheCueBallPlacedFromHandIsNamedCue) {

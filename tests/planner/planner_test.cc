@@ -101,11 +101,22 @@ TEST(PlannerTest, NoPossiblePotGivesAnEmptyAnswerWithAReason) {
     const double a = k * physics::kPi / 3 + physics::kPi / 6;
     t.balls.push_back({ring[k], red + (2 * kR + 0.0005) * Vec2(std::cos(a), std::sin(a))});
   }
-  const PlanAnswer a = Planner::Default().Plan(Request(t));
+  // Asked for legal strokes only, the answer is empty and says why.
+  PlanRequest legal = Request(t);
+  legal.kinds = ShotKinds::Of(ShotKind::kPot).With(ShotKind::kSafety).With(ShotKind::kEscape);
+  const PlanAnswer a = Planner::Default().Plan(legal);
   EXPECT_EQ(a.status, PlanStatus::kNoPot);
   EXPECT_TRUE(a.shots.empty());
   EXPECT_NE(a.reason.find("no pot"), std::string::npos) << a.reason;
   EXPECT_NE(a.reason.find("path blocked"), std::string::npos) << a.reason;
+  // By default the robot still gets a stroke: the least costly foul, the same reason
+  // leading its explanation.
+  const PlanAnswer f = Planner::Default().Plan(Request(t));
+  EXPECT_EQ(f.status, PlanStatus::kOk);
+  ASSERT_FALSE(f.shots.empty());
+  EXPECT_EQ(f.shots.front().kind, ShotKind::kFoul);
+  EXPECT_NE(f.reason.find("path blocked"), std::string::npos) << f.reason;
+  EXPECT_NE(f.reason.find("the foul that costs least"), std::string::npos) << f.reason;
 }
 
 // Seeded random mid-frame tables (the self-play's), one per test: every returned

@@ -153,6 +153,47 @@ TEST(ShotKindsTest, ASnookeredCueBallEscapes) {
   }
 }
 
+// The cue ball in a ring of six reds, 1 mm apart, with a colour on: every stroke hits
+// a red first. A robot still gets a stroke, labelled a foul: replayed it fouls, and it
+// nominates the yellow (the penalty is 4, the least there is). A caller that allows
+// only legal strokes gets none, with a reason that says so.
+TEST(ShotKindsTest, HemmedInByBallsNotOnTheShotIsTheLeastCostlyFoul) {
+  const Vec2 c(0.6, 2.2);
+  TableState t;
+  t.balls = {{BallKind::kCue, c}};
+  for (int k = 0; k < 6; ++k) {
+    const double a = k * physics::kPi / 3 + 0.3;
+    t.balls.push_back({BallKind::kRed, c + (2 * kR + 0.001) * Vec2(std::cos(a), std::sin(a))});
+  }
+  t.balls.push_back({BallKind::kYellow, Table().spot(physics::Colour::kYellow)});
+  t.balls.push_back({BallKind::kBlue, Table().spot(physics::Colour::kBlue)});
+  t.balls.push_back({BallKind::kPink, Table().spot(physics::Colour::kPink)});
+  PlanRequest r = Request(t);
+  r.ball_on = BallOn::kAnyColour;
+  const PlanAnswer answer = Planner::Default().Plan(r);
+  EXPECT_EQ(answer.status, PlanStatus::kOk);
+  ASSERT_EQ(answer.shots.size(), 1u) << answer.reason;
+  EXPECT_NE(answer.reason.find("the foul that costs least"), std::string::npos) << answer.reason;
+  const PlannedShot& s = answer.shots.front();
+  EXPECT_EQ(s.kind, ShotKind::kFoul);
+  EXPECT_EQ(t.balls[static_cast<size_t>(s.object_ball)].kind, BallKind::kYellow);
+  EXPECT_GT(s.foul_probability, 0.5);
+  EXPECT_LE(s.score, -4.0);
+  const Replayed p = Replay(r, s);
+  EXPECT_NE(p.out.foul, Foul::kNone);
+  ASSERT_GE(p.out.first_hit, 0);
+  EXPECT_EQ(p.out.first_hit, s.first_ball);
+  EXPECT_EQ(t.balls[static_cast<size_t>(p.out.first_hit)].kind, BallKind::kRed);
+  EXPECT_EQ(FoulPenalty(t, BallOn::kAnyColour, BallKind::kYellow, p.out.first_hit, p.out.potted), 4);
+  EXPECT_EQ(s.balls_end.size(), t.balls.size());
+
+  r.kinds = ShotKinds::Of(ShotKind::kPot).With(ShotKind::kSafety).With(ShotKind::kEscape);
+  const PlanAnswer legal_only = Planner::Default().Plan(r);
+  EXPECT_TRUE(legal_only.shots.empty());
+  EXPECT_EQ(legal_only.status, PlanStatus::kNoPot);
+  EXPECT_NE(legal_only.reason.find("no legal stroke was found"), std::string::npos) << legal_only.reason;
+}
+
 TEST(ShotKindsTest, ASafetyPlaysABallOnAndFoulsNothing) {
   // A red on the top cushion, nothing to pot: the planner plays safe.
   TableState t;
