@@ -172,7 +172,8 @@ class PlanRun {
   void SearchAndVerify();
   ShotSetup SetupFor(const Candidate& cand) const;
   ShotSetup SetupFor(const PlannedShot& ps) const;
-  std::optional<PlannedShot> Verify(Worker& w, const Candidate& cand, const ShotCandidate& sc, size_t task);
+  std::optional<PlannedShot> Verify(Worker& w, const Candidate& cand, const ShotCandidate& sc, size_t task,
+                                    const physics::Interrupt& interrupt);
   std::vector<const ShotCandidate*> Alternatives(const Candidate& cand, const SearchResult& r) const;
   void Fallback();
   void LookAhead();
@@ -208,6 +209,7 @@ class PlanRun {
   int cue_table_ = kNotPlaced;  // TableWithCue's table, once made
   std::vector<Candidate> candidates_;
   std::string no_candidates_;  // why there were none to search, when so
+  bool fallback_past_budget_ = false;  // the fallback's stroke was verified after the budget
   CandidateSet pots_;  // the direct pots' pruning counts, for the reason
   double best_pot_ = 0;  // the best pot estimate
   LayoutSummary layout_;  // the request's table, for the layout term
@@ -481,10 +483,9 @@ int LegalPotOf(const TableState& table, BallOn on, const ShotOutcome& out) {
 // ball is followed (and the Monte Carlo counts its drops), or dropped when the
 // request does not take such a pot.
 std::optional<PlannedShot> PlanRun::Verify(Worker& w, const Candidate& cand, const ShotCandidate& sc,
-                                           size_t task) {
+                                           size_t task, const physics::Interrupt& interrupt) {
   ShotSetup setup = SetupFor(cand);
   const TableState& table = *setup.table;
-  const physics::Interrupt interrupt = schedule_.final.AsInterrupt();
   const ShotOutcome* run = &w.full.Run(setup, sc.shot, {}, ShotSimulator::Mode::kFull, interrupt);
   bool relabelled = false;
   if ((cand.kind == ShotKind::kSafety || cand.kind == ShotKind::kEscape) && run->success) {
@@ -595,7 +596,7 @@ void PlanRun::SearchAndVerify() {
     if (!r.best || schedule_.final.Due()) return;
     for (const ShotCandidate* sc : Alternatives(cand, r)) {
       ++verifications[t];
-      if (auto ps = Verify(w, cand, *sc, t)) found_[t].push_back(std::move(*ps));
+      if (auto ps = Verify(w, cand, *sc, t, schedule_.final.AsInterrupt())) found_[t].push_back(std::move(*ps));
     }
     if (found_[t].empty() || request_.progress == nullptr) return;
     std::lock_guard<std::mutex> lock(progress_mutex);
@@ -622,10 +623,16 @@ void PlanRun::SearchAndVerify() {
 }
 
 // With no verified shot, a legal stroke by a deterministic scan (fallback.h), when
-// the request allows a shot that does not pot: a robot must strike every turn.
+// the request allows a shot that does not pot: a robot must strike every turn. The
+// scan and its verification run until the caller's deadline, not the budget: the
+// budget is what the plan aims at, the deadline when the robot must have a stroke.
 void PlanRun::Fallback() {
   const bool cancelled = request_.cancel != nullptr && request_.cancel->load();
-  if (!shots_.empty() || cancelled || Clock::now() >= request_.deadline || !FallbackAllowed()) return;
+  if (!shots_.empty() || cancelled || !FallbackAllowed()) return;
+  if (Clock::now() >= request_.deadline) {
+    answer_.deadline_hit = true;  // no time for the scan: the deadline, not the table, left no shot
+    return;
+  }
   const int t = TableWithCue();
   if (t < 0) return;
   const TableState& table = tables_[static_cast<size_t>(t)];
@@ -637,7 +644,10 @@ void PlanRun::Fallback() {
   FallbackOptions options;
   options.allow_foul = request_.kinds.Has(ShotKind::kFoul);
   const auto found = FindLegalStroke(table, table.cue_index(), on_, ctx_, settings_, w.full, interrupt, options);
-  if (!found) return;
+  if (!found) {
+    answer_.deadline_hit = answer_.deadline_hit || interrupt.Due();
+    return;
+  }
   answer_.simulations += found->simulations;
   Candidate c;
   c.kind = found->kind;
@@ -651,7 +661,10 @@ void PlanRun::Fallback() {
   sc.shot = found->shot;
   sc.score = found->score;
   ++answer_.simulations;
-  if (auto ps = Verify(w, candidates_.back(), sc, failed_verification_.size() - 1)) shots_.push_back(std::move(*ps));
+  if (auto ps = Verify(w, candidates_.back(), sc, failed_verification_.size() - 1, interrupt)) {
+    shots_.push_back(std::move(*ps));
+    fallback_past_budget_ = schedule_.final.Due();
+  }
   answer_.verified = static_cast<int>(shots_.size());
 }
 
@@ -789,6 +802,11 @@ void PlanRun::Conclude() {
     } else if (answer_.shots.front().kind == ShotKind::kFoul) {
       answer_.reason = (no_candidates_.empty() ? std::string("no shot found") : no_candidates_) +
                        "; no legal stroke was found, so the shot is the foul that costs least";
+    }
+    if (fallback_past_budget_ && !cancelled) {
+      answer_.reason += std::string(answer_.reason.empty() ? "" : "; ") +
+                        "the time budget ran out before the search verified a shot: the fallback's stroke, "
+                        "verified after it";
     }
   } else if (cancelled) {
     answer_.status = PlanStatus::kCancelled;

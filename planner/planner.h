@@ -99,7 +99,9 @@ struct PlanRequest {
   int monte_carlo_samples = 48;
 
   /// The caller's own deadline (e.g. an RPC's): the plan ends by the earlier of
-  /// this and start + time_budget.
+  /// this and start + time_budget, except that a plan with no shot verified by then
+  /// runs its fallback scan (fallback.h, capped in simulations) and verifies its
+  /// stroke until this deadline: a robot gets a stroke whenever the deadline allows.
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
   /// Set from another thread to stop the plan as soon as possible. Optional.
   const std::atomic<bool>* cancel = nullptr;

@@ -333,6 +333,35 @@ TEST(PlannerTest, AnInvalidRequestIsRefusedNamingTheField) {
   EXPECT_NE(a.reason.find("noise.heading = -1"), std::string::npos) << a.reason;
 }
 
+// The budget is the planner's aim, the caller's deadline a hard end: when the budget
+// runs out with no shot verified, the fallback's stroke is still answered, verified
+// up to the deadline. Here the only red is ringed by colours (no pot, no legal
+// stroke) and the budget, 1 ms, is spent before the scan has played its strokes.
+TEST(PlannerTest, WithTheBudgetSpentTheFallbackStillAnswersBeforeTheDeadline) {
+  const Vec2 red(0.9, 2.0);
+  TableState t;
+  t.balls = {{BallKind::kCue, Vec2(0.9, 0.5)}, {BallKind::kRed, red}};
+  const BallKind ring[] = {BallKind::kYellow, BallKind::kGreen, BallKind::kBrown,
+                           BallKind::kBlue, BallKind::kPink, BallKind::kBlack};
+  for (int k = 0; k < 6; ++k) {
+    const double a = k * physics::kPi / 3 + physics::kPi / 6;
+    t.balls.push_back({ring[k], red + (2 * kR + 0.0005) * Vec2(std::cos(a), std::sin(a))});
+  }
+  PlanRequest r = Request(t);
+  r.time_budget = 1e-3;
+  r.threads = 1;
+  const PlanAnswer a = Planner::Default().Plan(r);
+  EXPECT_EQ(a.status, PlanStatus::kOk) << a.reason;
+  ASSERT_EQ(a.shots.size(), 1u) << a.reason;
+  EXPECT_EQ(a.shots.front().kind, ShotKind::kFoul);
+  // A caller's deadline already past leaves no time for it: no shot, and the
+  // deadline named.
+  r.deadline = std::chrono::steady_clock::now();
+  const PlanAnswer late = Planner::Default().Plan(r);
+  EXPECT_TRUE(late.shots.empty());
+  EXPECT_EQ(late.status, PlanStatus::kDeadline) << late.reason;
+}
+
 TEST(PlannerTest, TheBudgetRunningOutIsNotTheCallersDeadline) {
   // A budget far too small for a pot on a full frame, with no deadline of the
   // caller's: whatever the timing, the plan ends by its budget, never by a deadline.
