@@ -48,8 +48,9 @@ Plans the shots that pot a ball on and leave the cue ball in a good position for
 next one: every shot is searched with NLopt over speed, topspin, sidespin and cut
 angle, checked with the full simulator, and ranked by its probability of success
 under the robot's execution noise and the vision system's position noise (seeded
-Monte Carlo). Each shot is listed with its kind (pot, safety, escape, break-off),
-a pot with its route (direct, plant, double, kick).
+Monte Carlo). Each shot is listed with its kind (pot, safety, escape, break-off;
+foul, naming the colour it nominates, only when no legal stroke was found), a pot
+with its route (direct, plant, double, kick).
 
   --table T.json   the balls, as for snooker simulate: {"balls": [{"id": "cue",
                    "kind": "CUE", "position": {"x": 0.9, "y": 0.6}}, ...]}; positions
@@ -139,7 +140,11 @@ bool ReadTable(const std::string& path, v1::TableState* table, std::ostream& err
 void PrintReadable(const v1::PlanResponse& r, std::ostream& out) {
   for (const v1::Warning& w : r.warnings()) out << "warning: " << w.message() << "\n";
   if (r.warnings_size() > 0) out << "\n";
-  if (r.shots_size() == 0) out << "no shot: " << r.reason() << "\n";
+  if (r.shots_size() == 0) {
+    out << "no shot: " << r.reason() << "\n";
+  } else if (!r.reason().empty()) {
+    out << "note: " << r.reason() << "\n";  // a foul as the last resort, a stroke past the budget
+  }
   int rank = 0;
   for (const v1::PlannedShot& s : r.shots()) {
     out << std::fixed << "#" << ++rank << "  " << ShotLabel(s) << std::setprecision(3) << "   ";

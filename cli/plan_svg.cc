@@ -105,10 +105,14 @@ std::string Percent(double p) {
   return s.str();
 }
 
-// "pot, direct: red-1 -> top-right", "safety: red-3 first", "escape: no ball hit".
+// "pot, direct: red-1 -> top-right", "safety: red-3 first", "escape: no ball hit",
+// "foul: red-2 first, nominating yellow".
 std::string Headline(const v1::PlannedShot& s) {
   const std::string kind = svg::Words(v1::ShotKind_Name(s.kind())), route = svg::Words(v1::PotRoute_Name(s.route()));
-  if (s.kind() != v1::POT) return kind + ": " + (s.first_ball().empty() ? "no ball hit" : s.first_ball() + " first");
+  if (s.kind() != v1::POT) {
+    const std::string nominated = s.kind() == v1::FOUL ? ", nominating " + s.object_ball() : "";
+    return kind + ": " + (s.first_ball().empty() ? "no ball hit" : s.first_ball() + " first") + nominated;
+  }
   std::string line = "pot, " + route;
   if (s.route() == v1::PLANT && !s.first_ball().empty()) line += " off " + s.first_ball();
   return line + ": " + s.object_ball() + " -> " + s.pocket();

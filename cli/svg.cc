@@ -63,7 +63,8 @@ std::string TableSvg(const physics::TableModel& table, const v1::TableState& tab
 std::string ShotLabel(const v1::PlannedShot& s) {
   const std::string kind = svg::Words(v1::ShotKind_Name(s.kind())), route = svg::Words(v1::PotRoute_Name(s.route()));
   if (s.kind() != v1::POT) {
-    return kind + ", " + (s.first_ball().empty() ? "no ball hit" : s.first_ball() + " first");
+    const std::string nominated = s.kind() == v1::FOUL ? ", nominating " + s.object_ball() : "";
+    return kind + ", " + (s.first_ball().empty() ? "no ball hit" : s.first_ball() + " first") + nominated;
   }
   std::string label = s.object_ball() + " into " + s.pocket() + " (pot, " + route;
   if (s.route() == v1::PLANT && !s.first_ball().empty()) label += " off " + s.first_ball();

@@ -641,10 +641,12 @@ function planFailed(e) {
   resetReplayControls();
 }
 
-// "pot, direct" in sentences; in the list a pot is named by its route alone.
+// "pot, direct" in sentences; in the list a pot is named by its route alone. A foul
+// (the last resort when no legal stroke exists) names the colour it nominates.
 function shotLabel(shot, short) {
   const kind = shot.kind || 'SHOT_KIND_UNSPECIFIED';
   if (kind === 'POT') return (short ? '' : 'pot, ') + words(shot.route || 'direct');
+  if (kind === 'FOUL' && shot.objectBall) return `foul, nominating ${shot.objectBall}`;
   return words(kind);
 }
 

@@ -164,6 +164,31 @@ TEST(CliPlanTest, WithNoShotTheSvgShowsTheTableAndWhy) {
   std::remove(svg.c_str());
 }
 
+// The cue ball in a ring of reds 1 mm apart with any colour on: no legal stroke. The
+// readable answer is the foul that costs least, says so, and names the colour it
+// nominates (the yellow, the cheapest).
+TEST(CliPlanTest, HemmedInTheAnswerIsAFoulThatSaysWhatItNominates) {
+  const std::string table = WriteFile("plan_hemmed", R"({"balls": [
+  {"id": "cue", "kind": "CUE", "position": {"x": 0.60000, "y": 2.20000}},
+  {"id": "red-1", "kind": "RED", "position": {"x": 0.65111, "y": 2.21581}},
+  {"id": "red-2", "kind": "RED", "position": {"x": 0.61186, "y": 2.25217}},
+  {"id": "red-3", "kind": "RED", "position": {"x": 0.56075, "y": 2.23636}},
+  {"id": "red-4", "kind": "RED", "position": {"x": 0.54889, "y": 2.18419}},
+  {"id": "red-5", "kind": "RED", "position": {"x": 0.58814, "y": 2.14783}},
+  {"id": "red-6", "kind": "RED", "position": {"x": 0.63925, "y": 2.16364}},
+  {"id": "yellow", "kind": "YELLOW", "position": {"x": 1.18100, "y": 0.73700}},
+  {"id": "blue", "kind": "BLUE", "position": {"x": 0.88900, "y": 1.78450}},
+  {"id": "pink", "kind": "PINK", "position": {"x": 0.88900, "y": 2.67675}}]})");
+  const RunResult r = RunCli("plan --table " + table + " --on COLOUR --shots 1 --max-simulations 300 --budget-ms 30000");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("note: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("no legal stroke was found, so the shot is the foul that costs least"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("#1  foul, red-"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" first, nominating yellow"), std::string::npos) << r.out;
+  std::remove(table.c_str());
+}
+
 // The kTable without its cue ball.
 constexpr const char* kTableInHand = R"({"balls": [
   {"id": "red-1", "kind": "RED", "position": {"x": 1.4648, "y": 3.2558}},
