@@ -1,7 +1,9 @@
 // snooker match: two players, each a way of asking the planner, play whole frames
 // of snooker by the rules (planner/match.h), and the frames, points, breaks, fouls,
 // safeties, stalls and planning times of each are reported.
+#include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -9,6 +11,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 #include "cli/args.h"
 #include "cli/play_flags.h"
@@ -82,8 +85,12 @@ Match:
                          "scoreB", "planMs", "handoverPot" (when the stroke handed
                          the table over and the frame goes on, the incoming
                          player's best pot probability by the planner's fast
-                         estimate, as safetyOutlook measures it; else null)};
-                         frames count from 0, strokes from 1
+                         estimate, as safetyOutlook measures it; else null)}; a
+                         stall adds "stallReason" (why the plan gave no stroke),
+                         "stallOn", "stallInHand" and "stallTable" (the table as
+                         the striker saw it, in --table's format: `snooker plan
+                         --table T.json --on ON` plans the turn again); frames
+                         count from 0, strokes from 1
   --help                 this text
 )";
 
@@ -196,6 +203,24 @@ void PrintJson(const Parsed& p, const planner::MatchReport& r, std::ostream& out
   out << j.str();
 }
 
+// A JSON string: quotes, backslashes and control characters escaped.
+std::string JsonString(std::string_view text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
 // One stroke as a JSON line (--strokes).
 void PrintStroke(const planner::StrokeRecord& s, std::ostream& out) {
   std::ostringstream j;
@@ -205,7 +230,30 @@ void PrintStroke(const planner::StrokeRecord& s, std::ostream& out) {
     << ", \"potProbability\": " << Number(s.pot_probability) << ", \"planScore\": " << Number(s.plan_score)
     << ", \"potted\": " << s.potted << ", \"foul\": \"" << planner::ToString(s.foul) << "\", \"points\": " << s.points
     << ", \"penalty\": " << s.penalty << ", \"scoreA\": " << s.score[0] << ", \"scoreB\": " << s.score[1]
-    << ", \"planMs\": " << Number(s.plan_ms) << ", \"handoverPot\": " << Number(s.handover_outlook) << "}\n";
+    << ", \"planMs\": " << Number(s.plan_ms) << ", \"handoverPot\": " << Number(s.handover_outlook);
+  if (s.stall) {
+    // Why the plan gave no stroke, and its table in snooker plan's --table format
+    // with the ball on in --on's spelling: `snooker plan` plays the turn again.
+    j << ", \"stallReason\": " << JsonString(s.stall_reason) << ", \"stallOn\": \"";
+    for (const char* c = planner::ToString(s.ball_on); *c != '\0'; ++c) j << static_cast<char>(std::toupper(*c));
+    j << "\", \"stallInHand\": " << (s.turn == planner::TurnType::kOnTable ? "false" : "true") << ", \"stallTable\": ";
+    if (s.stall_table) {
+      j << "{\"balls\": [";
+      int n = 0;
+      for (const planner::Ball& b : s.stall_table->balls) {
+        std::string kind = planner::ToString(b.kind);
+        for (char& c : kind) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+        j << (n ? ", " : "") << "{\"id\": \"" << (b.kind == planner::BallKind::kCue ? std::string("cue") : "b" + std::to_string(n))
+          << "\", \"kind\": \"" << kind << "\", \"position\": {\"x\": " << Number(b.position.x())
+          << ", \"y\": " << Number(b.position.y()) << "}}";
+        ++n;
+      }
+      j << "]}";
+    } else {
+      j << "null";
+    }
+  }
+  j << "}\n";
   out << j.str();
 }
 

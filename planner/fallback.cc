@@ -86,64 +86,80 @@ std::optional<FallbackShot> FindLegalStroke(const TableState& table, int cue, Ba
     return answer;
   };
   std::vector<Vec2> finals;
-  for (const auto& [distance, ball] : balls) {
-    for (const Aim& aim : AimsAt(table, cue, ball, ctx, options)) {
-      if (CueMargin(table, cue, aim.heading, lim.cue, *ctx.table) < 0) continue;
-      const Vec2 u(std::cos(aim.heading), std::sin(aim.heading));
-      if (std::any_of(touching.begin(), touching.end(), [&](int i) {
-            return u.dot(table.balls[static_cast<size_t>(i)].position - c) > 0;  // a push
-          })) {
+  // Plays `heading` at both speeds, aimed at `ball`; false when the cap or the
+  // interrupt ends the scan.
+  auto try_heading = [&](double heading, int ball) {
+    if (CueMargin(table, cue, heading, lim.cue, *ctx.table) < 0) return true;
+    const Vec2 u(std::cos(heading), std::sin(heading));
+    if (std::any_of(touching.begin(), touching.end(), [&](int i) {
+          return u.dot(table.balls[static_cast<size_t>(i)].position - c) > 0;  // a push
+        })) {
+      return true;
+    }
+    // Level and central where the cue clears, else raised, the tip as high as the
+    // request's topspin limit allows.
+    const double high = std::min(kMaxTipOffset, lim.max_topspin_fraction / 2.5);
+    const auto elevation = CueElevation(table, cue, heading, high, lim.cue, *ctx.table);
+    if (!elevation) return true;
+    for (const double v : {options.soft, options.firm}) {
+      if (simulations >= options.max_simulations || interrupt.Due()) return false;
+      const physics::CueParams& cue_params = ctx.cue_params();
+      const physics::BallParams& ball_params = sim.params().ball;
+      physics::CueStrike k;
+      k.heading = heading;
+      k.elevation = *elevation;
+      k.height = *elevation > 0 ? high : 0.0;
+      k.speed = physics::CueSpeedFor(std::clamp(v, lim.min_speed, lim.max_speed), 0.0, k.height, cue_params,
+                                     ball_params);
+      physics::StrikeResult struck = physics::Strike(k, cue_params, ball_params, sim.params().cloth.g);
+      if (struck.status == physics::StrikeStatus::kHop) {
+        // Raised, the fastest stroke that keeps the ball on the bed (the hop goes as v^2).
+        k.speed *= 0.98 * std::sqrt(cue_params.max_hop / struck.hop);
+        struck = physics::Strike(k, cue_params, ball_params, sim.params().cloth.g);
+      }
+      const physics::Shot& shot = struck.shot;
+      if (struck.status != physics::StrikeStatus::kOk || !WithinLimits(shot, lim, ball_params.radius)) continue;
+      const ShotSetup setup{&table, cue, ball, physics::PocketId::kBaulkLeft, on, ShotKind::kSafety, -1,
+                            TouchingBallOn(table, on, *ctx.table)};
+      ++simulations;
+      const ShotOutcome& out = sim.Run(setup, shot, {}, ShotSimulator::Mode::kToRest, interrupt);
+      if (out.status != physics::SimStatus::kAtRest) continue;  // interrupted, or failed
+      finals.clear();
+      for (const physics::BallState& b : sim.final_balls()) finals.push_back(b.r);
+      if (!out.success) {
+        if (best || !options.allow_foul || out.foul == Foul::kNone) continue;
+        ShotSetup as_foul = setup;
+        as_foul.kind = ShotKind::kFoul;
+        as_foul.object = Nomination(table, on, ball);
+        const double score = MonteCarloScore(as_foul, out, finals, after_ctx, settings);
+        if (!best_foul || score > best_foul->score) {
+          best_foul = FallbackShot{ShotKind::kFoul, as_foul.object, k, shot, score, 0};
+        }
         continue;
       }
-      // Level and central where the cue clears, else raised, the tip as high as the
-      // request's topspin limit allows.
-      const double high = std::min(kMaxTipOffset, lim.max_topspin_fraction / 2.5);
-      const auto elevation = CueElevation(table, cue, aim.heading, high, lim.cue, *ctx.table);
-      if (!elevation) continue;
-      for (const double v : {options.soft, options.firm}) {
-        if (simulations >= options.max_simulations || interrupt.Due()) return finish();
-        const physics::CueParams& cue_params = ctx.cue_params();
-        const physics::BallParams& ball_params = sim.params().ball;
-        physics::CueStrike k;
-        k.heading = aim.heading;
-        k.elevation = *elevation;
-        k.height = *elevation > 0 ? high : 0.0;
-        k.speed = physics::CueSpeedFor(std::clamp(v, lim.min_speed, lim.max_speed), 0.0, k.height, cue_params,
-                                       ball_params);
-        physics::StrikeResult struck = physics::Strike(k, cue_params, ball_params, sim.params().cloth.g);
-        if (struck.status == physics::StrikeStatus::kHop) {
-          // Raised, the fastest stroke that keeps the ball on the bed (the hop goes as v^2).
-          k.speed *= 0.98 * std::sqrt(cue_params.max_hop / struck.hop);
-          struck = physics::Strike(k, cue_params, ball_params, sim.params().cloth.g);
-        }
-        const physics::Shot& shot = struck.shot;
-        if (struck.status != physics::StrikeStatus::kOk || !WithinLimits(shot, lim, ball_params.radius)) continue;
-        const ShotSetup setup{&table, cue, ball, physics::PocketId::kBaulkLeft, on, ShotKind::kSafety, -1,
-                              TouchingBallOn(table, on, *ctx.table)};
-        ++simulations;
-        const ShotOutcome& out = sim.Run(setup, shot, {}, ShotSimulator::Mode::kToRest, interrupt);
-        if (out.status != physics::SimStatus::kAtRest) continue;  // interrupted, or failed
-        finals.clear();
-        for (const physics::BallState& b : sim.final_balls()) finals.push_back(b.r);
-        if (!out.success) {
-          if (best || !options.allow_foul || out.foul == Foul::kNone) continue;
-          ShotSetup as_foul = setup;
-          as_foul.kind = ShotKind::kFoul;
-          as_foul.object = Nomination(table, on, ball);
-          const double score = MonteCarloScore(as_foul, out, finals, after_ctx, settings);
-          if (!best_foul || score > best_foul->score) {
-            best_foul = FallbackShot{ShotKind::kFoul, as_foul.object, k, shot, score, 0};
-          }
-          continue;
-        }
-        const double score = ScoreSafety(table, on, out.first_hit, finals, out.potted, after_ctx, settings).score;
-        if (!best || score > best->score) {
-          best = FallbackShot{out.cue_cushions_first > 0 ? ShotKind::kEscape : ShotKind::kSafety, out.first_hit, k,
-                              shot, score, 0};
-        }
+      const double score = ScoreSafety(table, on, out.first_hit, finals, out.potted, after_ctx, settings).score;
+      if (!best || score > best->score) {
+        best = FallbackShot{out.cue_cushions_first > 0 ? ShotKind::kEscape : ShotKind::kSafety, out.first_hit, k,
+                            shot, score, 0};
       }
     }
+    return true;
+  };
+  for (const auto& [distance, ball] : balls) {
+    for (const Aim& aim : AimsAt(table, cue, ball, ctx, options)) {
+      if (!try_heading(aim.heading, ball)) return finish();
+    }
     if (best) break;  // a legal stroke on the nearest reachable ball will do
+  }
+  // Nothing the robot can play at a ball on (its cue cannot reach those headings,
+  // or they push a touching ball): any heading it can play, around the cue ball;
+  // one may still reach a ball on off the cushions, or else foul least.
+  if (!best && !best_foul && !balls.empty()) {
+    const int n = std::max(1, options.ring_headings);
+    const double from = Direction(table.balls[static_cast<size_t>(balls.front().second)].position - c);
+    for (int k = 0; k < n; ++k) {
+      if (!try_heading(WrapAngle(from + 2 * physics::kPi * k / n), balls.front().second)) return finish();
+    }
   }
   return finish();
 }

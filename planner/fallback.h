@@ -30,6 +30,8 @@ struct FallbackOptions {
   double firm = 2.5;
   /// Balls on tried, nearest first.
   int max_balls = 4;
+  /// Headings around the cue ball tried when no stroke at a ball on can be played.
+  int ring_headings = 24;
   /// With no legal stroke, answer the least costly foul (kind kFoul).
   bool allow_foul = false;
 };

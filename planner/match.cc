@@ -169,6 +169,8 @@ struct TurnChoice {
   double plan_ms = 0;
   double pot_probability = std::numeric_limits<double>::quiet_NaN();
   double plan_score = std::numeric_limits<double>::quiet_NaN();
+  std::string stall_reason;
+  std::optional<TableState> stall_table;
 };
 
 // The colour a shot plays first, as its nomination when a colour is on.
@@ -256,6 +258,12 @@ TurnChoice MatchRunner::Choose(const FrameState& f, int frame, Rng& rng) const {
       return c;
     }
   }
+  const std::string status = ToString(answer.status);
+  c.stall_reason = answer.reason.empty()                ? status
+                   : answer.reason.starts_with(status) ? answer.reason
+                                                        : status + ": " + answer.reason;
+  if (!answer.shots.empty()) c.stall_reason = "the plan's placement in the D could not be settled on the table";
+  c.stall_table = req.table;
   const FallbackShot fb = NearestBallOnShot(f.table, f.cue_in_hand, f.ball_on, o_.limits, model_);
   c.cue_start = fb.cue_start;
   c.cue = LevelStrikeFor(fb.shot, planner_.config().cue, planner_.config().full.ball,
@@ -283,6 +291,7 @@ void MatchRunner::Play(int frame, FrameState& f, const TurnChoice& c, Rng& rng, 
     ++report_.simulation_failures;
   }
   const TurnType turn = !f.cue_in_hand ? TurnType::kOnTable : f.shots == 0 ? TurnType::kBreakOff : TurnType::kInHand;
+  const BallOn on_before = f.ball_on;
   const StrokeResult r = ApplyStroke(f, s, model_);
   // The incoming player's outlook, when the stroke handed the table over.
   double handover = std::numeric_limits<double>::quiet_NaN();
@@ -305,6 +314,11 @@ void MatchRunner::Play(int frame, FrameState& f, const TurnChoice& c, Rng& rng, 
     rec.score = f.score;
     rec.plan_ms = c.plan_ms;
     rec.handover_outlook = handover;
+    rec.ball_on = on_before;
+    if (c.stall) {
+      rec.stall_reason = c.stall_reason;
+      rec.stall_table = c.stall_table;
+    }
     o_.on_stroke(rec);
   }
   PlayerStats& p = report_.players[static_cast<size_t>(r.striker)];

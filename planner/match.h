@@ -84,6 +84,13 @@ struct StrokeRecord {
   /// what a miss leaves can be checked against what the opponent then did). NaN
   /// otherwise, or with no outlook set.
   double handover_outlook = std::numeric_limits<double>::quiet_NaN();
+  /// A stall only: why the plan gave no stroke (its status and reason, or why its
+  /// placement in the D could not be used), the table it was given (the positions
+  /// as the striker's vision saw them) and the ball on, so that the turn can be
+  /// planned again with `snooker plan`.
+  std::string stall_reason;
+  std::optional<TableState> stall_table;
+  BallOn ball_on = BallOn::kRed;
 };
 
 /// How good a table is for the side to play: its best pot probability in [0, 1],

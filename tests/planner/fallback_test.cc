@@ -56,6 +56,52 @@ TEST(FallbackScanTest, RaisesTheCueWithinTheSpinLimits) {
   }
 }
 
+// The same cue ball with topspin capped at 0.9 of the rolling spin: no stroke at the
+// red can be played (its headings need the cue raised, and the tip then higher than the
+// cap allows), so the scan turns to every heading around the cue ball, and answers a
+// stroke the robot can play: one that reaches the red off the cushions, or else the
+// foul that costs least.
+TEST(FallbackScanTest, WhenNoStrokeAtABallOnCanBePlayedAnyHeadingWill) {
+  const physics::TableModel& model = physics::DefaultTable();
+  const double c = model.cushion_contact_distance();
+  TableState t;
+  t.balls = {{BallKind::kCue, Vec2(c, 1.8)}, {BallKind::kRed, Vec2(1.2, 1.8)}};
+  const Planner& planner = Planner::Default();
+  PlanRequest r;
+  r.table = t;
+  r.limits.max_topspin_fraction = 0.9;
+  PotContext ctx = planner.ContextFor(r);
+  SearchSettings settings = planner.config().search_settings;
+  settings.limits = r.limits;
+  ShotSimulator sim(model, planner.config().full);
+  FallbackOptions no_ring;
+  no_ring.ring_headings = 0;
+  no_ring.allow_foul = true;
+  ASSERT_FALSE(FindLegalStroke(t, 0, BallOn::kRed, ctx, settings, sim, physics::Interrupt{}, no_ring).has_value())
+      << "a stroke at the red was playable: the table no longer tests the ring";
+  FallbackOptions options;
+  options.allow_foul = true;
+  const auto found = FindLegalStroke(t, 0, BallOn::kRed, ctx, settings, sim, physics::Interrupt{}, options);
+  ASSERT_TRUE(found.has_value());
+  // Played again it does what its kind says, and the cue gives it within the limits.
+  const physics::StrikeResult res =
+      physics::Strike(found->cue, ctx.cue_params(), planner.config().full.ball, planner.config().full.cloth.g);
+  ASSERT_EQ(res.status, physics::StrikeStatus::kOk);
+  EXPECT_TRUE(WithinLimits(res.shot, settings.limits, model.ball_radius()));
+  EXPECT_GE(CueMargin(t, 0, found->cue.heading, settings.limits.cue, model), 0);
+  const ShotSetup setup{&t, 0, 1, physics::PocketId::kBaulkLeft, BallOn::kRed, ShotKind::kSafety, -1, -1};
+  const ShotOutcome& out = sim.Run(setup, res.shot, {}, ShotSimulator::Mode::kToRest, physics::Interrupt{});
+  ASSERT_EQ(out.status, physics::SimStatus::kAtRest);
+  if (found->kind == ShotKind::kFoul) {
+    EXPECT_NE(out.foul, Foul::kNone);
+  } else {
+    EXPECT_EQ(out.foul, Foul::kNone);
+    EXPECT_EQ(out.first_hit, 1);
+    EXPECT_GT(out.cue_cushions_first, 0);
+    EXPECT_EQ(found->kind, ShotKind::kEscape);
+  }
+}
+
 // The cue ball in a ring of six reds with a colour on: the gaps between the reds (1 mm)
 // are narrower than a ball, so every stroke hits a red first and fouls.
 TableState HemmedIn() {

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -236,7 +237,15 @@ TEST(MatchTest, TheStrokeLogAddsUpToTheFrames) {
       if (s.stall) {
         ++stalls;
         EXPECT_TRUE(std::isnan(s.plan_score));
+        // Why, and the table the plan was given, with the turn's ball on in it.
+        EXPECT_FALSE(s.stall_reason.empty());
+        ASSERT_TRUE(s.stall_table.has_value());
+        EXPECT_EQ(s.stall_table->cue_index() < 0, s.turn != TurnType::kOnTable);
+        EXPECT_TRUE(std::any_of(s.stall_table->balls.begin(), s.stall_table->balls.end(),
+                                [&](const Ball& b) { return IsLegalTarget(s.ball_on, b.kind); }));
       } else {
+        EXPECT_TRUE(s.stall_reason.empty());
+        EXPECT_FALSE(s.stall_table.has_value());
         EXPECT_TRUE(std::isfinite(s.plan_score));
         if (s.kind == ShotKind::kSafety) ++safeties;
       }

@@ -362,6 +362,30 @@ TEST(PlannerTest, WithTheBudgetSpentTheFallbackStillAnswersBeforeTheDeadline) {
   EXPECT_EQ(late.status, PlanStatus::kDeadline) << late.reason;
 }
 
+// The cue ball frozen to the left cushion, the only red straight out across the table,
+// and topspin capped below what a raised cue's high tip gives: no stroke at the red can
+// be played. The plan still answers a stroke, from the headings around the cue ball,
+// that re-simulates to what its kind says.
+TEST(PlannerTest, ACueBallTheRobotCannotPlayAtTheBallOnStillGetsAStroke) {
+  const double c = Table().cushion_contact_distance();
+  TableState t;
+  t.balls = {{BallKind::kCue, Vec2(c, 1.8)}, {BallKind::kRed, Vec2(1.2, 1.8)}};
+  PlanRequest r = Request(t);
+  r.limits.max_topspin_fraction = 0.9;
+  r.max_simulations = 2000;
+  r.time_budget = 30;
+  const PlanAnswer a = Planner::Default().Plan(r);
+  EXPECT_EQ(a.status, PlanStatus::kOk) << a.reason;
+  ASSERT_FALSE(a.shots.empty()) << a.reason;
+  const PlannedShot& s = a.shots.front();
+  const ShotSetup setup{&t, 0, s.object_ball, s.pocket, BallOn::kRed, s.kind, -1, -1};
+  ShotSimulator sim(Table(), Planner::Default().config().full);
+  const ShotOutcome& out = sim.Run(setup, s.shot, {}, ShotSimulator::Mode::kToRest, physics::Interrupt{});
+  ASSERT_EQ(out.status, physics::SimStatus::kAtRest);
+  EXPECT_EQ(out.foul != Foul::kNone, s.kind == ShotKind::kFoul) << ToString(s.kind);
+  EXPECT_TRUE(WithinLimits(s.shot, r.limits, kR));
+}
+
 TEST(PlannerTest, TheBudgetRunningOutIsNotTheCallersDeadline) {
   // A budget far too small for a pot on a full frame, with no deadline of the
   // caller's: whatever the timing, the plan ends by its budget, never by a deadline.
