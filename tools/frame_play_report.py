@@ -274,6 +274,22 @@ def handover_table(bins, b):
     return out
 
 
+def stalls_paragraph(strokes, d):
+    """The default's stalls in a match's stroke log, each with the plan's reason (logs
+    before the reason was logged give none)."""
+    if not strokes:
+        return ""
+    stalls = [s for s in strokes if s["stall"] and s["striker"] == "A"]
+    if not stalls:
+        return (f"\n`{d['playerA']}` had no stall in this match's {d['frames']} frames "
+                f"({d['shotsA']} strokes).\n")
+    out = f"\n`{d['playerA']}`'s stalls in this match, with what its plan said:\n\n"
+    for s in stalls:
+        reason = s.get("stallReason", "(not logged)")
+        out += f"- frame {s['frame']}, stroke {s['stroke']} ({s['turn']}, on {s.get('stallOn', '?').lower()}): {reason}\n"
+    return out
+
+
 def decided_section(strokes, d):
     """How the frames of a match were decided, from its stroke log."""
     if not strokes:
@@ -655,6 +671,7 @@ plans end on the clock, so a rerun on a loaded machine differs in its details.
     out += direct_pots_section(runs)
     for opponent, vision, d, wall in runs:
         if opponent == "direct-pots" and vision == "0.2":
+            out += stalls_paragraph(strokes.get((opponent, vision)), d)
             out += decided_section(strokes.get((opponent, vision)), d)
     out += noise_scan_section(runs, scan)
     out += lookahead_section(runs, selfplay)
