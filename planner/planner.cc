@@ -755,6 +755,7 @@ void PlanRun::RankByMonteCarlo() {
   blocks = std::max(blocks, request_.monte_carlo_samples > 0 ? 1 : 0);
   if (n == 0 || blocks == 0 || schedule_.monte_carlo.Due()) return;
   AddWorkers(std::min(request_.threads, n * blocks));
+  const bool tail_fit = config_.pot_tail_min_samples > 0;
   std::vector<MonteCarloTally> tallies(static_cast<size_t>(n * blocks));
   ParallelFor(request_.threads, n * blocks, [&](int task, int worker) {
     const int s = task / blocks, b = task % blocks;
@@ -765,7 +766,8 @@ void PlanRun::RankByMonteCarlo() {
                               static_cast<std::uint64_t>(ps.pocket);
     tallies[static_cast<size_t>(task)] =
         RunSamples(SetupFor(ps), ps.cue, ctx_, settings_, workers_[static_cast<size_t>(worker)]->full,
-                   schedule_.monte_carlo, DeriveSeed(request_.seed, key, static_cast<std::uint64_t>(b)), kBlock);
+                   schedule_.monte_carlo, DeriveSeed(request_.seed, key, static_cast<std::uint64_t>(b)), kBlock,
+                   tail_fit && ps.kind == ShotKind::kPot && ps.route == PotRoute::kDirect);
   });
   for (int s = 0; s < n; ++s) {
     MonteCarloTally t;
@@ -781,7 +783,8 @@ void PlanRun::RankByMonteCarlo() {
     }
     ps.foul_probability = t.foul_rate();
     // Lookahead's correction of the position's estimate, for the pots that succeed.
-    ps.score = t.mean_score() + t.success_rate() * ps.lookahead;
+    const double mean = tail_fit && t.line_samples > 0 ? t.tail_corrected_score(config_.pot_tail_min_samples) : t.mean_score();
+    ps.score = mean + t.success_rate() * ps.lookahead;
   }
   // Shots without samples keep their nominal score, below any sampled competitor in
   // practice. Shots not ranked are not answered: their scores are not comparable.

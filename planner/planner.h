@@ -252,6 +252,14 @@ struct PlannerConfig {
   /// Shots ranked by Monte Carlo: the max_shots asked for plus two, and at least
   /// this many (the nominal objective's best is not always the most robust).
   int min_ranked = 3;
+  /// A direct pot's Monte Carlo score corrected by a Gaussian fit of its object
+  /// ball's lines at the pocket (MonteCarloTally::tail_corrected_score) when at
+  /// least this many lines were measured; 0: off. Forty-eight samples cannot tell a
+  /// 0.99 pot from a 0.999 one, which the fit can (it agrees with what the played
+  /// pots did within about 1 %), but on (16) it changed neither self-play's pot rate
+  /// nor the frames won against direct-pots (docs/whole-frame-planner.md §10), so
+  /// it is off.
+  int pot_tail_min_samples = 0;
   /// Candidates searched at most, and the smallest evaluation count worth a search.
   int max_candidates = 12;
   int min_evaluations = 8;

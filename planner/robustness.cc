@@ -103,7 +103,29 @@ void MonteCarloTally::Add(const MonteCarloTally& o) {
   pocket_successes += o.pocket_successes;
   fouls += o.fouls;
   score_sum += o.score_sum;
+  success_score_sum += o.success_score_sum;
+  miss_score_sum += o.miss_score_sum;
+  line_samples += o.line_samples;
+  line_inside += o.line_inside;
+  z_sum += o.z_sum;
+  z2_sum += o.z2_sum;
   interrupted = interrupted || o.interrupted;
+}
+
+double MonteCarloTally::tail_corrected_score(int min_line_samples) const {
+  if (line_samples < std::max(min_line_samples, 2) || successes == 0) return mean_score();
+  const double n = line_samples;
+  const double mu = z_sum / n;
+  const double sigma = std::sqrt(std::max(0.0, (z2_sum - n * mu * mu) / (n - 1)));
+  const double fitted = sigma > 1e-9 ? NormalCdf((1 - mu) / sigma) - NormalCdf((-1 - mu) / sigma)
+                                     : (std::abs(mu) < 1 ? 1.0 : 0.0);
+  const double counted = line_inside / n;
+  const double success = success_score_sum / successes;
+  // With no miss among the samples, a miss is taken to hand the opponent what the
+  // pot would have left the striker.
+  const int misses = samples - successes;
+  const double miss = misses > 0 ? miss_score_sum / misses : -std::max(success, 0.0);
+  return mean_score() + (fitted - counted) * (n / samples) * (success - miss);
 }
 
 double MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span<const Vec2> finals,
@@ -129,9 +151,13 @@ double MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span
   return -(penalty + opponent);
 }
 
+namespace {
+constexpr double kFarOutside = 5;  // |z| of a line with no window, in half-widths
+}  // namespace
+
 MonteCarloTally RunSamples(const ShotSetup& setup, const physics::CueStrike& cue, const PotContext& ctx,
                            const SearchSettings& settings, ShotSimulator& sim, const StopControl& stop,
-                           std::uint64_t seed, int count) {
+                           std::uint64_t seed, int count, bool measure_line) {
   MonteCarloTally tally;
   Rng rng(seed);
   const physics::Interrupt interrupt = stop.AsInterrupt();
@@ -157,7 +183,19 @@ MonteCarloTally RunSamples(const ShotSetup& setup, const physics::CueStrike& cue
     ++tally.samples;
     finals.clear();
     for (const physics::BallState& b : sim.final_balls()) finals.push_back(b.r);
-    tally.score_sum += MonteCarloScore(setup, out, finals, after_ctx, settings);
+    const double score = MonteCarloScore(setup, out, finals, after_ctx, settings);
+    tally.score_sum += score;
+    (out.success ? tally.success_score_sum : tally.miss_score_sum) += score;
+    if (measure_line && ctx.pockets != nullptr && out.first_line.valid && out.first_hit == setup.object) {
+      const PocketWindow w = ctx.pockets->Window(setup.pocket, out.first_line.direction, out.first_line.arrival_speed);
+      // An empty window (a line no pocket takes) counts as far outside.
+      const double z = w.empty ? kFarOutside
+                               : std::clamp((out.first_line.offset - w.centre()) / (0.5 * w.width()), -kFarOutside, kFarOutside);
+      ++tally.line_samples;
+      if (std::abs(z) < 1) ++tally.line_inside;
+      tally.z_sum += z;
+      tally.z2_sum += z * z;
+    }
     if (out.foul != Foul::kNone) ++tally.fouls;
     if (!out.success) continue;
     ++tally.successes;

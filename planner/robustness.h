@@ -74,6 +74,17 @@ struct MonteCarloTally {
   int fouls = 0;
   /// Sum over samples of the points the sample is worth to the striker (MonteCarloScore).
   double score_sum = 0;
+  /// Sums of the scores of the successes and of the other samples.
+  double success_score_sum = 0;
+  double miss_score_sum = 0;
+  /// A direct pot's lines at the pocket (RunSamples with measure_line): the samples
+  /// whose object ball left its first contact on a measured line, how many of those
+  /// lines lay inside the pocket's window, and the sums of z and z^2, z being the
+  /// line's offset from the window's centre in half-widths (|z| < 1: inside).
+  int line_samples = 0;
+  int line_inside = 0;
+  double z_sum = 0;
+  double z2_sum = 0;
   bool interrupted = false;
 
   void Add(const MonteCarloTally& o);
@@ -81,6 +92,8 @@ struct MonteCarloTally {
   double pocket_rate() const { return Rate(pocket_successes); }
   double foul_rate() const { return Rate(fouls); }
   double mean_score() const { return samples > 0 ? score_sum / samples : 0; }
+  /// The mean score corrected by a Gaussian fit of the pot's lines (PotTailCorrection).
+  double tail_corrected_score(int min_line_samples) const;
 
  private:
   double Rate(int n) const { return samples > 0 ? static_cast<double>(n) / samples : 0; }
@@ -97,9 +110,11 @@ double MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span
 
 /// Runs `count` samples of block stream `seed` for the stroke `cue` played as
 /// `setup` says (its table as vision saw it), under ctx.execution's noise and
-/// ctx.cue_params(). `sim` should run at full fidelity.
+/// ctx.cue_params(). `sim` should run at full fidelity. With `measure_line` (a
+/// direct pot; ctx.pockets set) it also tallies the object ball's lines at the
+/// named pocket.
 MonteCarloTally RunSamples(const ShotSetup& setup, const physics::CueStrike& cue, const PotContext& ctx,
                            const SearchSettings& settings, ShotSimulator& sim, const StopControl& stop,
-                           std::uint64_t seed, int count);
+                           std::uint64_t seed, int count, bool measure_line = false);
 
 }  // namespace snooker::planner

@@ -49,6 +49,7 @@ void ShotSimulator::MeasureLine(const ShotSetup& setup, const physics::BallState
   const Vec2 to_object = object.r - cue;
   const double cos_cut = std::clamp(to_object.norm() > 0 ? std::abs(to_object.normalized().dot(vo.normalized())) : 1.0, 0.2, 1.0);
   line.contact_speed = vo.norm() / (0.9 * cos_cut);
+  if (!out_.first_line.valid) out_.first_line = line;
 }
 
 const ShotOutcome& ShotSimulator::Run(const ShotSetup& setup, const physics::Shot& shot,

@@ -78,6 +78,9 @@ struct ShotOutcome {
   int object_pocket = -1;
   std::vector<int> potted;
   ObjectLine line;
+  /// The object ball's line from its first contact (for a direct pot, the cue
+  /// ball's), before any jaw or cushion changed it.
+  ObjectLine first_line;
   int events = 0;
   /// Cushions the cue ball met before its first contact, and the object ball met
   /// before it dropped (a kick, a double).

@@ -90,6 +90,22 @@ TEST(PlannerTest, PotsTheObviousRedAndLeavesAColour) {
   EXPECT_GT(a.evaluations, 0);
 }
 
+// With the Gaussian fit of the pot lines in the Monte Carlo's score (off by default)
+// the plan is the same kind of answer: the obvious red potted, every score finite.
+TEST(PlannerTest, TheFittedPotLinesStillPotTheObviousRed) {
+  const TableState t = ObviousPot();
+  Planner::Config config;
+  config.pot_tail_min_samples = 16;
+  const PlanAnswer a = Planner(config).Plan(Request(t));
+  ASSERT_EQ(a.status, PlanStatus::kOk) << a.reason;
+  const PlannedShot& best = a.shots.front();
+  EXPECT_EQ(best.object_ball, 1);
+  EXPECT_EQ(best.pocket, PocketId::kTopRight);
+  for (const PlannedShot& s : a.shots) EXPECT_TRUE(std::isfinite(s.score));
+  std::vector<Vec2> finals;
+  EXPECT_TRUE(Replay(t, BallOn::kRed, best, &finals).success);
+}
+
 TEST(PlannerTest, NoPossiblePotGivesAnEmptyAnswerWithAReason) {
   // The only red is surrounded by colours: every path to it is blocked.
   const Vec2 red(0.9, 2.0);

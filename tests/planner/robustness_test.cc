@@ -1,0 +1,104 @@
+// The Monte Carlo's Gaussian fit of a direct pot's lines at the pocket: its closed
+// form, when it stands aside, and its agreement with counting where counting is
+// precise.
+#include "planner/robustness.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "planner/geometry.h"
+#include "planner/planner.h"
+
+namespace snooker::planner {
+namespace {
+
+using physics::Vec2;
+
+// 48 samples, all potted and all inside the window, z of mean 0 and spread s:
+// the fit's chance of a line inside is 2 Phi(1 / s) - 1, and the mean score (10 a
+// pot) moves by the fit's shortfall times a pot's worth against a miss's (with no
+// miss sampled, the miss hands the opponent the pot's 10).
+TEST(PotTailFitTest, TheCorrectionIsTheFittedShortfallTimesWhatAMissCosts) {
+  const double s = 0.4;
+  MonteCarloTally t;
+  t.samples = t.successes = t.line_samples = t.line_inside = 48;
+  t.score_sum = t.success_score_sum = 480;
+  t.z_sum = 0;
+  t.z2_sum = 47 * s * s;
+  const double fitted = 2 * NormalCdf(1 / s) - 1;
+  EXPECT_NEAR(t.tail_corrected_score(16), 10 + (fitted - 1) * 20, 1e-12);
+  EXPECT_LT(t.tail_corrected_score(16), t.mean_score());
+  // A sampled miss sets what a miss costs: 44 pots at 10, 4 misses at -30.
+  t.successes = t.line_inside = 44;
+  t.success_score_sum = 440;
+  t.miss_score_sum = -120;
+  t.score_sum = 320;
+  EXPECT_NEAR(t.tail_corrected_score(16), 320.0 / 48 + (fitted - 44.0 / 48) * 40, 1e-12);
+}
+
+TEST(PotTailFitTest, TooFewLinesNoPotOrNoSpreadLeaveTheMeanAlone) {
+  MonteCarloTally t;
+  t.samples = t.successes = t.line_samples = t.line_inside = 12;
+  t.score_sum = t.success_score_sum = 120;
+  t.z2_sum = 11 * 0.25;
+  EXPECT_EQ(t.tail_corrected_score(16), t.mean_score());
+  t.successes = t.line_inside = 0;
+  t.success_score_sum = 0;
+  t.miss_score_sum = t.score_sum = -60;
+  EXPECT_EQ(t.tail_corrected_score(4), t.mean_score());
+  // Every line the same, inside: the fit and the count agree on 1.
+  MonteCarloTally same;
+  same.samples = same.successes = same.line_samples = same.line_inside = 20;
+  same.score_sum = same.success_score_sum = 200;
+  same.z_sum = 20 * 0.3;
+  same.z2_sum = 20 * 0.09;
+  EXPECT_NEAR(same.tail_corrected_score(16), same.mean_score(), 1e-9);
+}
+
+// A straight pot 1.6 m long, aimed true, under aim noise: the share of lines inside
+// the tabulated window is what drops, and the Gaussian fit of the lines gives that
+// share within the count's own sampling error.
+class PotTailSamplesTest : public ::testing::TestWithParam<double> {};
+
+TEST_P(PotTailSamplesTest, TheFitAgreesWithTheCountAndTheCountWithThePots) {
+  const Planner& planner = Planner::Default();
+  const physics::TableModel& model = physics::DefaultTable();
+  const physics::Pocket& p = model.pocket(physics::PocketId::kBaulkLeft);
+  TableState t;
+  const Vec2 red = p.mouth_centre - 0.6 * p.axis;
+  t.balls = {{BallKind::kCue, red - 1.0 * p.axis}, {BallKind::kRed, red}};
+  PlanRequest r;
+  r.table = t;
+  r.noise.aim = GetParam() * physics::kPi / 180;
+  const PotContext ctx = planner.ContextFor(r);
+  ASSERT_NE(ctx.pockets, nullptr);
+  const SearchSettings& settings = planner.config().search_settings;
+  ShotSimulator sim(model, planner.config().full);
+  const physics::CueStrike cue = LevelStrikeFor({1.5, Direction(p.axis), 0, 0}, ctx.cue_params(),
+                                                planner.config().full.ball, planner.config().full.cloth.g);
+  const ShotSetup setup{&t, 0, 1, p.id, BallOn::kRed};
+  const int n = 400;
+  const MonteCarloTally tally = RunSamples(setup, cue, ctx, settings, sim, StopControl{}, 5, n, true);
+  ASSERT_EQ(tally.samples, n);
+  EXPECT_EQ(tally.line_samples, n) << "every sample met the red and measured its line";
+  const double counted = static_cast<double>(tally.line_inside) / n;
+  const double mu = tally.z_sum / n;
+  const double sigma = std::sqrt((tally.z2_sum - n * mu * mu) / (n - 1));
+  const double fitted = NormalCdf((1 - mu) / sigma) - NormalCdf((-1 - mu) / sigma);
+  const double error = 3 * std::sqrt(std::max(counted * (1 - counted), 0.01) / n);
+  EXPECT_NEAR(counted, tally.success_rate(), error);
+  EXPECT_NEAR(fitted, counted, error);
+  // Without measure_line nothing is tallied.
+  const MonteCarloTally plain = RunSamples(setup, cue, ctx, settings, sim, StopControl{}, 5, 8);
+  EXPECT_EQ(plain.line_samples, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(AimNoise, PotTailSamplesTest, ::testing::Values(0.05, 0.1, 0.2),
+                         [](const ::testing::TestParamInfo<double>& param) {
+                           return "Sigma" + std::to_string(static_cast<int>(std::lround(param.param * 1000))) +
+                                  "MilliDeg";
+                         });
+
+}  // namespace
+}  // namespace snooker::planner
