@@ -189,7 +189,7 @@ MonteCarloTally RunSamples(const ShotSetup& setup, const physics::CueStrike& cue
     if (measure_line && ctx.pockets != nullptr && out.first_line.valid && out.first_hit == setup.object) {
       const PocketWindow w = ctx.pockets->Window(setup.pocket, out.first_line.direction, out.first_line.arrival_speed);
       // An empty window (a line no pocket takes) counts as far outside.
-      const double z = w.empty ? kFarOutside
+      const double z = w.empty || !(w.width() > 0) ? kFarOutside
                                : std::clamp((out.first_line.offset - w.centre()) / (0.5 * w.width()), -kFarOutside, kFarOutside);
       ++tally.line_samples;
       if (std::abs(z) < 1) ++tally.line_inside;

@@ -14,7 +14,9 @@
 // for the striker (MonteCarloScore): a success by the position it really left, a
 // miss or a foul by what it gives the opponent, so that the ranking compares pots
 // and safeties in one currency and prefers shots whose position play survives the
-// noise.
+// noise. For a direct pot it can also tally each sample's object-ball line at the
+// pocket, whose Gaussian fit estimates the tail of near-certain pots that 48 counted
+// samples cannot resolve (MonteCarloTally::tail_corrected_score).
 //
 // Samples come in blocks with their own random stream (DeriveSeed(seed, shot,
 // block)): blocks can run on any thread in any order and give the same sums.
