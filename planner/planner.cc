@@ -783,7 +783,7 @@ void PlanRun::RankByMonteCarlo() {
     }
     ps.foul_probability = t.foul_rate();
     // Lookahead's correction of the position's estimate, for the pots that succeed.
-    const double mean = tail_fit && t.line_samples > 0 ? t.tail_corrected_score(config_.pot_tail_min_samples) : t.mean_score();
+    const double mean = tail_fit ? t.tail_corrected_score(config_.pot_tail_min_samples) : t.mean_score();
     ps.score = mean + t.success_rate() * ps.lookahead;
   }
   // Shots without samples keep their nominal score, below any sampled competitor in

@@ -104,7 +104,6 @@ void MonteCarloTally::Add(const MonteCarloTally& o) {
   fouls += o.fouls;
   score_sum += o.score_sum;
   success_score_sum += o.success_score_sum;
-  miss_score_sum += o.miss_score_sum;
   line_samples += o.line_samples;
   line_inside += o.line_inside;
   z_sum += o.z_sum;
@@ -112,20 +111,23 @@ void MonteCarloTally::Add(const MonteCarloTally& o) {
   interrupted = interrupted || o.interrupted;
 }
 
-double MonteCarloTally::tail_corrected_score(int min_line_samples) const {
-  if (line_samples < std::max(min_line_samples, 2) || successes == 0) return mean_score();
+double MonteCarloTally::fitted_line_rate() const {
   const double n = line_samples;
   const double mu = z_sum / n;
   const double sigma = std::sqrt(std::max(0.0, (z2_sum - n * mu * mu) / (n - 1)));
-  const double fitted = sigma > 1e-9 ? NormalCdf((1 - mu) / sigma) - NormalCdf((-1 - mu) / sigma)
-                                     : (std::abs(mu) < 1 ? 1.0 : 0.0);
+  return sigma > 1e-9 ? NormalCdf((1 - mu) / sigma) - NormalCdf((-1 - mu) / sigma) : (std::abs(mu) < 1 ? 1.0 : 0.0);
+}
+
+double MonteCarloTally::tail_corrected_score(int min_line_samples) const {
+  if (line_samples < std::max(min_line_samples, 2) || successes == 0) return mean_score();
+  const double n = line_samples;
   const double counted = line_inside / n;
   const double success = success_score_sum / successes;
   // With no miss among the samples, a miss is taken to hand the opponent what the
   // pot would have left the striker.
   const int misses = samples - successes;
-  const double miss = misses > 0 ? miss_score_sum / misses : -std::max(success, 0.0);
-  return mean_score() + (fitted - counted) * (n / samples) * (success - miss);
+  const double miss = misses > 0 ? (score_sum - success_score_sum) / misses : -std::max(success, 0.0);
+  return mean_score() + (fitted_line_rate() - counted) * (n / samples) * (success - miss);
 }
 
 double MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span<const Vec2> finals,
@@ -185,7 +187,7 @@ MonteCarloTally RunSamples(const ShotSetup& setup, const physics::CueStrike& cue
     for (const physics::BallState& b : sim.final_balls()) finals.push_back(b.r);
     const double score = MonteCarloScore(setup, out, finals, after_ctx, settings);
     tally.score_sum += score;
-    (out.success ? tally.success_score_sum : tally.miss_score_sum) += score;
+    if (out.success) tally.success_score_sum += score;
     if (measure_line && ctx.pockets != nullptr && out.first_line.valid && out.first_hit == setup.object) {
       const PocketWindow w = ctx.pockets->Window(setup.pocket, out.first_line.direction, out.first_line.arrival_speed);
       // An empty window (a line no pocket takes) counts as far outside.

@@ -76,9 +76,8 @@ struct MonteCarloTally {
   int fouls = 0;
   /// Sum over samples of the points the sample is worth to the striker (MonteCarloScore).
   double score_sum = 0;
-  /// Sums of the scores of the successes and of the other samples.
+  /// Sum of the scores of the successes (the other samples': score_sum less this).
   double success_score_sum = 0;
-  double miss_score_sum = 0;
   /// A direct pot's lines at the pocket (RunSamples with measure_line): the samples
   /// whose object ball left its first contact on a measured line, how many of those
   /// lines lay inside the pocket's window, and the sums of z and z^2, z being the
@@ -94,7 +93,12 @@ struct MonteCarloTally {
   double pocket_rate() const { return Rate(pocket_successes); }
   double foul_rate() const { return Rate(fouls); }
   double mean_score() const { return samples > 0 ? score_sum / samples : 0; }
-  /// The mean score corrected by a Gaussian fit of the pot's lines (PotTailCorrection).
+  /// The chance of a line inside the window by a Gaussian fit of the measured lines'
+  /// z (needs at least two lines).
+  double fitted_line_rate() const;
+  /// The mean score with the counted share of lines inside replaced by the fitted
+  /// one, times what a pot is worth over a miss; the mean score itself with fewer
+  /// than `min_line_samples` lines or no pot.
   double tail_corrected_score(int min_line_samples) const;
 
  private:

@@ -27,12 +27,12 @@ TEST(PotTailFitTest, TheCorrectionIsTheFittedShortfallTimesWhatAMissCosts) {
   t.z_sum = 0;
   t.z2_sum = 47 * s * s;
   const double fitted = 2 * NormalCdf(1 / s) - 1;
+  EXPECT_NEAR(t.fitted_line_rate(), fitted, 1e-12);
   EXPECT_NEAR(t.tail_corrected_score(16), 10 + (fitted - 1) * 20, 1e-12);
   EXPECT_LT(t.tail_corrected_score(16), t.mean_score());
   // A sampled miss sets what a miss costs: 44 pots at 10, 4 misses at -30.
   t.successes = t.line_inside = 44;
   t.success_score_sum = 440;
-  t.miss_score_sum = -120;
   t.score_sum = 320;
   EXPECT_NEAR(t.tail_corrected_score(16), 320.0 / 48 + (fitted - 44.0 / 48) * 40, 1e-12);
 }
@@ -45,7 +45,7 @@ TEST(PotTailFitTest, TooFewLinesNoPotOrNoSpreadLeaveTheMeanAlone) {
   EXPECT_EQ(t.tail_corrected_score(16), t.mean_score());
   t.successes = t.line_inside = 0;
   t.success_score_sum = 0;
-  t.miss_score_sum = t.score_sum = -60;
+  t.score_sum = -60;
   EXPECT_EQ(t.tail_corrected_score(4), t.mean_score());
   // Every line the same, inside: the fit and the count agree on 1.
   MonteCarloTally same;
@@ -83,9 +83,7 @@ TEST_P(PotTailSamplesTest, TheFitAgreesWithTheCountAndTheCountWithThePots) {
   ASSERT_EQ(tally.samples, n);
   EXPECT_EQ(tally.line_samples, n) << "every sample met the red and measured its line";
   const double counted = static_cast<double>(tally.line_inside) / n;
-  const double mu = tally.z_sum / n;
-  const double sigma = std::sqrt((tally.z2_sum - n * mu * mu) / (n - 1));
-  const double fitted = NormalCdf((1 - mu) / sigma) - NormalCdf((-1 - mu) / sigma);
+  const double fitted = tally.fitted_line_rate();
   const double error = 3 * std::sqrt(std::max(counted * (1 - counted), 0.01) / n);
   EXPECT_NEAR(counted, tally.success_rate(), error);
   EXPECT_NEAR(fitted, counted, error);
