@@ -194,13 +194,8 @@ TEST(CalibrateRpcTest, AClientDeadlineEndsATrackedShotFitPromptly) {
   EXPECT_EQ(st.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED) << st.error_message();
   // The client gives up at its deadline whatever the server does: the server's
   // own answer (its count of finished calls) shows that the fit stopped.
-  const auto counts = [&] { return s.server->counts(); };
-  while ((counts().received == 0 || counts().in_flight() > 0) &&
-         std::chrono::steady_clock::now() - t0 < std::chrono::seconds(30)) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
+  const CallCounts c = server_support::WaitUntilAnswered(*s.server, 1, std::chrono::seconds(30));
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const CallCounts c = counts();
   ASSERT_EQ(c.received, 1) << "the call did not reach the server";
   EXPECT_LT(seconds, 2.0) << "the fit went on after the deadline";
   EXPECT_EQ(c.with(grpc::StatusCode::DEADLINE_EXCEEDED), 1)

@@ -24,6 +24,7 @@
 #include "snooker/v1/service.grpc.pb.h"
 #include "tests/service/call_support.h"
 #include "tests/service/requests.h"
+#include "tests/service/server_support.h"
 #include "tests/support/text.h"
 
 namespace snooker::server {
@@ -55,11 +56,7 @@ class CallsTest : public testing::Test {
   // Waits (at most 30 s) until the server has answered every call it received.
   // Returns how long that took from `since`.
   Clock::duration WaitUntilIdle(Clock::time_point since) {
-    const auto give_up = Clock::now() + std::chrono::seconds(30);
-    while (server_->counts().in_flight() > 0 && Clock::now() < give_up) {
-      std::this_thread::sleep_for(milliseconds(2));
-    }
-    EXPECT_EQ(server_->counts().in_flight(), 0);
+    EXPECT_EQ(server_support::WaitUntilAnswered(*server_, 0, std::chrono::seconds(30)).in_flight(), 0);
     return Clock::now() - since;
   }
 

@@ -117,10 +117,7 @@ class HttpTest : public testing::Test {
   }
   // The server's log once every call it received has its answer.
   std::string Log() {
-    const auto give_up = Clock::now() + std::chrono::seconds(20);
-    while (test_server_->server->counts().in_flight() > 0 && Clock::now() < give_up) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
+    server_support::WaitUntilAnswered(*test_server_->server, 0, std::chrono::seconds(20));
     return test_server_->log.str();
   }
 

@@ -136,11 +136,7 @@ class PlanRpcTest : public testing::Test {
 
   // Waits (at most 30 s) until the server has answered every call it received.
   void WaitUntilIdle() {
-    const auto give_up = Clock::now() + std::chrono::seconds(30);
-    while (server_->counts().in_flight() > 0 && Clock::now() < give_up) {
-      std::this_thread::sleep_for(milliseconds(2));
-    }
-    EXPECT_EQ(server_->counts().in_flight(), 0);
+    EXPECT_EQ(server_support::WaitUntilAnswered(*server_, 0, std::chrono::seconds(30)).in_flight(), 0);
   }
 
   std::unique_ptr<server_support::TestServer> test_server_;

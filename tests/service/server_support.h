@@ -6,9 +6,11 @@
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "server/server.h"
 #include "snooker/v1/service.grpc.pb.h"
@@ -20,6 +22,19 @@ inline std::string ShotsOf(const v1::PlanResponse& r) {
   std::string out;
   for (const v1::PlannedShot& s : r.shots()) out += s.SerializeAsString() + "|";
   return out;
+}
+
+/// Waits, at most `timeout`, until `server` has received at least `received` calls
+/// and answered every call it received; returns its counts as last read.
+inline server::CallCounts WaitUntilAnswered(const server::Server& server, std::int64_t received,
+                                            std::chrono::steady_clock::duration timeout) {
+  const auto give_up = std::chrono::steady_clock::now() + timeout;
+  server::CallCounts c = server.counts();
+  while ((c.received < received || c.in_flight() > 0) && std::chrono::steady_clock::now() < give_up) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    c = server.counts();
+  }
+  return c;
 }
 
 struct TestServer {
