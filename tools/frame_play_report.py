@@ -11,7 +11,8 @@ vision noises 0.2 and 0.5 mm, and the noise scan against direct-pots
 0.25); the matches missing are left out, none is an error.
 COMMAND is the command that made the data, REVISION the commit measured; both are
 named in the document. With --handover it prints only the table of what player A's
-strokes that handed the table over left (handover_table), over the stroke logs given.
+strokes that handed the table over left (handover_table), and what player B's stalls
+gave back (returns_line), over the stroke logs given.
 Standard library only.
 """
 import gzip
@@ -272,6 +273,30 @@ def handover_table(bins, b):
                 out += (f"| {what} | {lo:.2f}-{min(hi, 1.0):.2f} | {n} | {psum / n:.3f} | {tried / n:.2f} | "
                         f"{dropped / n:.2f} | {points / n:.1f} |\n")
     return out
+
+
+def returns_line(frames, side="B"):
+    """What `side`'s stalls gave back: the strokes it played without a shot of its own
+    (for direct-pots, the straight shot at the nearest ball on when it has no direct
+    pot; the break-off apart), the penalties of those that fouled, and the points of the
+    other player's next visit, over the frames given."""
+    n = fouls = penalty = points = 0
+    for frame in frames:
+        visits = visits_of(frame)
+        for k in range(len(visits) - 1):
+            last = visits[k][2][-1]
+            if visits[k][0] != side or not last["stall"] or last["turn"] == "break-off":
+                continue
+            n += 1
+            if last["foul"] != "none":
+                fouls += 1
+                penalty += last["penalty"]
+            points += visits[k + 1][1]
+    if not n:
+        return f"`{side}` played no stroke without a shot of its own.\n"
+    return (f"After `{side}`'s {n} strokes without a shot of its own ({fouls} of them fouls, "
+            f"{penalty / n:.1f} points of penalty a stroke), the next visit scored {points / n:.1f} points "
+            f"a stroke: together {(penalty + points) / n:.1f}.\n")
 
 
 def stalls_paragraph(strokes, d):
@@ -711,6 +736,7 @@ def main(argv):
             with (gzip.open(path, "rt") if path.endswith(".gz") else open(path)) as f:
                 frames += frames_of([json.loads(line) for line in f if line.strip()])
         print(handover_table(handover_bins(frames), "B"), end="")
+        print("\n" + returns_line(frames, "B"), end="")
         return 0
     if len(argv) not in (4, 5):
         print(__doc__, file=sys.stderr)
