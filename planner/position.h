@@ -8,8 +8,8 @@
 // judged by the fast estimate (pot_estimate.h) with its paths and cue room checked
 // (candidates.h), and discounted when the cue ball is left on a cushion or with
 // little room for the cue behind it (a ball close behind). Shots are ranked by
-// expected points p (value + continuation), so a black at 86 % just beats a yellow
-// at 90 %; the reported value is the weighted sum of the ranked shots' probabilities.
+// expected points p (value + continuation), so a black at 60 % can beat a yellow at
+// 90 %; the reported value is the weighted sum of the ranked shots' probabilities.
 //
 // Cost: every option's estimate is cheap; only the options that could enter the
 // ranking get their paths checked, best first, until enough balls are found.
@@ -24,13 +24,9 @@ namespace snooker::planner {
 struct PositionOptions {
   /// Weights of the best, second and third next shots (different balls).
   std::array<double, 3> weights = {1.0, 0.33, 0.15};
-  /// Points a potted next ball is worth beyond its value: what keeping the table
-  /// is worth to the striker, the break's points to come (about 30) and the
-  /// opponent's visit it denies. The same count prices a table handed over
-  /// (outlook.h). It ranks colours by p (value + continuation). At 100 rather than
-  /// 30 the default player won about 3 frames in 100 more against direct-pots
-  /// (docs/whole-frame-planner.md §10).
-  double continuation = 100.0;
+  /// Points a potted next ball is worth beyond its value (the break it keeps
+  /// alive): ranks colours by p (value + continuation).
+  double continuation = 30.0;
   /// A cue ball touching a cushion keeps this share of each next shot's
   /// probability, rising linearly to 1 at one ball radius off the cushion (the
   /// robot can strike it only high and without much spin).

@@ -318,10 +318,10 @@ break ends at a miss, a foul, a table with no pot for the planner, or a cleared 
    P x (value + position): P its pot probability from its simulated object-ball line
    under noise, position the expected points of the position left (`position.h`:
    weights 1, 0.33, 0.15 on the best next shots by the rules, one per ball, each worth
-   its value plus a continuation of 100 points, what keeping the table is worth;
-   discounted for a cue ball on a cushion or cramped by a ball behind it). A failed shot scores -1 + P/2, a barrier that still
+   its value plus a continuation of 30 points; discounted for a cue ball on a cushion or
+   cramped by a ball behind it). A failed shot scores -1 + P/2, a barrier that still
    points towards a centred line. Candidates are ranked by their fast estimate of
-   expected points, p (value + 100), and share the search's simulations by rank (the
+   expected points, p (value + 30), and share the search's simulations by rank (the
    first four a full share, the next four half, up to twelve a quarter; none under a
    tenth of the best).
 3. **Verification**: each candidate's best shot is simulated again at full fidelity to
