@@ -232,33 +232,40 @@ HANDOVER_KINDS = (("miss", "a missed pot"), ("safety", "a safety or escape"), ("
                   ("any", "any stroke"))
 
 
+def handovers(frames, side):
+    """Each time `side` handed the table over: (its visit's last stroke, the opponent's
+    next visit as visits_of gives it), over the frames given."""
+    for frame in frames:
+        visits = visits_of(frame)
+        for k in range(len(visits) - 1):
+            if visits[k][0] == side:
+                yield visits[k][2][-1], visits[k + 1]
+
+
 def handover_bins(frames, side="A"):
     """Per kind of `side`'s stroke that handed the table over (HANDOVER_KINDS, stalls and
     fouls apart) and HANDOVER_BINS bin of its handoverPot: [strokes, sum of handoverPot,
     the opponent's next strokes that were pots, of them those that dropped, the points of
     the opponent's visit]. Strokes without the field are skipped."""
     bins = {key: [[0, 0.0, 0, 0, 0] for _ in HANDOVER_BINS] for key, _ in HANDOVER_KINDS}
-    for frame in frames:
-        visits = visits_of(frame)
-        for k in range(len(visits) - 1):
-            last = visits[k][2][-1]
-            p = last.get("handoverPot")
-            if visits[k][0] != side or p is None:
-                continue
-            key = handover(last)
-            if key in ("stall", "foul"):
-                continue
-            key = "miss" if key.startswith("miss") else key
-            nxt = visits[k + 1][2][0]
-            attempt = not nxt["stall"] and nxt["kind"] == "POT"
-            for i, (lo, hi) in enumerate(HANDOVER_BINS):
-                if lo <= p < hi:
-                    for cell in (bins[key][i], bins["any"][i]):
-                        cell[0] += 1
-                        cell[1] += p
-                        cell[2] += attempt
-                        cell[3] += attempt and potted(nxt)
-                        cell[4] += visits[k + 1][1]
+    for last, (_, next_points, next_strokes) in handovers(frames, side):
+        p = last.get("handoverPot")
+        if p is None:
+            continue
+        key = handover(last)
+        if key in ("stall", "foul"):
+            continue
+        key = "miss" if key.startswith("miss") else key
+        nxt = next_strokes[0]
+        attempt = not nxt["stall"] and nxt["kind"] == "POT"
+        for i, (lo, hi) in enumerate(HANDOVER_BINS):
+            if lo <= p < hi:
+                for cell in (bins[key][i], bins["any"][i]):
+                    cell[0] += 1
+                    cell[1] += p
+                    cell[2] += attempt
+                    cell[3] += attempt and potted(nxt)
+                    cell[4] += next_points
     return bins
 
 
@@ -281,17 +288,14 @@ def returns_line(frames, side="B"):
     pot; the break-off apart), the penalties of those that fouled, and the points of the
     other player's next visit, over the frames given."""
     n = fouls = penalty = points = 0
-    for frame in frames:
-        visits = visits_of(frame)
-        for k in range(len(visits) - 1):
-            last = visits[k][2][-1]
-            if visits[k][0] != side or not last["stall"] or last["turn"] == "break-off":
-                continue
-            n += 1
-            if last["foul"] != "none":
-                fouls += 1
-                penalty += last["penalty"]
-            points += visits[k + 1][1]
+    for last, (_, next_points, _) in handovers(frames, side):
+        if not last["stall"] or last["turn"] == "break-off":
+            continue
+        n += 1
+        if last["foul"] != "none":
+            fouls += 1
+            penalty += last["penalty"]
+        points += next_points
     if not n:
         return f"`{side}` played no stroke without a shot of its own.\n"
     return (f"After `{side}`'s {n} strokes without a shot of its own ({fouls} of them fouls, "
