@@ -27,7 +27,7 @@ constexpr const char* kMatchHelpHead = R"(usage: snooker match --frames N --seed
                      [--noise-spin X] [--noise-position-mm X] [--cue-clearance-m X]
                      [--max-simulations N] [--samples N] [--threads N]
                      [--max-shots N] [--progress] [--strokes out.jsonl]
-                     [--thin-break-off] [--json]
+                     [--thin-break-off] [--break-value P] [--json]
 
 Two players play whole frames of snooker by the rules: the standard start (15 reds,
 the colours on their spots, the cue ball in hand for the break-off; player A breaks
@@ -70,6 +70,10 @@ constexpr const char* kMatchHelpTail = R"(Planner:
                          the whole match is a function of the seed
   --samples N            Monte Carlo samples per ranked shot (default 48)
   --threads N            planner threads (default 2)
+  --break-value P        what keeping the table is worth beyond the potted ball's
+                         value, points, for default and one-ply (0 to 147; default
+                         100: a miss also hands the opponent the table); direct-pots
+                         keeps the planner's own 30
 Match:
   --max-shots N          strokes after which a frame is stopped (1 to 200, default 200)
   --progress             print each frame's score on stderr as it ends
@@ -131,6 +135,7 @@ std::string Parse(Args& args, Parsed* p) {
   o.max_simulations = play.max_simulations;
   o.monte_carlo_samples = play.monte_carlo_samples;
   o.threads = play.threads;
+  o.break_value = play.break_value.value_or(planner::kFrameBreakValue);
   o.max_shots_per_frame = static_cast<int>(*shots);
   p->thin_break_off = args.Switch("thin-break-off");
   o.world = play.world;
@@ -162,7 +167,7 @@ void PrintJson(const Parsed& p, const planner::MatchReport& r, std::ostream& out
   j << ", \"playerA\": \"" << planner::ToString(a.kind) << "\", \"playerB\": \"" << planner::ToString(b.kind)
     << "\", \"seed\": " << o.seed << ", \"budgetMs\": " << Number(p.budget_ms)
     << ", \"maxSimulations\": " << o.max_simulations << ", \"samples\": " << o.monte_carlo_samples
-    << ", \"threads\": " << o.threads
+    << ", \"threads\": " << o.threads << ", \"breakValue\": " << Number(o.break_value)
     << ", \"thinBreakOff\": " << (p.thin_break_off ? "true" : "false")
     << ", \"noiseHeadingDeg\": " << Number(physics::RadToDeg(o.noise.heading))
     << ", \"noiseSpeed\": " << Number(o.noise.speed_fraction) << ", \"noiseSpin\": " << Number(o.noise.topspin)

@@ -27,6 +27,8 @@ std::string ReadPlayFlags(Args& args, const PlayFlags& defaults, PlayFlags* out)
   const auto samples = args.Integer("samples", defaults.monte_carlo_samples, lim::kMonteCarloSamples.lo,
                                     lim::kMonteCarloSamples.hi);
   const auto threads = args.Integer("threads", defaults.threads, lim::kThreads.lo, lim::kThreads.hi);
+  const std::optional<double> break_value =
+      args.Has("break-value") ? args.Number("break-value", std::nullopt) : defaults.break_value;
   if (!args.error().empty()) return args.error();
   auto range = [](const char* flag, double x, double lo, double hi) -> std::string {
     if (x >= lo && x <= hi) return "";
@@ -46,7 +48,8 @@ std::string ReadPlayFlags(Args& args, const PlayFlags& defaults, PlayFlags* out)
         range("noise-elevation-deg", *elevation, 0, physics::RadToDeg(lim::kElevationSigma.hi)),
         range("squirt-uncertainty", *squirt, 0, lim::kModelUncertainty.hi),
         range("throw-uncertainty", *throws, 0, lim::kModelUncertainty.hi),
-        range("max-elevation-deg", *max_elevation, 0, physics::RadToDeg(lim::kMaxElevation.hi))}) {
+        range("max-elevation-deg", *max_elevation, 0, physics::RadToDeg(lim::kMaxElevation.hi)),
+        break_value ? range("break-value", *break_value, lim::kBreakValue.lo, lim::kBreakValue.hi) : ""}) {
     if (!e.empty()) return e;
   }
   *out = defaults;
@@ -66,6 +69,7 @@ std::string ReadPlayFlags(Args& args, const PlayFlags& defaults, PlayFlags* out)
   out->max_simulations = *sims;
   out->monte_carlo_samples = static_cast<int>(*samples);
   out->threads = static_cast<int>(*threads);
+  out->break_value = break_value;
   for (const char* flag : {"model", "world"}) {
     if (!args.Has(flag)) continue;
     physics::Model m;

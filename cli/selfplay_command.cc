@@ -19,7 +19,7 @@ namespace {
 constexpr const char* kSelfplayHelpHead = R"(usage: snooker selfplay --frames N --seed S [--budget-ms N] [--json]
                         [--noise-heading-deg X] [--noise-speed X] [--noise-spin X]
                         [--noise-position-mm X] [--cue-clearance-m X] [--pot-only] [--one-ply] [--max-simulations N]
-                        [--samples N] [--threads N] [--progress] [--records out.jsonl]
+                        [--samples N] [--threads N] [--break-value P] [--progress] [--records out.jsonl]
 
 The planner plays snooker alone. Each frame starts from a seeded random mid-frame
 table (6 to 10 reds scattered where they touch nothing, the colours on their spots,
@@ -43,6 +43,9 @@ constexpr const char* kSelfplayHelpTail = R"(Planner:
   --max-simulations N    per-plan cap on simulations (default: from the budget)
   --samples N            Monte Carlo samples per ranked shot (default 48)
   --threads N            planner threads (default 2)
+  --break-value P        what keeping the table is worth beyond the potted ball's
+                         value, points (0 to 147; default 30, the planner's own: alone
+                         at the table only the break's own points are to come)
   --progress             print each frame's break on stderr as it ends
   --records out.jsonl    write one JSON line per frame: {"frame", "reds", "points",
                          "attempts", "pots", "end"} (end: "miss", "foul: ...",
@@ -84,6 +87,7 @@ int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::os
   o.max_simulations = play.max_simulations;
   o.monte_carlo_samples = play.monte_carlo_samples;
   o.threads = play.threads;
+  o.break_value = play.break_value;
   o.world = play.world;
   std::optional<planner::Planner> own;
   if (play.model) own.emplace(planner::PlannerConfig{}.WithModel(*play.model));

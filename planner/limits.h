@@ -75,4 +75,10 @@ inline constexpr IntRange kMaxSimulations{0, 100'000'000};
 /// Monte Carlo samples per ranked shot (0: rank by the search's estimate).
 inline constexpr IntRange kMonteCarloSamples{0, 100'000};
 
+// --- The objective ----------------------------------------------------------------
+/// The break value: what keeping the table is worth beyond the potted ball's own
+/// value, points (PositionOptions::continuation). 147, a maximum break, is more
+/// than any table can still give.
+inline constexpr Range kBreakValue{0, 147};
+
 }  // namespace snooker::planner::limits

@@ -238,7 +238,7 @@ TurnChoice MatchRunner::Choose(const FrameState& f, int frame, Rng& rng) const {
   req.threads = o_.threads;
   req.max_simulations = o_.max_simulations;
   req.monte_carlo_samples = o_.monte_carlo_samples;
-  ConfigureRequest(o_.players[static_cast<size_t>(f.striker)], &req);
+  ConfigureRequest(o_.players[static_cast<size_t>(f.striker)], &req, o_.break_value);
   const PlanAnswer answer = planner_.Plan(req);
   TurnChoice c;
   c.plan_ms = answer.elapsed * 1e3;
@@ -432,16 +432,18 @@ std::optional<PlayerKind> ParsePlayerKind(std::string_view name) {
   return std::nullopt;
 }
 
-void ConfigureRequest(PlayerKind kind, PlanRequest* request) {
+void ConfigureRequest(PlayerKind kind, PlanRequest* request, double break_value) {
   request->kinds = ShotKinds{};
   request->routes = PotRoutes{};
   request->lookahead = true;
+  request->break_value = break_value;
   switch (kind) {
     case PlayerKind::kDefault: break;
     case PlayerKind::kDirectPots:
       request->kinds = ShotKinds::Of(ShotKind::kPot);
       request->routes = PotRoutes::Of(PotRoute::kDirect);
       request->lookahead = false;
+      request->break_value = std::nullopt;
       break;
     case PlayerKind::kOnePly: request->lookahead = false; break;
   }
@@ -468,6 +470,7 @@ std::string MatchOptionsError(const MatchOptions& o) {
   settings.threads = o.threads;
   settings.max_simulations = o.max_simulations;
   settings.monte_carlo_samples = o.monte_carlo_samples;
+  settings.break_value = o.break_value;
   if (const std::vector<FieldError> e = ValidateSettings(settings); !e.empty()) add(Describe(e));
   if (o.world) {
     if (const std::string e = physics::ValidateModel(*o.world); !e.empty()) add("world: " + e);

@@ -45,8 +45,15 @@ inline constexpr int kPlayerKindCount = 3;
 const char* ToString(PlayerKind kind);
 /// The player of that name, or nullopt.
 std::optional<PlayerKind> ParsePlayerKind(std::string_view name);
-/// Sets the request fields the player chooses (kinds, routes, lookahead).
-void ConfigureRequest(PlayerKind kind, PlanRequest* request);
+/// The break value (PlanRequest::break_value) the players that play for position
+/// (`default`, `one-ply`) plan with in a frame against an opponent: a miss there
+/// also hands over the table, which the planner's own 30 (a break alone at the
+/// table) does not count. docs/whole-frame-planner.md measures both.
+inline constexpr double kFrameBreakValue = 100.0;
+/// Sets the request fields the player chooses (kinds, routes, lookahead, the break
+/// value): `default` and `one-ply` plan with `break_value`; `direct-pots` with the
+/// planner's own, as it played before whole frames were (the frame targets' mark).
+void ConfigureRequest(PlayerKind kind, PlanRequest* request, double break_value = kFrameBreakValue);
 
 /// The kinds of turn whose planning times a match reports apart.
 enum class TurnType : std::uint8_t { kOnTable, kInHand, kBreakOff };
@@ -112,6 +119,8 @@ struct MatchOptions {
   /// Per-plan simulation cap (0: from the budget).
   std::int64_t max_simulations = 0;
   int monte_carlo_samples = 48;
+  /// The break value of `default` and `one-ply` (ConfigureRequest), points.
+  double break_value = kFrameBreakValue;
   /// Strokes after which a frame is stopped (1 to kFrameShotCap).
   int max_shots_per_frame = kFrameShotCap;
   /// Evaluates the table a safety leaves for the opponent; unset: not measured.

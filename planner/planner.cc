@@ -249,6 +249,7 @@ bool PlanRun::Prepare() {
   settings_ = config_.search_settings;
   settings_.limits = request_.limits;
   settings_.position_play = request_.position_play;
+  if (request_.break_value) settings_.position.continuation = *request_.break_value;
   schedule_ = MakeSchedule(config_, request_, start_);
   tables_.push_back(table_);
   if (!AddBreakOff()) {

@@ -90,6 +90,12 @@ struct PlanRequest {
   /// Search the next shot after the best few (two-ply) where the budget allows;
   /// false: the position left is only estimated (one-ply).
   bool lookahead = true;
+  /// The break value, points: what keeping the table is worth beyond the potted
+  /// ball's own value (PositionOptions::continuation); nullopt: the configured one
+  /// (30). Alone at the table (a break for its own sake) 30 scores the most; in a
+  /// frame against an opponent about 100 wins more frames, since a miss also hands
+  /// the opponent the table (docs/whole-frame-planner.md).
+  std::optional<double> break_value;
   /// Worker threads (the caller's included).
   int threads = 2;
   /// Cap on simulations; 0: derived from the budget (Planner::Config).

@@ -40,6 +40,9 @@ struct SelfPlayOptions {
   /// Per-plan simulation cap (0: from the budget).
   std::int64_t max_simulations = 0;
   int monte_carlo_samples = 48;
+  /// The break value (PlanRequest::break_value), points; nullopt: the planner's
+  /// own (30), which scores the most in a break alone at the table.
+  std::optional<double> break_value;
   int min_reds = 6;
   int max_reds = 10;
   /// Cap on shots in one frame (a cleared 10-red table takes 26).

@@ -63,6 +63,7 @@ const char* ToString(Unit u) {
     case Unit::kRadPerSecond: return "rad/s";
     case Unit::kFraction: return "";
     case Unit::kRollingSpin: return "of the rolling spin";
+    case Unit::kPoints: return "points";
   }
   return "";
 }
@@ -161,6 +162,7 @@ std::vector<FieldError> ValidateSettings(const PlanRequest& r) {
   CheckCount(&errors, "threads", r.threads, lim::kThreads);
   CheckCount(&errors, "max_simulations", r.max_simulations, lim::kMaxSimulations);
   CheckCount(&errors, "monte_carlo_samples", r.monte_carlo_samples, lim::kMonteCarloSamples);
+  if (r.break_value) CheckRange(&errors, "break_value", *r.break_value, lim::kBreakValue, Unit::kPoints);
   return errors;
 }
 

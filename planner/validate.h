@@ -23,8 +23,9 @@ enum class Unit : std::uint8_t {
   kRadPerSecond,
   kFraction,         ///< a dimensionless ratio
   kRollingSpin,      ///< a fraction of the rolling spin v/R
+  kPoints,           ///< snooker points (the break value)
 };
-/// "m", "s", "rad", "m/s", "rad/s", "", "of the rolling spin".
+/// "m", "s", "rad", "m/s", "rad/s", "", "of the rolling spin", "points".
 const char* ToString(Unit u);
 
 /// One bad value of a PlanRequest.

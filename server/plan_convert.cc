@@ -44,6 +44,7 @@ constexpr ApiField kApiFields[] = {
     {"max_shots", "max_shots", 1, ""},
     {"max_simulations", "max_simulations", 1, ""},
     {"monte_carlo_samples", "monte_carlo_samples", 1, ""},
+    {"break_value", "break_value", 1, "points"},
     {"table.balls", "table.balls", 1, ""},
     {"ball_on", "ball_on", 1, ""},
 };
@@ -272,6 +273,7 @@ planner::PlanRequest PlanRequestFrom(const v1::PlanRequest& r, std::optional<dou
   if (r.has_position_play()) p.position_play = r.position_play();
   if (r.has_max_simulations()) p.max_simulations = r.max_simulations();
   if (r.has_monte_carlo_samples()) p.monte_carlo_samples = r.monte_carlo_samples();
+  if (r.has_break_value()) p.break_value = r.break_value();
   return p;
 }
 

@@ -46,7 +46,7 @@ TEST(CliMatchTest, JsonHasTheContractedNames) {
                                           "foulsB",     "safetiesA",  "safetiesB",  "stalls",    "shots",
                                           "planMsP50",  "planMsP99"};
   const std::set<std::string> more = {
-      "playerA",      "playerB",       "seed",           "budgetMs",          "maxSimulations", "samples", "threads",
+      "playerA",      "playerB",       "seed",           "budgetMs",          "maxSimulations", "samples", "threads", "breakValue",
       "noiseHeadingDeg", "noiseSpeed", "noiseSpin", "noiseAimDeg", "noiseCueSpeed", "noiseTipMm", "noiseElevationDeg", "noisePositionMm",   "maxShots",
       "framesCapped", "framesUndecided", "blackRespots", "simulationFailures", "thinBreakOff", "highestBreakA",
       "highestBreakB", "centuriesA",   "centuriesB",     "penaltyPointsA",    "penaltyPointsB",
@@ -66,6 +66,7 @@ TEST(CliMatchTest, JsonHasTheContractedNames) {
   EXPECT_EQ(f.at("maxSimulations").number_value(), 60);
   EXPECT_EQ(f.at("samples").number_value(), 8);
   EXPECT_EQ(f.at("threads").number_value(), 2);
+  EXPECT_EQ(f.at("breakValue").number_value(), 100);  // planner/match.h kFrameBreakValue
   EXPECT_LE(f.at("framesWonA").number_value() + f.at("framesWonB").number_value(), 2);
   EXPECT_GT(f.at("shots").number_value(), 0);
   EXPECT_LE(f.at("shots").number_value(), 16);
@@ -207,6 +208,8 @@ INSTANTIATE_TEST_SUITE_P(
                     BadFlag{"match --frames 1 --seed 1 --noise-speed 2", "--noise-speed 2 is out of range"},
                     BadFlag{"match --frames 1 --seed 1 --budget-ms 0", "--budget-ms 0 is out of range"},
                     BadFlag{"match --frames 1 --seed 1 --max-shots 201", "--max-shots 201 is out of range"},
+                    BadFlag{"match --frames 1 --seed 1 --break-value 148", "--break-value 148 is out of range [0, 147]"},
+                    BadFlag{"match --frames 1 --seed 1 --break-value lots", "--break-value 'lots'"},
                     BadFlag{"match --frames 1 --seed 1 --colour pink", "unknown option --colour"}),
     [](const testing::TestParamInfo<BadFlag>& param) {
       std::string name;

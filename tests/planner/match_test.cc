@@ -36,14 +36,19 @@ TEST(MatchTest, EachPlayerAsksThePlannerForItsOwnShots) {
   EXPECT_EQ(r.kinds, ShotKinds::Of(ShotKind::kPot));
   EXPECT_EQ(r.routes, PotRoutes::Of(PotRoute::kDirect));
   EXPECT_FALSE(r.lookahead);
+  EXPECT_FALSE(r.break_value.has_value());  // the planner's own
   ConfigureRequest(PlayerKind::kOnePly, &r);
   EXPECT_EQ(r.kinds, ShotKinds{});
   EXPECT_EQ(r.routes, PotRoutes{});
   EXPECT_FALSE(r.lookahead);
-  ConfigureRequest(PlayerKind::kDefault, &r);
+  EXPECT_EQ(r.break_value, kFrameBreakValue);
+  ConfigureRequest(PlayerKind::kDefault, &r, 55);
   EXPECT_TRUE(r.kinds.Has(ShotKind::kSafety));
   EXPECT_TRUE(r.routes.Has(PotRoute::kPlant));
   EXPECT_TRUE(r.lookahead);
+  EXPECT_EQ(r.break_value, 55);
+  ConfigureRequest(PlayerKind::kDirectPots, &r, 55);
+  EXPECT_FALSE(r.break_value.has_value());
 }
 
 TEST(MatchTest, BadOptionsAreNamed) {
@@ -52,7 +57,9 @@ TEST(MatchTest, BadOptionsAreNamed) {
   o.frames = 0;
   o.max_shots_per_frame = 201;
   o.time_budget = -1;
+  o.break_value = 200;
   const std::string e = MatchOptionsError(o);
+  EXPECT_NE(e.find("break_value = 200 (must be in [0, 147] points)"), std::string::npos) << e;
   EXPECT_NE(e.find("frames = 0"), std::string::npos) << e;
   EXPECT_NE(e.find("max_shots_per_frame = 201"), std::string::npos) << e;
   EXPECT_NE(e.find("time_budget"), std::string::npos) << e;

@@ -109,6 +109,23 @@ TEST(ValidatePlanRequestTest, NamesEveryBadField) {
   }
 }
 
+TEST(ValidatePlanRequestTest, TheBreakValueIsInPoints) {
+  v1::PlanRequest r = ObviousPot();
+  for (const double ok : {0.0, 30.0, 147.0}) {
+    r.set_break_value(ok);
+    EXPECT_TRUE(ValidatePlanRequest(r, physics::DefaultTable()).empty()) << ok;
+  }
+  for (const double bad : {-1.0, 147.5, static_cast<double>(NAN)}) {
+    r.set_break_value(bad);
+    const std::vector<FieldError> errors = ValidatePlanRequest(r, physics::DefaultTable());
+    ASSERT_EQ(errors.size(), 1u) << bad;
+    EXPECT_EQ(errors[0].field, "break_value");
+    EXPECT_EQ(errors[0].rule, "must be in [0, 147] points");
+  }
+  r.set_break_value(-1);
+  EXPECT_EQ(ValidatePlanRequest(r, physics::DefaultTable())[0].value, "-1");
+}
+
 TEST(ValidatePlanRequestTest, MoreBallsOfAKindThanSnookerHas) {
   v1::PlanRequest r = ObviousPot();
   AddBall(&r, "black-2", v1::BLACK, 0.3, 0.3);
@@ -185,6 +202,9 @@ TEST(PlanRequestFromTest, ConvertsUnitsAtTheEdge) {
   EXPECT_FALSE(d.ball_on.has_value());
   EXPECT_FALSE(d.cue_in_hand);
   EXPECT_FALSE(p.cue_in_hand);
+  EXPECT_FALSE(d.break_value.has_value());
+  r.set_break_value(100);
+  EXPECT_EQ(PlanRequestFrom(r).break_value, 100);
   const planner::PlanRequest in_hand = PlanRequestFrom(ObviousPotInHand());
   EXPECT_TRUE(in_hand.cue_in_hand);
   EXPECT_EQ(in_hand.table.balls.size(), 2u);
@@ -572,6 +592,7 @@ TEST(PlanProtoTest, CommentsQuoteThePlannersRanges) {
        RangeText(static_cast<double>(lim::kMaxSimulations.lo), static_cast<double>(lim::kMaxSimulations.hi))},
       {"monte_carlo_samples", RangeText(static_cast<double>(lim::kMonteCarloSamples.lo),
                                         static_cast<double>(lim::kMonteCarloSamples.hi))},
+      {"break_value", RangeText(lim::kBreakValue.lo, lim::kBreakValue.hi)},
   };
   for (const auto& q : quoted) {
     const std::string comment = CommentAbove(proto, q.field);

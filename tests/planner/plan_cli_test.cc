@@ -275,6 +275,7 @@ INSTANTIATE_TEST_SUITE_P(
                     BadInput{"plan --table TABLE --shots 50", "max_shots = 50 (must be in [1, 20])"},
                     BadInput{"plan --table TABLE --max-simulations -1", "max_simulations = -1"},
                     BadInput{"plan --table TABLE --samples 100001", "monte_carlo_samples = 100001"},
+                    BadInput{"plan --table TABLE --break-value 148", "break_value = 148 (must be in [0, 147] points)"},
                     // The command checks only that a value fits the field's type.
                     BadInput{"plan --table TABLE --shots 3000000000",
                              "--shots 3000000000 is out of range [-2147483648, 2147483647]"},
@@ -289,7 +290,8 @@ INSTANTIATE_TEST_SUITE_P(
                     BadInput{"plan --table TABLE --cue-in-hand --json", "table.balls[0].id = \"cue\" (a CUE ball)"},
                     BadInput{"selfplay --seed 1", "--frames is required"},
                     BadInput{"selfplay --frames 0 --seed 1", "--frames 0 is out of range"},
-                    BadInput{"selfplay --frames 1 --seed 1 --noise-position-mm -1", "--noise-position-mm -1"}),
+                    BadInput{"selfplay --frames 1 --seed 1 --noise-position-mm -1", "--noise-position-mm -1"},
+                    BadInput{"selfplay --frames 1 --seed 1 --break-value -1", "--break-value -1 is out of range"}),
     [](const testing::TestParamInfo<BadInput>& param) {
       // The command line itself, as a name: "plan_on_PURPLE", "selfplay_frames_0_seed_1".
       std::string name;

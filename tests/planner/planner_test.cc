@@ -14,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "planner/position.h"
 #include "planner/selfplay.h"
 
 namespace snooker::planner {
@@ -264,6 +265,47 @@ TEST(PlannerTest, PotOnlyAndColoursOn) {
   }
 }
 
+// The break value prices what a pot keeps alive: the leave's expected points are
+// the weighted next pot probabilities times (the ball's value + the break value).
+// Potting the black with reds left, the next ball is a red whatever the break value
+// (every red is worth 1, so the ranking of next shots cannot change), and with the
+// position ignored the search is the same: the same shot, whose leave is then worth
+// exactly position_value points more for each point of break value.
+TEST(PlannerTest, TheBreakValuePricesTheLeaveByWhatItKeepsAlive) {
+  const physics::Pocket& p = Table().pocket(PocketId::kTopRight);
+  const Vec2 black = p.mouth_centre - 0.4 * p.axis;
+  TableState t;
+  t.balls = {{BallKind::kCue, black - 0.4 * p.axis},
+             {BallKind::kBlack, black},
+             {BallKind::kRed, Vec2(0.5, 1.2)},
+             {BallKind::kRed, Vec2(1.2, 2.2)}};
+  PlanRequest r = Request(t);
+  r.ball_on = BallOn::kBlack;
+  r.position_play = false;
+  r.kinds = ShotKinds::Of(ShotKind::kPot);
+  r.max_shots = 1;
+  r.break_value = 0;
+  const PlanAnswer none = Planner::Default().Plan(r);
+  r.break_value = 100;
+  const PlanAnswer hundred = Planner::Default().Plan(r);
+  ASSERT_EQ(none.status, PlanStatus::kOk) << none.reason;
+  ASSERT_EQ(hundred.status, PlanStatus::kOk) << hundred.reason;
+  const PlannedShot& a = none.shots.front();
+  const PlannedShot& b = hundred.shots.front();
+  ASSERT_EQ(a.shot.heading, b.shot.heading);
+  ASSERT_EQ(a.shot.speed, b.shot.speed);
+  ASSERT_EQ(a.position_value, b.position_value);
+  ASSERT_GT(a.position_value, 0.5);  // a red is left to pot
+  EXPECT_EQ(r.table.balls[static_cast<size_t>(a.next_ball)].kind, BallKind::kRed);
+  EXPECT_NEAR(b.position_points - a.position_points, 100 * a.position_value, 1e-9);
+  // Unset, the planner's own break value: PositionOptions' 30.
+  r.break_value.reset();
+  const PlanAnswer unset = Planner::Default().Plan(r);
+  ASSERT_FALSE(unset.shots.empty());
+  EXPECT_NEAR(unset.shots.front().position_points - a.position_points,
+              PositionOptions{}.continuation * a.position_value, 1e-9);
+}
+
 // Why a shot's label (kind, first ball, object ball and pocket) differs from what its
 // own events show, or "" when they agree: the cue ball's first contact must be the
 // first ball (the object ball but for a plant), a pot's object ball must drop in the
@@ -347,6 +389,11 @@ TEST(PlannerTest, AnInvalidRequestIsRefusedNamingTheField) {
   EXPECT_EQ(a.simulations, 0);
   EXPECT_NE(a.reason.find("table.balls = 2 (cue balls: exactly one)"), std::string::npos) << a.reason;
   EXPECT_NE(a.reason.find("noise.heading = -1"), std::string::npos) << a.reason;
+  r = Request(ObviousPot());
+  r.break_value = -5;
+  const PlanAnswer bad = Planner::Default().Plan(r);
+  EXPECT_EQ(bad.status, PlanStatus::kInvalidRequest);
+  EXPECT_NE(bad.reason.find("break_value = -5 (must be in [0, 147] points)"), std::string::npos) << bad.reason;
 }
 
 // The budget is the planner's aim, the caller's deadline a hard end: when the budget

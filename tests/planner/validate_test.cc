@@ -79,6 +79,8 @@ const RangeCase kRanges[] = {
      [](PlanRequest* r, double x) { r->position_sigma = {0.2e-3, x, 0.2e-3}; }},
     {"TimeBudget", "time_budget", limits::kTimeBudget, Unit::kSecond,
      [](PlanRequest* r, double x) { r->time_budget = x; }},
+    {"BreakValue", "break_value", limits::kBreakValue, Unit::kPoints,
+     [](PlanRequest* r, double x) { r->break_value = x; }},
 };
 
 void PrintTo(const RangeCase& c, std::ostream* os) { *os << c.name; }

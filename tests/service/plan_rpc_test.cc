@@ -265,6 +265,8 @@ const BadPlan kBadPlans[] = {
        r->mutable_table()->mutable_balls(1)->set_id("cue");  // the black
      },
      "table.balls[1].id = \"cue\" (a BLACK ball) (is taken with cue_in_hand"},
+    {"BreakValueAboveAMaximumBreak", [](v1::PlanRequest* r) { r->set_break_value(148); },
+     "break_value = 148 (must be in [0, 147] points)"},
     {"NoCueBallNotInHand", [](v1::PlanRequest* r) { r->mutable_table()->mutable_balls()->DeleteSubrange(0, 1); },
      "table.balls = 0 CUE balls (must have exactly one)"},
 };
