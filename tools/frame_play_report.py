@@ -684,6 +684,12 @@ The players:
 """
     for name, what in PLAYERS.items():
         out += f"- `{name}`: {what};\n"
+    if "breakValue" in first:
+        out += (f"\n`default` and `one-ply` value keeping the table at {first['breakValue']:g} points beyond the "
+                "potted ball's own (the request's break value, `snooker match --break-value`): in a frame a miss "
+                "also hands the opponent the table. `direct-pots` keeps the planner's own 30, as it played when "
+                "the targets were set, and so does self-play, where only the break's own points are to come "
+                "([whole-frame-planner.md](whole-frame-planner.md) §10).\n")
     out += """
 A stall is a turn whose plan offered no shot: the match then plays, for the player, a
 firm straight shot at the nearest ball on (one with a clear path when there is one). For

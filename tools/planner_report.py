@@ -318,12 +318,12 @@ break ends at a miss, a foul, a table with no pot for the planner, or a cleared 
    P x (value + position): P its pot probability from its simulated object-ball line
    under noise, position the expected points of the position left (`position.h`:
    weights 1, 0.33, 0.15 on the best next shots by the rules, one per ball, each worth
-   its value plus a continuation of 30 points; discounted for a cue ball on a cushion or
-   cramped by a ball behind it). A failed shot scores -1 + P/2, a barrier that still
-   points towards a centred line. Candidates are ranked by their fast estimate of
-   expected points, p (value + 30), and share the search's simulations by rank (the
-   first four a full share, the next four half, up to twelve a quarter; none under a
-   tenth of the best).
+   its value plus the break value, 30 points unless the request sets `break_value`;
+   discounted for a cue ball on a cushion or cramped by a ball behind it). A failed shot
+   scores -1 + P/2, a barrier that still points towards a centred line. Candidates are
+   ranked by their fast estimate of expected points, p (value + break value), and share
+   the search's simulations by rank (the first four a full share, the next four half,
+   up to twelve a quarter; none under a tenth of the best).
 3. **Verification**: each candidate's best shot is simulated again at full fidelity to
    the end; it is dropped if it fails there. No shot leaves the planner that its own
    full simulation says fails.
