@@ -81,6 +81,22 @@ std::optional<long> Args::Integer(const std::string& name, std::optional<long> f
   return x;
 }
 
+std::optional<std::uint64_t> Args::Unsigned64(const std::string& name, std::optional<std::uint64_t> fallback) {
+  const auto it = values_.find(name);
+  if (it == values_.end()) {
+    if (!fallback) Fail("--" + name + " is required");
+    return fallback;
+  }
+  const std::string& t = it->second;
+  std::uint64_t x = 0;
+  const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
+  if (ec != std::errc() || end != t.data() + t.size() || t.empty()) {
+    Fail("--" + name + " '" + t + "' is not a whole number in [0, 18446744073709551615]");
+    return std::nullopt;
+  }
+  return x;
+}
+
 std::optional<std::string> Args::Text(const std::string& name,
                                       std::optional<std::string> fallback) {
   const auto it = values_.find(name);

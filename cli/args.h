@@ -2,6 +2,7 @@
 // switches. Every error names the flag and the offending text.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <set>
@@ -29,6 +30,8 @@ class Args {
   /// An integer within [lo, hi]; unset -> `fallback`.
   std::optional<long> Integer(const std::string& name, std::optional<long> fallback, long lo,
                               long hi);
+  /// A whole number in [0, 2^64 - 1] (a seed: the API's uint64); unset -> `fallback`.
+  std::optional<std::uint64_t> Unsigned64(const std::string& name, std::optional<std::uint64_t> fallback);
   /// Raw text; unset -> `fallback`.
   std::optional<std::string> Text(const std::string& name, std::optional<std::string> fallback);
 

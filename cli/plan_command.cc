@@ -63,8 +63,8 @@ with its route (direct, plant, double, kick).
   --budget-ms N    planning time budget, ms (default 80; 1 to 60000; with --server,
                    the server's --default-budget-ms and at most its --max-budget-ms)
   --shots K        how many shots to list, best first (default 3; 1 to 20)
-  --seed S         seed of the Monte Carlo (default 1): same table and seed, same
-                   answer when the budget does not cut the work short
+  --seed S         seed of the Monte Carlo (default 1; 0 to 2^64 - 1): same table
+                   and seed, same answer when the budget does not cut the work short
   --cue-in-hand    the cue ball is in hand (the break-off, or after an in-off): the
                    table has no CUE ball, and each shot says where in the D to place
                    it (the placed cue ball is named "cue", so no ball may be)
@@ -251,9 +251,7 @@ void SetRequestFields(Args& args, v1::PlanRequest* req) {
   number("budget-ms", [&](double x) { req->set_time_budget_ms(x); });
   int32("shots", [&](std::int32_t n) { req->set_max_shots(n); });
   if (args.Has("seed")) {
-    if (const auto n = args.Integer("seed", std::nullopt, 0, std::numeric_limits<long>::max())) {
-      req->set_seed(static_cast<std::uint64_t>(*n));
-    }
+    if (const auto n = args.Unsigned64("seed", std::nullopt)) req->set_seed(*n);
   }
   int32("max-simulations", [&](std::int32_t n) { req->set_max_simulations(n); });
   int32("samples", [&](std::int32_t n) { req->set_monte_carlo_samples(n); });

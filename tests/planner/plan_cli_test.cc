@@ -280,6 +280,10 @@ INSTANTIATE_TEST_SUITE_P(
                     BadInput{"plan --table TABLE --shots 3000000000",
                              "--shots 3000000000 is out of range [-2147483648, 2147483647]"},
                     BadInput{"plan --table TABLE --samples many", "--samples 'many' is not a whole number"},
+                    // A seed is any uint64, as in the API: one more is not.
+                    BadInput{"plan --table TABLE --seed 18446744073709551616",
+                             "--seed '18446744073709551616' is not a whole number in [0, 18446744073709551615]"},
+                    BadInput{"plan --table TABLE --seed -1", "--seed '-1' is not a whole number"},
                     // Here the tolerance is the local server's: what `snooker serve` accepts.
                     BadInput{"plan --table TABLE --vision-tolerance-mm 11",
                              "--vision-tolerance-mm 11 is outside [0, 10]"},
