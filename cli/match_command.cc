@@ -26,7 +26,7 @@ constexpr const char* kMatchHelpHead = R"(usage: snooker match --frames N --seed
                      [--budget-ms MS] [--noise-heading-deg X] [--noise-speed X]
                      [--noise-spin X] [--noise-position-mm X] [--cue-clearance-m X]
                      [--max-simulations N] [--samples N] [--threads N]
-                     [--max-shots N] [--progress] [--strokes out.jsonl]
+                     [--max-shots N] [--progress] [--strokes out.jsonl [--stroke-tables]]
                      [--thin-break-off] [--break-value P] [--json]
 
 Two players play whole frames of snooker by the rules: the standard start (15 reds,
@@ -94,7 +94,16 @@ Match:
                          "stallOn", "stallInHand" and "stallTable" (the table as
                          the striker saw it, in --table's format: `snooker plan
                          --table T.json --on ON` plans the turn again); frames
-                         count from 0, strokes from 1
+                         count from 0, strokes from 1; "planSeed" is the seed of
+                         the turn's plan (a string of digits)
+  --stroke-tables        with --strokes, every line adds the turn's "on",
+                         "inHand" and "table" (as for a stall): with the match's
+                         flags, a turn of `default` plays again to the same shot
+                         when --max-simulations is set: `snooker plan --table
+                         T.json --on ON [--cue-in-hand] --seed planSeed --shots 1
+                         --break-value B --squirt-uncertainty 0
+                         --throw-uncertainty 0`, B the match's break value
+                         (docs/operations.md)
   --help                 this text
 )";
 
@@ -138,6 +147,7 @@ std::string Parse(Args& args, Parsed* p) {
   o.break_value = play.break_value.value_or(planner::kFrameBreakValue);
   o.max_shots_per_frame = static_cast<int>(*shots);
   p->thin_break_off = args.Switch("thin-break-off");
+  if (args.Switch("stroke-tables") && !args.Has("strokes")) return "--stroke-tables needs --strokes out.jsonl";
   o.world = play.world;
   p->model = play.model;
   return planner::MatchOptionsError(o);
@@ -226,8 +236,31 @@ std::string JsonString(std::string_view text) {
   return out + "\"";
 }
 
-// One stroke as a JSON line (--strokes).
-void PrintStroke(const planner::StrokeRecord& s, std::ostream& out) {
+// A table in snooker plan's --table format (balls "b<index>" but the cue ball), the
+// positions to the last bit (17 digits), so that it is read back to the same doubles.
+std::string TableJson(const planner::TableState& table) {
+  std::ostringstream j;
+  j.precision(std::numeric_limits<double>::max_digits10);
+  j << "{\"balls\": [";
+  int n = 0;
+  for (const planner::Ball& b : table.balls) {
+    std::string kind = planner::ToString(b.kind);
+    for (char& c : kind) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    j << (n ? ", " : "") << "{\"id\": \"" << (b.kind == planner::BallKind::kCue ? std::string("cue") : "b" + std::to_string(n))
+      << "\", \"kind\": \"" << kind << "\", \"position\": {\"x\": " << b.position.x()
+      << ", \"y\": " << b.position.y() << "}}";
+    ++n;
+  }
+  j << "]}";
+  return j.str();
+}
+
+// One stroke as a JSON line (--strokes); with `tables`, the turn's table too
+// (--stroke-tables).
+void PrintStroke(const planner::StrokeRecord& s, bool tables, std::ostream& out) {
+  std::string on;
+  for (const char* c = planner::ToString(s.ball_on); *c != '\0'; ++c) on += static_cast<char>(std::toupper(*c));
+  const char* in_hand = s.turn == planner::TurnType::kOnTable ? "false" : "true";
   std::ostringstream j;
   j << "{\"frame\": " << s.frame << ", \"stroke\": " << s.stroke << ", \"striker\": \"" << (s.striker == 0 ? "A" : "B")
     << "\", \"turn\": \"" << planner::ToString(s.turn) << "\", \"kind\": \"" << planner::ToString(s.kind)
@@ -235,28 +268,15 @@ void PrintStroke(const planner::StrokeRecord& s, std::ostream& out) {
     << ", \"potProbability\": " << Number(s.pot_probability) << ", \"planScore\": " << Number(s.plan_score)
     << ", \"potted\": " << s.potted << ", \"foul\": \"" << planner::ToString(s.foul) << "\", \"points\": " << s.points
     << ", \"penalty\": " << s.penalty << ", \"scoreA\": " << s.score[0] << ", \"scoreB\": " << s.score[1]
-    << ", \"planMs\": " << Number(s.plan_ms) << ", \"handoverPot\": " << Number(s.handover_outlook);
+    << ", \"planMs\": " << Number(s.plan_ms) << ", \"handoverPot\": " << Number(s.handover_outlook)
+    // A string: 64 bits do not fit a JSON reader's double.
+    << ", \"planSeed\": \"" << s.plan_seed << "\"";
+  if (tables) j << ", \"on\": \"" << on << "\", \"inHand\": " << in_hand << ", \"table\": " << TableJson(s.table);
   if (s.stall) {
     // Why the plan gave no stroke, and its table in snooker plan's --table format
     // with the ball on in --on's spelling: `snooker plan` plays the turn again.
-    j << ", \"stallReason\": " << JsonString(s.stall_reason) << ", \"stallOn\": \"";
-    for (const char* c = planner::ToString(s.ball_on); *c != '\0'; ++c) j << static_cast<char>(std::toupper(*c));
-    j << "\", \"stallInHand\": " << (s.turn == planner::TurnType::kOnTable ? "false" : "true") << ", \"stallTable\": ";
-    if (s.stall_table) {
-      j << "{\"balls\": [";
-      int n = 0;
-      for (const planner::Ball& b : s.stall_table->balls) {
-        std::string kind = planner::ToString(b.kind);
-        for (char& c : kind) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-        j << (n ? ", " : "") << "{\"id\": \"" << (b.kind == planner::BallKind::kCue ? std::string("cue") : "b" + std::to_string(n))
-          << "\", \"kind\": \"" << kind << "\", \"position\": {\"x\": " << Number(b.position.x())
-          << ", \"y\": " << Number(b.position.y()) << "}}";
-        ++n;
-      }
-      j << "]}";
-    } else {
-      j << "null";
-    }
+    j << ", \"stallReason\": " << JsonString(s.stall_reason) << ", \"stallOn\": \"" << on
+      << "\", \"stallInHand\": " << in_hand << ", \"stallTable\": " << TableJson(s.table);
   }
   j << "}\n";
   out << j.str();
@@ -305,7 +325,7 @@ void PrintText(const planner::MatchReport& r, std::ostream& out) {
 int RunMatch(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
   std::set<std::string> valued = {"frames", "seed", "player-a", "player-b", "max-shots", "strokes"};
   valued.insert(std::begin(kPlayFlagNames), std::end(kPlayFlagNames));
-  Args args(argv, valued, {"json", "help", "progress", "thin-break-off"});
+  Args args(argv, valued, {"json", "help", "progress", "thin-break-off", "stroke-tables"});
   if (args.error().empty() && args.Switch("help")) {
     out << kMatchHelpHead << kPlayFlagsHelp << kMatchHelpTail;
     return kExitOk;
@@ -349,7 +369,8 @@ int RunMatch(const std::vector<std::string>& argv, std::ostream& out, std::ostre
       err << "snooker match: cannot write --strokes '" << strokes_path << "'\n";
       return kExitFailure;
     }
-    p.options.on_stroke = [&strokes](const planner::StrokeRecord& s) { PrintStroke(s, strokes); };
+    const bool tables = args.Switch("stroke-tables");
+    p.options.on_stroke = [&strokes, tables](const planner::StrokeRecord& s) { PrintStroke(s, tables, strokes); };
   }
   const planner::MatchReport r = planner::RunMatch(planner, p.options, progress);
   if (strokes.is_open() && !strokes.flush()) {

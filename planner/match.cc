@@ -158,6 +158,22 @@ Played Simulate(physics::Simulator& sim, const TableState& t, int cue, const phy
   return out;
 }
 
+// A turn's request but for its table: the striker's settings and the match's.
+void FillTurnRequest(const MatchOptions& o, PlayerKind player, bool cue_in_hand, BallOn on, std::uint64_t seed,
+                     PlanRequest* req) {
+  req->cue_in_hand = cue_in_hand;
+  req->ball_on = on;
+  req->limits = o.limits;
+  req->noise = o.noise;
+  req->time_budget = o.time_budget;
+  req->max_shots = 1;
+  req->seed = seed;
+  req->threads = o.threads;
+  req->max_simulations = o.max_simulations;
+  req->monte_carlo_samples = o.monte_carlo_samples;
+  ConfigureRequest(player, req, o.break_value);
+}
+
 // What the striker plays this turn.
 struct TurnChoice {
   std::optional<Vec2> cue_start;
@@ -170,7 +186,8 @@ struct TurnChoice {
   double pot_probability = std::numeric_limits<double>::quiet_NaN();
   double plan_score = std::numeric_limits<double>::quiet_NaN();
   std::string stall_reason;
-  std::optional<TableState> stall_table;
+  TableState seen;
+  std::uint64_t plan_seed = 0;
 };
 
 // The colour a shot plays first, as its nomination when a colour is on.
@@ -228,20 +245,14 @@ TurnChoice MatchRunner::Choose(const FrameState& f, int frame, Rng& rng) const {
     for (size_t i = 0; i < seen.size(); ++i) seen[i] = placed[i].r;
   }
   for (size_t i = 0; i < seen.size(); ++i) req.table.balls[i].position = seen[i];
-  req.cue_in_hand = f.cue_in_hand;
-  req.ball_on = f.ball_on;
-  req.limits = o_.limits;
-  req.noise = o_.noise;
-  req.time_budget = o_.time_budget;
-  req.max_shots = 1;
-  req.seed = DeriveSeed(o_.seed, static_cast<std::uint64_t>(frame), static_cast<std::uint64_t>(f.shots) + 1);
-  req.threads = o_.threads;
-  req.max_simulations = o_.max_simulations;
-  req.monte_carlo_samples = o_.monte_carlo_samples;
-  ConfigureRequest(o_.players[static_cast<size_t>(f.striker)], &req, o_.break_value);
+  const std::uint64_t seed =
+      DeriveSeed(o_.seed, static_cast<std::uint64_t>(frame), static_cast<std::uint64_t>(f.shots) + 1);
+  FillTurnRequest(o_, o_.players[static_cast<size_t>(f.striker)], f.cue_in_hand, f.ball_on, seed, &req);
   const PlanAnswer answer = planner_.Plan(req);
   TurnChoice c;
   c.plan_ms = answer.elapsed * 1e3;
+  c.seen = req.table;
+  c.plan_seed = seed;
   if (!answer.shots.empty()) {
     const PlannedShot& p = answer.shots.front();
     std::optional<Vec2> start;
@@ -263,7 +274,6 @@ TurnChoice MatchRunner::Choose(const FrameState& f, int frame, Rng& rng) const {
                    : answer.reason.starts_with(status) ? answer.reason
                                                         : status + ": " + answer.reason;
   if (!answer.shots.empty()) c.stall_reason = "the plan's placement in the D could not be settled on the table";
-  c.stall_table = req.table;
   const FallbackShot fb = NearestBallOnShot(f.table, f.cue_in_hand, f.ball_on, o_.limits, model_);
   c.cue_start = fb.cue_start;
   c.cue = LevelStrikeFor(fb.shot, planner_.config().cue, planner_.config().full.ball,
@@ -315,10 +325,9 @@ void MatchRunner::Play(int frame, FrameState& f, const TurnChoice& c, Rng& rng, 
     rec.plan_ms = c.plan_ms;
     rec.handover_outlook = handover;
     rec.ball_on = on_before;
-    if (c.stall) {
-      rec.stall_reason = c.stall_reason;
-      rec.stall_table = c.stall_table;
-    }
+    rec.table = c.seen;
+    rec.plan_seed = c.plan_seed;
+    if (c.stall) rec.stall_reason = c.stall_reason;
     o_.on_stroke(rec);
   }
   PlayerStats& p = report_.players[static_cast<size_t>(r.striker)];
@@ -447,6 +456,14 @@ void ConfigureRequest(PlayerKind kind, PlanRequest* request, double break_value)
       break;
     case PlayerKind::kOnePly: request->lookahead = false; break;
   }
+}
+
+PlanRequest ReplayRequest(const MatchOptions& o, const StrokeRecord& s) {
+  PlanRequest req;
+  req.table = s.table;
+  FillTurnRequest(o, o.players[static_cast<size_t>(s.striker)], s.turn != TurnType::kOnTable, s.ball_on, s.plan_seed,
+                  &req);
+  return req;
 }
 
 std::string MatchOptionsError(const MatchOptions& o) {

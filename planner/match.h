@@ -92,12 +92,15 @@ struct StrokeRecord {
   /// otherwise, or with no outlook set.
   double handover_outlook = std::numeric_limits<double>::quiet_NaN();
   /// A stall only: why the plan gave no stroke (its status and reason, or why its
-  /// placement in the D could not be used), the table it was given (the positions
-  /// as the striker's vision saw them) and the ball on, so that the turn can be
-  /// planned again with `snooker plan`.
+  /// placement in the D could not be used).
   std::string stall_reason;
-  std::optional<TableState> stall_table;
+  /// What the turn's plan was given: the table as the striker's vision saw it (no
+  /// cue ball when in hand), the ball on and the plan's seed. With the match's
+  /// options they are the whole request (ReplayRequest), so that any turn can be
+  /// planned again, to the same shot when the plans are capped in simulations.
+  TableState table;
   BallOn ball_on = BallOn::kRed;
+  std::uint64_t plan_seed = 0;
 };
 
 /// How good a table is for the side to play: its best pot probability in [0, 1],
@@ -134,6 +137,12 @@ struct MatchOptions {
 
 /// Empty when `options` can be played; otherwise the bad values, named.
 std::string MatchOptionsError(const MatchOptions& options);
+
+/// The request the plan of a logged turn was made with: the record's table, ball on
+/// and seed, the striker's settings (ConfigureRequest) and the match's noise,
+/// limits, budget, threads and caps. Planning it again gives the turn's shot when
+/// `options.max_simulations` is set (the plans are then functions of their requests).
+PlanRequest ReplayRequest(const MatchOptions& options, const StrokeRecord& stroke);
 
 /// The stroke of a player with no plan: a firm straight shot (no spin, at the centre
 /// of the ball) at the nearest ball on whose path is clear (the first ball the cue

@@ -121,7 +121,7 @@ TEST(CliMatchTest, TheStrokeLogHasALinePerStroke) {
   double points_a = 0, points_b = 0;
   const std::set<std::string> names = {"frame", "stroke", "striker", "turn", "kind", "route", "stall",
                                        "potProbability", "planScore", "potted", "foul", "points", "penalty",
-                                       "scoreA", "scoreB", "planMs", "handoverPot"};
+                                       "scoreA", "scoreB", "planMs", "handoverPot", "planSeed"};
   std::set<std::string> stall_names = names;
   stall_names.insert({"stallReason", "stallOn", "stallInHand", "stallTable"});
   Struct previous;
@@ -162,6 +162,51 @@ TEST(CliMatchTest, TheStrokeLogHasALinePerStroke) {
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.err.find("cannot write --strokes '/nonexistent-dir/strokes.jsonl'"), std::string::npos) << bad.err;
   EXPECT_TRUE(bad.out.empty()) << bad.out;
+}
+
+// --stroke-tables: every line carries its turn's table, ball on and whether the
+// cue ball was in hand; with the plan's seed and the match's flags, `snooker plan`
+// plays a turn of `default` again to the shot the log records.
+TEST(CliMatchTest, AStrokeTableReplaysTheTurnThroughSnookerPlan) {
+  const std::string noise =
+      " --noise-heading-deg 0.02 --noise-speed 0.01 --noise-spin 2 --noise-aim-deg 0 --noise-cue-speed 0"
+      " --noise-tip-mm 0 --noise-elevation-deg 0 --noise-position-mm 0.2";
+  const std::string caps = " --max-simulations 60 --samples 8 --budget-ms 30000";
+  const std::string path = testing::TempDir() + "match_stroke_tables.jsonl";
+  const RunResult r =
+      RunCli("match --frames 1 --seed 11 --max-shots 8 --strokes " + path + " --stroke-tables" + noise + caps);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(path);
+  std::string line;
+  int replayed = 0, pots = 0;
+  while (std::getline(in, line)) {
+    Struct s;
+    ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(line, &s).ok()) << line;
+    const auto& f = s.fields();
+    ASSERT_TRUE(f.count("table") && f.count("on") && f.count("inHand")) << line;
+    ASSERT_FALSE(f.at("planSeed").string_value().empty()) << line;
+    if (f.at("striker").string_value() != "A" || f.at("stall").bool_value()) continue;
+    const std::string table = TempFile("stroke_table.json", StructJson(f.at("table").struct_value()));
+    const RunResult again = RunCli("plan --table " + table + " --on " + f.at("on").string_value() +
+                                   (f.at("inHand").bool_value() ? " --cue-in-hand" : "") + " --seed " +
+                                   f.at("planSeed").string_value() + " --shots 1 --break-value 100" +
+                                   " --squirt-uncertainty 0 --throw-uncertainty 0 --json" + noise + caps);
+    ASSERT_EQ(again.exit_code, 0) << again.err << "\n" << line;
+    Struct plan;
+    ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(again.out, &plan).ok()) << again.out;
+    const auto& shots = plan.fields().at("shots").list_value().values();
+    ASSERT_EQ(shots.size(), 1) << again.out;
+    const auto& shot = shots[0].struct_value().fields();
+    EXPECT_EQ(shot.at("kind").string_value(), f.at("kind").string_value()) << line << "\n" << again.out;
+    if (f.at("kind").string_value() == "POT") {
+      ++pots;
+      EXPECT_NEAR(shot.at("potProbability").number_value(), f.at("potProbability").number_value(), 1e-9)
+          << line << "\n" << again.out;
+    }
+    ++replayed;
+  }
+  EXPECT_GE(replayed, 2);
+  EXPECT_GE(pots, 1);
 }
 
 // --thin-break-off: the planners search the thin break beside the soft one, and the
@@ -210,6 +255,7 @@ INSTANTIATE_TEST_SUITE_P(
                     BadFlag{"match --frames 1 --seed 1 --max-shots 201", "--max-shots 201 is out of range"},
                     BadFlag{"match --frames 1 --seed 1 --break-value 148", "--break-value 148 is out of range [0, 147]"},
                     BadFlag{"match --frames 1 --seed 1 --break-value lots", "--break-value 'lots'"},
+                    BadFlag{"match --frames 1 --seed 1 --stroke-tables", "--stroke-tables needs --strokes"},
                     BadFlag{"match --frames 1 --seed 1 --colour pink", "unknown option --colour"}),
     [](const testing::TestParamInfo<BadFlag>& param) {
       std::string name;
