@@ -140,8 +140,9 @@ std::string MatchOptionsError(const MatchOptions& options);
 
 /// The request the plan of a logged turn was made with: the record's table, ball on
 /// and seed, the striker's settings (ConfigureRequest) and the match's noise,
-/// limits, budget, threads and caps. Planning it again gives the turn's shot when
-/// `options.max_simulations` is set (the plans are then functions of their requests).
+/// limits, budget, threads and caps. Planning it again, with the planner the match
+/// was played with, gives the turn's shot when `options.max_simulations` is set (the
+/// plans are then functions of their requests).
 PlanRequest ReplayRequest(const MatchOptions& options, const StrokeRecord& stroke);
 
 /// The stroke of a player with no plan: a firm straight shot (no spin, at the centre
