@@ -39,21 +39,34 @@ Args::Args(const std::vector<std::string>& argv, const std::set<std::string>& va
   }
 }
 
-std::optional<double> Args::Number(const std::string& name, std::optional<double> fallback) {
+namespace {
+
+// All of `t` read as a T (std::from_chars: no sign for an unsigned T, no leading space).
+template <class T>
+bool ParseAll(const std::string& t, T* x) {
+  const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), *x);
+  return ec == std::errc() && end == t.data() + t.size() && !t.empty();
+}
+
+}  // namespace
+
+const std::string* Args::Find(const std::string& name, bool has_fallback) {
   const auto it = values_.find(name);
-  if (it == values_.end()) {
-    if (!fallback) Fail("--" + name + " is required");
-    return fallback;
-  }
-  const std::string& t = it->second;
+  if (it != values_.end()) return &it->second;
+  if (!has_fallback) Fail("--" + name + " is required");
+  return nullptr;
+}
+
+std::optional<double> Args::Number(const std::string& name, std::optional<double> fallback) {
+  const std::string* t = Find(name, fallback.has_value());
+  if (!t) return fallback;
   double x = 0;
-  const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
-  if (ec != std::errc() || end != t.data() + t.size() || t.empty()) {
-    Fail("--" + name + " '" + t + "' is not a number");
+  if (!ParseAll(*t, &x)) {
+    Fail("--" + name + " '" + *t + "' is not a number");
     return std::nullopt;
   }
   if (!std::isfinite(x)) {
-    Fail("--" + name + " '" + t + "' is not a finite number");
+    Fail("--" + name + " '" + *t + "' is not a finite number");
     return std::nullopt;
   }
   return x;
@@ -61,20 +74,15 @@ std::optional<double> Args::Number(const std::string& name, std::optional<double
 
 std::optional<long> Args::Integer(const std::string& name, std::optional<long> fallback, long lo,
                                   long hi) {
-  const auto it = values_.find(name);
-  if (it == values_.end()) {
-    if (!fallback) Fail("--" + name + " is required");
-    return fallback;
-  }
-  const std::string& t = it->second;
+  const std::string* t = Find(name, fallback.has_value());
+  if (!t) return fallback;
   long x = 0;
-  const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
-  if (ec != std::errc() || end != t.data() + t.size() || t.empty()) {
-    Fail("--" + name + " '" + t + "' is not a whole number");
+  if (!ParseAll(*t, &x)) {
+    Fail("--" + name + " '" + *t + "' is not a whole number");
     return std::nullopt;
   }
   if (x < lo || x > hi) {
-    Fail("--" + name + " " + t + " is out of range [" + std::to_string(lo) + ", " +
+    Fail("--" + name + " " + *t + " is out of range [" + std::to_string(lo) + ", " +
          std::to_string(hi) + "]");
     return std::nullopt;
   }
@@ -82,16 +90,11 @@ std::optional<long> Args::Integer(const std::string& name, std::optional<long> f
 }
 
 std::optional<std::uint64_t> Args::Unsigned64(const std::string& name, std::optional<std::uint64_t> fallback) {
-  const auto it = values_.find(name);
-  if (it == values_.end()) {
-    if (!fallback) Fail("--" + name + " is required");
-    return fallback;
-  }
-  const std::string& t = it->second;
+  const std::string* t = Find(name, fallback.has_value());
+  if (!t) return fallback;
   std::uint64_t x = 0;
-  const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
-  if (ec != std::errc() || end != t.data() + t.size() || t.empty()) {
-    Fail("--" + name + " '" + t + "' is not a whole number in [0, 18446744073709551615]");
+  if (!ParseAll(*t, &x)) {
+    Fail("--" + name + " '" + *t + "' is not a whole number in [0, 18446744073709551615]");
     return std::nullopt;
   }
   return x;
@@ -99,12 +102,9 @@ std::optional<std::uint64_t> Args::Unsigned64(const std::string& name, std::opti
 
 std::optional<std::string> Args::Text(const std::string& name,
                                       std::optional<std::string> fallback) {
-  const auto it = values_.find(name);
-  if (it == values_.end()) {
-    if (!fallback) Fail("--" + name + " is required");
-    return fallback;
-  }
-  return it->second;
+  const std::string* t = Find(name, fallback.has_value());
+  if (!t) return fallback;
+  return *t;
 }
 
 }  // namespace snooker::cli

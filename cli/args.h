@@ -36,6 +36,9 @@ class Args {
   std::optional<std::string> Text(const std::string& name, std::optional<std::string> fallback);
 
  private:
+  /// The value given for `name`; nullptr when unset, and then, without a fallback,
+  /// error() says it is required.
+  const std::string* Find(const std::string& name, bool has_fallback);
   void Fail(std::string message) {  // keeps the first error
     if (error_.empty()) error_ = std::move(message);
   }
