@@ -15,6 +15,7 @@
 #include <cmath>
 #include <concepts>
 #include <cstdint>
+#include <limits>
 
 #include "physics/ode/hybrid_integrator.h"
 
@@ -22,12 +23,13 @@ namespace snooker::physics::ode {
 
 /// First t in [lo, hi] where a + b t + c t^2 goes from > 0 to <= 0, for the two uses
 /// here: a linear function (c = 0) and a concave one (c < 0) positive at lo. lo if it
-/// is already <= 0 there; hi + 1 when there is none. Closed form with the
-/// cancellation-free quadratic formula, clamped into the bracket.
+/// is already <= 0 there; +infinity when there is none (not hi + 1, which rounds to
+/// hi once hi passes 2^53). Closed form with the cancellation-free quadratic formula,
+/// clamped into the bracket.
 inline double FirstDownCrossing(double a, double b, double c, double lo, double hi) {
   auto f = [&](double t) { return a + t * (b + t * c); };
   if (f(lo) <= 0) return lo;
-  if (f(hi) > 0) return hi + 1;
+  if (f(hi) > 0) return std::numeric_limits<double>::infinity();
   double t;
   if (c == 0) {
     t = -a / b;
@@ -50,12 +52,12 @@ class EulerPhaseEnds {
 
   /// The step from impulse p (N s) of length dp with normal speed y0 + y1 t (m/s) and
   /// work w0 + y0 t + y1 t^2 / 2 (J): records the end of compression if it lies in
-  /// the step and returns the t in [0, dp] where the impact ends, or a value > dp.
+  /// the step and returns the t in [0, dp] where the impact ends, or +infinity.
   double Step(double p, double dp, double y0, double y1, double w0) {
     double start = 0;
     if (!compressed_) {
       const double tc = FirstDownCrossing(y0, y1, 0.0, 0.0, dp);
-      if (tc > dp) return dp + 1;
+      if (tc > dp) return std::numeric_limits<double>::infinity();
       compressed_ = true;
       impulse_compression_ = p + tc;
       work_compression_ = w0 + tc * (y0 + 0.5 * y1 * tc);
