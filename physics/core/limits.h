@@ -50,6 +50,11 @@ inline constexpr Range kShotSpeed{0, 20};
 /// Incident speed of one collision (Collide), m/s: above 0 (no approach is no
 /// collision) and below anything a snooker ball meets.
 inline constexpr Range kImpactSpeed{1e-6, 100};
+/// The speed scale of an impact solver's input (physics/impact/): the largest |v| and
+/// R |w| of its balls, m/s. Ten thousand times the fastest impact the API takes
+/// (kImpactSpeed), and far below where the solvers' arithmetic overflows (the squares
+/// in their step control and energy do beyond about 1e150 m/s).
+inline constexpr double kMaxImpactSpeedScale = 1e6;
 /// |topspin| and |sidespin| of a shot, rad/s (a cue gives at most about 300).
 inline constexpr double kMaxSpin = 1000;
 /// Simulation caps a request may ask for.

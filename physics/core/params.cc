@@ -21,9 +21,21 @@ bool Finite(double x) { return std::isfinite(x); }
 
 std::string ValidateBallParams(const BallParams& p) {
   std::ostringstream out;
-  Check(out, Finite(p.mass) && p.mass > 0, "mass", p.mass, "a finite number > 0 kg");
-  Check(out, Finite(p.radius) && p.radius > 0, "radius", p.radius, "a finite number > 0 m");
+  if (!limits::kBallMass.Contains(p.mass)) {
+    if (out.tellp() > 0) out << "; ";
+    out << "mass = " << p.mass << " (must be in [" << limits::kBallMass.lo << ", " << limits::kBallMass.hi
+        << "] kg)";
+  }
+  if (!limits::kBallRadius.Contains(p.radius)) {
+    if (out.tellp() > 0) out << "; ";
+    out << "radius = " << p.radius << " (must be in [" << limits::kBallRadius.lo << ", "
+        << limits::kBallRadius.hi << "] m)";
+  }
   return out.str();
+}
+
+bool BallParamsValid(const BallParams& p) {
+  return limits::kBallMass.Contains(p.mass) && limits::kBallRadius.Contains(p.radius);
 }
 
 std::string ValidateClothParams(const ClothParams& p) {

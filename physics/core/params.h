@@ -134,6 +134,10 @@ inline double BallBallFrictionSlope(const BallBallParams& p, double s) {
 /// Checks parameters where they enter the library. Returns an empty string when
 /// valid, otherwise a message that names the bad value.
 std::string ValidateBallParams(const BallParams& p);
+/// ValidateBallParams' rule without its message, for the solvers' every call: mass and
+/// radius in limits::kBallMass and kBallRadius (beyond them an impact's impulse, M v,
+/// and its inverse mass can overflow).
+bool BallParamsValid(const BallParams& p);
 std::string ValidateClothParams(const ClothParams& p);
 std::string ValidateBallBallParams(const BallBallParams& p);
 

@@ -29,8 +29,7 @@ bool ParamsValid(const BallParams& ball, const BallBallParams& contact, double m
       !ExponentialLawInRange(contact.mu_bb, contact.slip_gain, contact.slip_decay)) {
     return false;
   }
-  return std::isfinite(ball.mass) && ball.mass > 0 && std::isfinite(ball.radius) &&
-         ball.radius > 0 && InUnit(contact.mu_bb) && InUnit(contact.e) && InUnit(mu_s) &&
+  return BallParamsValid(ball) && InUnit(contact.mu_bb) && InUnit(contact.e) && InUnit(mu_s) &&
          static_cast<unsigned>(contact.friction_law) <=
              static_cast<unsigned>(BallBallFrictionLaw::kExponentialImpactSpeed);
 }
@@ -84,6 +83,15 @@ std::string ValidateImpact(const ImpactState& in, const BallParams& ball,
   PutVec(out, "C angular velocity", in.c.w);
   PutVec(out, "O velocity", in.o.v);
   PutVec(out, "O angular velocity", in.o.w);
+  if (AllFinite(in) && ValidateBallParams(ball).empty()) {
+    const double scale = SpeedScale(in, ball.radius);
+    if (!(scale <= limits::kMaxImpactSpeedScale)) {
+      std::ostringstream m;
+      m << "speed scale = " << scale << " m/s (|v| and R |w| of each ball must be at most "
+        << limits::kMaxImpactSpeedScale << " m/s)";
+      add(m.str());
+    }
+  }
   add(ValidateFidelity(options.fidelity));
   add(ValidateMethod(options.method));
   const ImpulseSolverOptions o = EffectiveOptions(options);  // what the solver runs with
@@ -106,7 +114,8 @@ ImpactResult ResolveImpact(const ImpactState& in, const BallParams& ball,
   ImpactResult r;
   r.out = in;
   const ImpulseSolverOptions o = EffectiveOptions(options);
-  if (!AllFinite(in) || !OptionsValid(o) || !ParamsValid(ball, contact, mu_s)) {
+  if (!AllFinite(in) || !OptionsValid(o) || !ParamsValid(ball, contact, mu_s) ||
+      !(SpeedScale(in, ball.radius) <= limits::kMaxImpactSpeedScale)) {
     r.status = ImpactStatus::kInvalidInput;
     return r;
   }

@@ -1,5 +1,6 @@
 #include "physics/impact/ball_cushion.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -52,25 +53,24 @@ OptionChecks CheckOptions(const ImpulseSolverOptions& given) {
 
 struct ParamChecks {
   bool ball = false, e_e = false, mu_w = false, mu_s = false;
-  int bad_knot = -1;  // first invalid restitution-curve knot (or points out of range)
+  bool points = false;  // the restitution curve's point count in [0, kMaxPoints]
+  int bad_knot = -1;    // its first invalid knot
   bool height = false;  // R < h < 2R
   bool lift = false;    // mu_w cos th < sin th: the cloth reaction stays positive
   bool fall = false;    // the normal speed falls for every friction the cones allow
   double s = 0, c = 0, fall_rate = 0;
-  bool Ok() const { return ball && e_e && mu_w && mu_s && height && lift && fall && bad_knot < 0; }
+  bool Ok() const { return ball && e_e && mu_w && mu_s && height && lift && fall && points && bad_knot < 0; }
 };
 
 ParamChecks CheckParams(const BallParams& ball, const CushionParams& p) {
   ParamChecks k;
-  k.ball = std::isfinite(ball.mass) && ball.mass > 0 && std::isfinite(ball.radius) &&
-           ball.radius > 0;
+  k.ball = BallParamsValid(ball);
   k.e_e = Coefficient(p.e_e);
   k.mu_w = Coefficient(p.mu_w);
   k.mu_s = Coefficient(p.mu_s);
   const RestitutionCurve& curve = p.restitution_curve;
-  if (curve.points < 0 || curve.points > RestitutionCurve::kMaxPoints) {
-    k.bad_knot = curve.points;
-  } else {
+  k.points = curve.points >= 0 && curve.points <= RestitutionCurve::kMaxPoints;
+  if (k.points) {
     for (int i = 0; i < curve.points && k.bad_knot < 0; ++i) {
       const bool ok = std::isfinite(curve.speed[i]) && curve.speed[i] >= 0 &&
                       Coefficient(curve.e[i]) && (i == 0 || curve.speed[i] > curve.speed[i - 1]);
@@ -117,10 +117,10 @@ std::string ValidateCushionParams(const BallParams& ball, const CushionParams& c
   std::ostringstream out;
   if (!k.ball) Add(out, ValidateBallParams(ball));
   if (!k.e_e) CheckCoefficient(out, "e_e", cushion.e_e);
-  if (k.bad_knot >= 0) {
+  if (!k.points || k.bad_knot >= 0) {
     const RestitutionCurve& c = cushion.restitution_curve;
     std::ostringstream m;
-    if (c.points < 0 || c.points > RestitutionCurve::kMaxPoints) {
+    if (!k.points) {
       m << "restitution_curve.points = " << c.points << " (must be in [0, "
         << RestitutionCurve::kMaxPoints << "])";
     } else {
@@ -164,6 +164,15 @@ std::string ValidateCushionImpact(const BallMotion& in, const BallParams& ball,
   Add(out, ValidateCushionParams(ball, cushion));
   CheckVec(out, "velocity", in.v);
   CheckVec(out, "angular velocity", in.w);
+  if (in.v.allFinite() && in.w.allFinite() && CheckParams(ball, cushion).ball) {
+    const double scale = CushionSpeedScale(in, ball.radius);
+    if (!(scale <= limits::kMaxImpactSpeedScale)) {
+      std::ostringstream m;
+      m << "speed scale = " << scale << " m/s (the horizontal speed and R |w| must be at most "
+        << limits::kMaxImpactSpeedScale << " m/s)";
+      Add(out, m.str());
+    }
+  }
   const OptionChecks k = CheckOptions(options);
   const ImpulseSolverOptions o = EffectiveOptions(options);
   Add(out, ValidateFidelity(options.fidelity));
@@ -177,6 +186,10 @@ std::string ValidateCushionImpact(const BallMotion& in, const BallParams& ball,
     Add(out, m.str());
   }
   return out.str();
+}
+
+double CushionSpeedScale(const BallMotion& in, double radius) {
+  return std::max(Vec2(in.v.x(), in.v.y()).norm(), radius * in.w.norm());
 }
 
 RestitutionCurve MeasuredReboundCurve() {
@@ -209,7 +222,8 @@ CushionImpactResult ResolveCushionImpact(const BallMotion& in, const BallParams&
   CushionImpactResult r;
   r.out = in;
   if (!in.v.allFinite() || !in.w.allFinite() || !CheckOptions(options).Ok() ||
-      !CheckParams(ball, cushion).Ok()) {
+      !CheckParams(ball, cushion).Ok() ||
+      !(CushionSpeedScale(in, ball.radius) <= limits::kMaxImpactSpeedScale)) {
     r.status = ImpactStatus::kInvalidInput;
     return r;
   }

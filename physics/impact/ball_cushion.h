@@ -99,12 +99,17 @@ double CushionRestitution(const CushionParams& cushion, double approach_speed);
 ///   v = (V0 cos a, V0 sin a, 0), w = (-wT sin a, wT cos a, wS).
 BallMotion CushionIncidentState(double speed, double alpha, double topspin, double sidespin);
 
+/// The speed scale of an input, m/s: the larger of its horizontal speed and R |w| (the
+/// vertical velocity is not part of the model).
+double CushionSpeedScale(const BallMotion& in, double radius);
+
 /// sin th of the contact normal at I: (h - R) / R.
 double CushionSinTheta(const BallParams& ball, const CushionParams& cushion);
 
 struct CushionImpactResult {
   /// kNotApproaching: normal speed ydot cos th <= 0, no impact. kInvalidInput: NaN or
-  /// infinite input, or bad parameters / options (ValidateCushionImpact names them).
+  /// infinite input, a speed scale beyond limits::kMaxImpactSpeedScale, or bad
+  /// parameters / options (ValidateCushionImpact names them).
   /// Both leave `out` equal to the input. kStepLimit: the cap was reached; `out` is
   /// the state reached.
   ImpactStatus status = ImpactStatus::kOk;

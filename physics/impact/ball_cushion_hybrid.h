@@ -72,7 +72,7 @@ class CushionHybrid {
   CushionHybrid(const BallMotion& in, const Model& model, const ImpulseSolverOptions& opt)
       : p_(model) {
     const double R = model.radius;
-    const double v_scale = std::max(Vec2(in.v.x(), in.v.y()).norm(), R * in.w.norm());
+    const double v_scale = CushionSpeedScale(in, R);
     const double atol = opt.tolerance * v_scale;
     settings_.tolerance = opt.tolerance;
     settings_.max_steps = opt.max_steps;

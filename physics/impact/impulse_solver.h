@@ -59,7 +59,8 @@ enum class ImpactStatus : std::uint8_t {
   /// kMinApproach * SpeedScale(); a cut of exactly 90 deg leaves ~1e-16 of approach
   /// from rounding). No impact; the output equals the input (a documented no-op).
   kNotApproaching,
-  /// NaN or infinite input, or parameters / options out of range: the output
+  /// NaN or infinite input, an input faster than limits::kMaxImpactSpeedScale, or
+  /// parameters / options out of range: the output
   /// equals the input. The solver's Validate function names the bad value.
   kInvalidInput,
   /// The step cap was reached before the end of restitution.

@@ -13,6 +13,7 @@
 #include <utility>
 #include <string>
 
+#include "physics/core/limits.h"
 #include "physics/motion/slip_phase.h"
 #include "tests/physics/impact/impact_test_support.h"
 #include "tests/physics/impact/paper_shots.h"
@@ -234,6 +235,50 @@ TEST_P(LawsTest, NonFiniteInputIsRejectedWithItsName) {
   in.o.v.x() = INFINITY;
   EXPECT_EQ(ResolveImpact(in, ball_, contact_, mu_s_, GetParam().options).status,
             ImpactStatus::kInvalidInput);
+}
+
+// Beyond limits::kMaxImpactSpeedScale the input is rejected, and named, before any
+// arithmetic can overflow; at the bound it is solved.
+TEST_P(LawsTest, InputFasterThanTheSpeedScaleBoundIsRejectedWithItsName) {
+  const double bound = limits::kMaxImpactSpeedScale;
+  const ImpactState at = PaperIncidentState(bound, 0.0, 0.0, 0.3);
+  EXPECT_EQ(ResolveImpact(at, ball_, contact_, mu_s_, GetParam().options).status, ImpactStatus::kOk);
+  EXPECT_EQ(ValidateImpact(at, ball_, contact_, mu_s_, GetParam().options), "");
+  ImpactState fast = PaperIncidentState(1.0, 0.0, 0.0, 0.3);
+  fast.o.w.z() = 2 * bound / ball_.radius;  // the object ball's spin alone
+  ImpactState huge = PaperIncidentState(1.0, 0.0, 0.0, 0.3);
+  huge.c.w = Vec3(-1.5e308, 1e308, -1.7e308);  // finite; its squares overflow
+  for (const ImpactState& in : {fast, huge}) {
+    const ImpactResult r = ResolveImpact(in, ball_, contact_, mu_s_, GetParam().options);
+    EXPECT_EQ(r.status, ImpactStatus::kInvalidInput);
+    EXPECT_EQ(r.out.c.w, in.c.w);
+    EXPECT_NE(ValidateImpact(in, ball_, contact_, mu_s_, GetParam().options).find("speed scale = "),
+              std::string::npos);
+  }
+}
+
+// A ball outside limits::kBallMass and kBallRadius is rejected and named: the solvers
+// hold M v and 1/M, which overflow for a mass near the largest double or a tiny one.
+TEST(BallParamsTest, MassAndRadiusOutsideTheLibraryRangesAreRejectedWithTheirNames) {
+  const ImpactState in = PaperIncidentState(1.0, 10.0, 5.0, 0.3);
+  const BallParams ok;
+  EXPECT_EQ(ValidateBallParams(ok), "");
+  EXPECT_TRUE(BallParamsValid(ok));
+  struct Case {
+    double mass, radius;
+    const char* named;
+  };
+  for (const Case& c : {Case{1.3e308, 0.02625, "mass = "}, Case{1e-310, 0.02625, "mass = "},
+                        Case{11.0, 0.02625, "mass = "}, Case{0.1406, 2.0, "radius = "},
+                        Case{0.1406, -0.02625, "radius = "}}) {
+    BallParams ball;
+    ball.mass = c.mass;
+    ball.radius = c.radius;
+    EXPECT_FALSE(BallParamsValid(ball)) << c.mass << " " << c.radius;
+    EXPECT_NE(ValidateBallParams(ball).find(c.named), std::string::npos) << ValidateBallParams(ball);
+    EXPECT_EQ(ResolveImpact(in, ball, {}, 0.2, Adaptive()).status, ImpactStatus::kInvalidInput);
+    EXPECT_NE(ValidateImpact(in, ball, {}, 0.2, Adaptive()).find(c.named), std::string::npos);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "physics/impact/ball_cushion_impulse.h"
+#include "physics/core/limits.h"
 #include "physics/motion/slip_phase.h"
 #include "tests/physics/impact/impact_test_support.h"
 
@@ -508,6 +509,38 @@ TEST(CushionStatus, NonFiniteInputIsInvalidAndNamed) {
   EXPECT_EQ(ValidateCushionImpact(RollingSquareOn(1.0), kBall, CushionParams{}, Adaptive()), "");
 }
 
+// Spins whose squares overflow (an input the fuzzer found: accepted, it came back NaN)
+// and anything beyond limits::kMaxImpactSpeedScale are rejected and named; the bound
+// itself is solved.
+TEST(CushionStatus, InputFasterThanTheSpeedScaleBoundIsInvalidAndNamed) {
+  const double bound = limits::kMaxImpactSpeedScale;
+  BallMotion huge = CushionIncidentState(2.5, 0.94, 0.0, 0.0);
+  huge.w = Vec3(-1.4529211184382219e308, 1.058641030154852e308, -1.7976931348623093e308);
+  BallMotion fast = RollingSquareOn(1.0);
+  fast.w.z() = 1.01 * bound / kBall.radius;
+  BallMotion fast_v = RollingSquareOn(1.0);
+  fast_v.v.x() = 2 * bound;
+  for (const ImpulseSolverOptions& o : {Adaptive(), FixedStep(100)}) {
+    for (const BallMotion& in : {huge, fast, fast_v}) {
+      const CushionImpactResult r = ResolveCushionImpact(in, kBall, CushionParams{}, o);
+      EXPECT_EQ(r.status, ImpactStatus::kInvalidInput);
+      EXPECT_EQ(r.out.w, in.w);
+      EXPECT_NE(ValidateCushionImpact(in, kBall, CushionParams{}, o).find("speed scale = "),
+                std::string::npos);
+    }
+    const BallMotion at = CushionIncidentState(0.999 * bound, kPi / 3, 0.0, 0.0);  // cos, sin round
+    const CushionImpactResult r = ResolveCushionImpact(at, kBall, CushionParams{}, o);
+    EXPECT_EQ(r.status, ImpactStatus::kOk);
+    EXPECT_TRUE(r.out.v.allFinite() && r.out.w.allFinite());
+    EXPECT_LE(Energy(r.out), Energy(at) * (1 + kRoundingRel));
+    EXPECT_EQ(ValidateCushionImpact(at, kBall, CushionParams{}, o), "");
+  }
+  // A vertical velocity is not part of the model, and not of its speed scale.
+  BallMotion up = RollingSquareOn(1.0);
+  up.v.z() = 10 * bound;
+  EXPECT_EQ(ResolveCushionImpact(up, kBall, CushionParams{}, Adaptive()).status, ImpactStatus::kOk);
+}
+
 TEST(CushionStatus, BadParametersAndOptionsAreInvalidAndNamed) {
   const BallMotion in = RollingSquareOn(1.0);
   struct Case {
@@ -543,11 +576,16 @@ TEST(CushionStatus, BadParametersAndOptionsAreInvalidAndNamed) {
     const std::string msg = ValidateCushionImpact(in, kBall, c.p, c.o);
     EXPECT_NE(msg.find(c.named), std::string::npos) << msg;
   }
-  BallParams bad_ball;
-  bad_ball.mass = -1;
-  EXPECT_EQ(ResolveCushionImpact(in, bad_ball, CushionParams{}, Adaptive()).status,
-            ImpactStatus::kInvalidInput);
-  EXPECT_NE(ValidateCushionParams(bad_ball, CushionParams{}).find("mass"), std::string::npos);
+  // A mass outside limits::kBallMass: negative, or so large that M v overflows (an
+  // input the fuzzer found came back infinite).
+  for (double mass : {-1.0, 0.0, 11.0, 1.3e308}) {
+    BallParams bad_ball;
+    bad_ball.mass = mass;
+    EXPECT_EQ(ResolveCushionImpact(in, bad_ball, CushionParams{}, Adaptive()).status,
+              ImpactStatus::kInvalidInput)
+        << mass;
+    EXPECT_NE(ValidateCushionParams(bad_ball, CushionParams{}).find("mass = "), std::string::npos) << mass;
+  }
 }
 
 TEST(CushionStatus, StepCapStopsBothIntegrators) {
@@ -626,6 +664,22 @@ TEST(CushionRestitutionCurve, BadKnotIsNamed) {
   EXPECT_NE(ValidateCushionParams(ball, p).find("restitution_curve knot 2"), std::string::npos);
   EXPECT_EQ(ResolveCushionImpact(CushionIncidentState(1, 1, 0, 0), ball, p, {}).status,
             ImpactStatus::kInvalidInput);
+}
+
+// A point count outside [0, kMaxPoints], below as well as above (-1 was once taken for
+// "no bad knot" and accepted).
+TEST(CushionRestitutionCurve, PointCountOutOfRangeIsNamed) {
+  const BallParams ball;
+  for (int points : {-1, -7, RestitutionCurve::kMaxPoints + 1}) {
+    CushionParams p = MathavanCushionParams(ball);
+    p.restitution_curve.points = points;
+    EXPECT_NE(ValidateCushionParams(ball, p).find("restitution_curve.points = " + std::to_string(points)),
+              std::string::npos)
+        << points;
+    EXPECT_EQ(ResolveCushionImpact(CushionIncidentState(1, 1, 0, 0), ball, p, {}).status,
+              ImpactStatus::kInvalidInput)
+        << points;
+  }
 }
 
 // ---------------------------------------------------------------------------
