@@ -106,10 +106,12 @@ void BallBallHybrid::OnSwitch(int w, State* x) {
     case kLandC:
       y[impulse::kVC + 2] = 0;
       mode_.c_on_cloth = true;
+      az_sign_ = impulse::SlipA(y, p_.radius).y() > 0 ? 1 : -1;  // unwatched while both flew
       break;
     case kLandO:
       y[impulse::kVO + 2] = 0;
       mode_.o_on_cloth = true;
+      az_sign_ = impulse::SlipA(y, p_.radius).y() > 0 ? 1 : -1;
       break;
     case kReleaseD: mode_.law[kD] = Law::kSlide; break;
     case kReleaseB: mode_.law[kB] = Law::kSlide; break;

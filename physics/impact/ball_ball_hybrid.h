@@ -169,7 +169,10 @@ class BallBallHybrid {
     switch (w) {
       case kCompressionEnd: return !compressed_;
       case kRestitutionEnd: return compressed_;
-      case kVerticalSlipA: return mode_.law[kA] == Law::kSlide;
+      // Which way zdot_A points decides which ball the cloth holds: with both balls
+      // off the cloth it decides nothing, and a slip sliding along zdot_A = 0 (friction
+      // at A draws it there from both sides) would switch at every step.
+      case kVerticalSlipA: return mode_.law[kA] == Law::kSlide && (mode_.c_on_cloth || mode_.o_on_cloth);
       case kLandC: return !mode_.c_on_cloth;
       case kLandO: return !mode_.o_on_cloth;
       case kConeD: return mode_.law[kD] == Law::kStick && mode_.c_on_cloth;
