@@ -388,7 +388,10 @@ class HybridIntegrator {
   double ray_tol_ = 0, event_resolution_ = 0;
   std::int32_t attempts_ = 0;
   int clock_ = kNoContact;
-  int no_follow_ = kNoContact;  // a contact whose tau clock just failed
+  // Contacts whose tau clock failed since the last step in P_I: each is followed in tau
+  // again only after that step. (One remembered contact let two slips hand the clock
+  // back and forth without a step: 100 000 discarded steps to the cap.)
+  std::array<bool, kContacts> no_follow_{};
   int no_freeze_ = kNoContact;  // a contact that just left its ray in a frozen step
   // A step that heads for a slip's predicted zero ends at this fraction of the way.
   double land_ratio_ = kLandRatio;
@@ -640,7 +643,7 @@ int HybridIntegrator<Model, kMethod>::AimAtSlipZeros(StepPlan* plan) const {
     if (land_ratio_ * to_zero < plan->h) plan->h = land_ratio_ * to_zero, plan->landing = c;
     // A turning slip is followed in tau if it surely reaches zero (the cone can hold
     // it there); otherwise it passes by zero.
-    if (to_zero < reach && size < s_.log_clock_slip && c != no_follow_ &&
+    if (to_zero < reach && size < s_.log_clock_slip && !no_follow_[c] &&
         m_.CanFollow(c, y_, a1_)) {
       reach = to_zero, follow = c;
     }
@@ -661,7 +664,7 @@ bool HybridIntegrator<Model, kMethod>::Discarded(const StepPlan& plan, const Ste
   if (s.valid()) return false;
   Unfreeze(plan);
   if (plan.log_clock) {  // the followed slip stopped shrinking: back to P_I
-    no_follow_ = clock_;
+    no_follow_[clock_] = true;
     SetClock(kNoContact);
   } else {
     h_impulse_ = 0.2 * plan.h;
@@ -713,7 +716,7 @@ bool HybridIntegrator<Model, kMethod>::Accept(const StepPlan& plan, StepOut& s, 
   double t_event = 2;
   int event = LocateEvent(s, plan.h, &t_event);
   ++work_.steps;
-  if (!plan.log_clock) no_follow_ = kNoContact;
+  if (!plan.log_clock) no_follow_.fill(false);
   no_freeze_ = kNoContact;
   if (event >= 0) {
     y_ = Dense(s, plan.h, t_event);  // ApplyEvent refreshes k1_ and a1_
