@@ -5,7 +5,8 @@
 //  * an accepted impact gives finite output; energy does not rise (beyond the
 //    integrator's accuracy at the chosen setting); both balls' Z spins change by
 //    the same amount (eq. 3f);
-//  * rejected or not-approaching input is returned unchanged.
+//  * rejected or not-approaching input is returned unchanged, and the validator names a
+//    bad value exactly when the solver rejects.
 // A broken law aborts (libFuzzer then saves the input as a crash-* file).
 #include <fuzzer/FuzzedDataProvider.h>
 
@@ -48,6 +49,23 @@ bool Same(const snooker::physics::BallMotion& a, const snooker::physics::BallMot
   return same(a.v, b.v) && same(a.w, b.w);
 }
 
+// The decoded impact, for a crash's triage (set SNOOKER_FUZZ_PRINT and run the target
+// on the crash-* file).
+void Print(const ImpactState& s, const snooker::physics::BallBallParams& contact, double mu_s,
+           const snooker::physics::ImpulseSolverOptions& o, const ImpactResult& r) {
+  auto vec = [](const char* name, const Vec3& v) {
+    std::fprintf(stderr, "%s (%.17g, %.17g, %.17g)\n", name, v.x(), v.y(), v.z());
+  };
+  vec("C v", s.c.v), vec("C w", s.c.w), vec("O v", s.o.v), vec("O w", s.o.w);
+  std::fprintf(stderr, "mu_bb %.17g (law %d) e %.17g mu_s %.17g\n", contact.mu_bb,
+               static_cast<int>(contact.friction_law), contact.e, mu_s);
+  std::fprintf(stderr, "integrator %d steps %d tolerance %.3g method %d max_steps %d fidelity %d\n",
+               static_cast<int>(o.integrator), o.steps, o.tolerance, static_cast<int>(o.method), o.max_steps,
+               static_cast<int>(o.fidelity));
+  std::fprintf(stderr, "status %s, %d steps, %d rejected, %d events\n", snooker::physics::ToString(r.status),
+               r.work.steps, r.work.rejected_steps, r.work.events);
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -80,6 +98,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const BallParams ball;
 
   const ImpactResult r = ResolveImpact(s, ball, contact, mu_s, options);
+  if (std::getenv("SNOOKER_FUZZ_PRINT") != nullptr) Print(s, contact, mu_s, options, r);
+  const bool named = !ValidateImpact(s, ball, contact, mu_s, options).empty();
+  if (named != (r.status == ImpactStatus::kInvalidInput)) {
+    Fail("validator names a bad value exactly when the solver rejects", named, static_cast<double>(r.status));
+  }
   switch (r.status) {
     case ImpactStatus::kOk: {
       const ImpactState& o = r.out;
