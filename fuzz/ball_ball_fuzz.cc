@@ -15,39 +15,19 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "fuzz/impact_fuzz_support.h"
 #include "physics/impact/ball_ball.h"
 
 namespace {
 
+using snooker::fuzz::Fail;
+using snooker::fuzz::Same;
+using snooker::fuzz::Value;
+using snooker::fuzz::Vector;
 using snooker::physics::ImpactResult;
 using snooker::physics::ImpactState;
 using snooker::physics::ImpactStatus;
 using snooker::physics::Vec3;
-
-void Fail(const char* what, double a, double b) {
-  std::fprintf(stderr, "law broken: %s (%.17g vs %.17g)\n", what, a, b);
-  std::abort();
-}
-
-// Mostly physical values, sometimes anything at all (NaN, inf, huge).
-double Value(FuzzedDataProvider& in, double lo, double hi) {
-  if (in.ConsumeIntegralInRange<int>(0, 15) == 0) return in.ConsumeFloatingPoint<double>();
-  return in.ConsumeFloatingPointInRange<double>(lo, hi);
-}
-
-Vec3 Vector(FuzzedDataProvider& in, double bound) {
-  return Vec3(Value(in, -bound, bound), Value(in, -bound, bound), Value(in, -bound, bound));
-}
-
-bool Same(const snooker::physics::BallMotion& a, const snooker::physics::BallMotion& b) {
-  auto same = [](const Vec3& x, const Vec3& y) {
-    for (int i = 0; i < 3; ++i) {
-      if (!(x[i] == y[i] || (std::isnan(x[i]) && std::isnan(y[i])))) return false;
-    }
-    return true;
-  };
-  return same(a.v, b.v) && same(a.w, b.w);
-}
 
 // The decoded impact, for a crash's triage (set SNOOKER_FUZZ_PRINT and run the target
 // on the crash-* file).

@@ -19,37 +19,18 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "fuzz/impact_fuzz_support.h"
 #include "physics/impact/ball_cushion.h"
 
 namespace {
 
+using snooker::fuzz::Fail;
+using snooker::fuzz::Same;
+using snooker::fuzz::Value;
+using snooker::fuzz::Vector;
 using snooker::physics::BallMotion;
 using snooker::physics::BallParams;
 using snooker::physics::Vec3;
-
-void Fail(const char* what, double a, double b) {
-  std::fprintf(stderr, "law broken: %s (%.17g vs %.17g)\n", what, a, b);
-  std::abort();
-}
-
-// Mostly physical values, sometimes anything at all (NaN, inf, huge).
-double Value(FuzzedDataProvider& in, double lo, double hi) {
-  if (in.ConsumeIntegralInRange<int>(0, 15) == 0) return in.ConsumeFloatingPoint<double>();
-  return in.ConsumeFloatingPointInRange<double>(lo, hi);
-}
-
-Vec3 Vector(FuzzedDataProvider& in, double bound) {
-  return Vec3(Value(in, -bound, bound), Value(in, -bound, bound), Value(in, -bound, bound));
-}
-
-bool SameBits(const Vec3& x, const Vec3& y) {
-  for (int i = 0; i < 3; ++i) {
-    if (!(x[i] == y[i] || (std::isnan(x[i]) && std::isnan(y[i])))) return false;
-  }
-  return true;
-}
-
-bool Same(const BallMotion& a, const BallMotion& b) { return SameBits(a.v, b.v) && SameBits(a.w, b.w); }
 
 // Kinetic energy on the cloth: the model ignores the input's vertical velocity and
 // leaves none (ball_cushion.h), so it counts the horizontal one only. J.
