@@ -133,7 +133,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       // tolerance for the adaptive integrator; 10/N for the fixed-step scheme, whose
       // steps hold their friction to the step's end and so can drive a slip past zero
       // and gain energy at coarse N (CushionEnergy.CoarseFixedStepsGainEnergyWithinTenOverN
-      // measures 1.2/N).
+      // measures about 1/N).
       const double slack = run.integrator == ImpulseIntegrator::kFixedStep ? 10.0 / run.steps
                                                                             : 20 * run.tolerance + 1e-11;
       if (e1 > e0 * (1 + slack) + 1e-300) Fail("energy rose", e1, e0);

