@@ -10,12 +10,14 @@
 //
 // Usage: impact_stress [--seed S] [--impacts N]
 #include <algorithm>
+#include <charconv>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <random>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "physics/impact/ball_ball.h"
@@ -124,22 +126,28 @@ void Run(const Domain& d, long n, std::uint64_t seed, Tally bb[2], Tally cu[2]) 
 
 }  // namespace
 
+// The whole of `text` as an unsigned number, or false.
+bool Parse(const char* text, std::uint64_t* out) {
+  const char* end = text + std::strlen(text);
+  const auto [p, ec] = std::from_chars(text, end, *out);
+  return ec == std::errc() && p == end && p != text;
+}
+
 int main(int argc, char** argv) {
-  std::uint64_t seed = 1;
-  long impacts = 200000;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (std::strcmp(argv[i], "--seed") == 0) {
-      seed = std::strtoull(argv[i + 1], nullptr, 10);
-    } else if (std::strcmp(argv[i], "--impacts") == 0) {
-      impacts = std::strtol(argv[i + 1], nullptr, 10);
-    } else {
-      std::fprintf(stderr, "impact_stress: unknown flag '%s' (use --seed S, --impacts N)\n", argv[i]);
+  std::uint64_t seed = 1, impacts = 200000;
+  for (int i = 1; i < argc; i += 2) {
+    const bool known = std::strcmp(argv[i], "--seed") == 0 || std::strcmp(argv[i], "--impacts") == 0;
+    if (!known || i + 1 >= argc) {
+      std::fprintf(stderr, "impact_stress: '%s' %s (usage: impact_stress [--seed S] [--impacts N])\n", argv[i],
+                   known ? "needs a value" : "is not a flag");
       return 2;
     }
-  }
-  if (argc % 2 == 0 || impacts <= 0) {
-    std::fprintf(stderr, "usage: impact_stress [--seed S] [--impacts N > 0]\n");
-    return 2;
+    std::uint64_t* target = std::strcmp(argv[i], "--seed") == 0 ? &seed : &impacts;
+    if (!Parse(argv[i + 1], target) || (target == &impacts && (impacts == 0 || impacts > 1'000'000'000))) {
+      std::fprintf(stderr, "impact_stress: %s '%s' is not a whole number%s\n", argv[i], argv[i + 1],
+                   target == &impacts ? " in [1, 1000000000]" : "");
+      return 2;
+    }
   }
   const Domain domains[] = {{"snooker shots (default parameters, to 8 m/s, 300 rad/s)", 8, 300, false},
                             {"any valid parameters (to 20 m/s, 1000 rad/s)", 20, 1000, true}};
@@ -151,7 +159,7 @@ int main(int argc, char** argv) {
   std::uint64_t domain_seed = seed;
   for (const Domain& d : domains) {
     Tally bb[2], cu[2];
-    Run(d, impacts, domain_seed++, bb, cu);
+    Run(d, static_cast<long>(impacts), domain_seed++, bb, cu);
     for (int solver = 0; solver < 2; ++solver) {
       for (int k = 0; k < 2; ++k) {
         const Tally& t = solver == 0 ? bb[k] : cu[k];
