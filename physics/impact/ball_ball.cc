@@ -83,14 +83,8 @@ std::string ValidateImpact(const ImpactState& in, const BallParams& ball,
   PutVec(out, "C angular velocity", in.c.w);
   PutVec(out, "O velocity", in.o.v);
   PutVec(out, "O angular velocity", in.o.w);
-  if (AllFinite(in) && ValidateBallParams(ball).empty()) {
-    const double scale = SpeedScale(in, ball.radius);
-    if (!(scale <= limits::kMaxImpactSpeedScale)) {
-      std::ostringstream m;
-      m << "speed scale = " << scale << " m/s (|v| and R |w| of each ball must be at most "
-        << limits::kMaxImpactSpeedScale << " m/s)";
-      add(m.str());
-    }
+  if (AllFinite(in) && BallParamsValid(ball)) {
+    add(ValidateSpeedScale(SpeedScale(in, ball.radius), "|v| and R |w| of each ball"));
   }
   add(ValidateFidelity(options.fidelity));
   add(ValidateMethod(options.method));
@@ -115,7 +109,7 @@ ImpactResult ResolveImpact(const ImpactState& in, const BallParams& ball,
   r.out = in;
   const ImpulseSolverOptions o = EffectiveOptions(options);
   if (!AllFinite(in) || !OptionsValid(o) || !ParamsValid(ball, contact, mu_s) ||
-      !(SpeedScale(in, ball.radius) <= limits::kMaxImpactSpeedScale)) {
+      !SpeedScaleValid(SpeedScale(in, ball.radius))) {
     r.status = ImpactStatus::kInvalidInput;
     return r;
   }

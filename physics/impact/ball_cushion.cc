@@ -164,14 +164,8 @@ std::string ValidateCushionImpact(const BallMotion& in, const BallParams& ball,
   Add(out, ValidateCushionParams(ball, cushion));
   CheckVec(out, "velocity", in.v);
   CheckVec(out, "angular velocity", in.w);
-  if (in.v.allFinite() && in.w.allFinite() && CheckParams(ball, cushion).ball) {
-    const double scale = CushionSpeedScale(in, ball.radius);
-    if (!(scale <= limits::kMaxImpactSpeedScale)) {
-      std::ostringstream m;
-      m << "speed scale = " << scale << " m/s (the horizontal speed and R |w| must be at most "
-        << limits::kMaxImpactSpeedScale << " m/s)";
-      Add(out, m.str());
-    }
+  if (in.v.allFinite() && in.w.allFinite() && BallParamsValid(ball)) {
+    Add(out, ValidateSpeedScale(CushionSpeedScale(in, ball.radius), "the horizontal speed and R |w|"));
   }
   const OptionChecks k = CheckOptions(options);
   const ImpulseSolverOptions o = EffectiveOptions(options);
@@ -223,7 +217,7 @@ CushionImpactResult ResolveCushionImpact(const BallMotion& in, const BallParams&
   r.out = in;
   if (!in.v.allFinite() || !in.w.allFinite() || !CheckOptions(options).Ok() ||
       !CheckParams(ball, cushion).Ok() ||
-      !(CushionSpeedScale(in, ball.radius) <= limits::kMaxImpactSpeedScale)) {
+      !SpeedScaleValid(CushionSpeedScale(in, ball.radius))) {
     r.status = ImpactStatus::kInvalidInput;
     return r;
   }

@@ -1,5 +1,9 @@
 #include "physics/impact/impulse_solver.h"
 
+#include <sstream>
+
+#include "physics/core/limits.h"
+
 namespace snooker::physics {
 
 const char* ToString(ImpactStatus status) {
@@ -20,6 +24,16 @@ std::string ValidateFidelity(ImpulseFidelity fidelity) {
   if (FidelityValid(fidelity)) return "";
   return "fidelity = " + std::to_string(static_cast<int>(fidelity)) +
          " (must be kExact (0) or kSearch (1))";
+}
+
+bool SpeedScaleValid(double scale) { return scale <= limits::kMaxImpactSpeedScale; }
+
+std::string ValidateSpeedScale(double scale, const char* what) {
+  if (SpeedScaleValid(scale)) return "";
+  std::ostringstream m;
+  m << "speed scale = " << scale << " m/s (" << what << " must be at most " << limits::kMaxImpactSpeedScale
+    << " m/s)";
+  return m.str();
 }
 
 bool MethodValid(ImpulseMethod method) {

@@ -77,6 +77,12 @@ ImpulseSolverOptions EffectiveOptions(const ImpulseSolverOptions& options);
 bool FidelityValid(ImpulseFidelity fidelity);
 /// Empty for a known fidelity; otherwise a message naming the bad value.
 std::string ValidateFidelity(ImpulseFidelity fidelity);
+/// True for an input speed scale (m/s) a solver accepts: at most
+/// limits::kMaxImpactSpeedScale (NaN and infinity are not).
+bool SpeedScaleValid(double scale);
+/// Empty for a valid speed scale; otherwise a message naming it, `what` saying what
+/// the scale measures (each solver's own).
+std::string ValidateSpeedScale(double scale, const char* what);
 /// Likewise for the Runge-Kutta pair.
 bool MethodValid(ImpulseMethod method);
 std::string ValidateMethod(ImpulseMethod method);
