@@ -1,6 +1,6 @@
 // What the impact solvers' fuzz targets share: a broken law's report, the decoding of
-// values (mostly physical, sometimes anything a double holds) and a bitwise comparison
-// of ball motions that counts NaN as equal to NaN.
+// values (mostly physical, sometimes anything a double holds), the validator's law and
+// a bitwise comparison of ball motions that counts NaN as equal to NaN.
 #pragma once
 
 #include <fuzzer/FuzzedDataProvider.h>
@@ -8,8 +8,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 
 #include "physics/core/types.h"
+#include "physics/impact/impulse_solver.h"
 
 namespace snooker::fuzz {
 
@@ -27,6 +29,15 @@ inline double Value(FuzzedDataProvider& in, double lo, double hi) {
 
 inline physics::Vec3 Vector(FuzzedDataProvider& in, double bound) {
   return physics::Vec3(Value(in, -bound, bound), Value(in, -bound, bound), Value(in, -bound, bound));
+}
+
+/// The law every solver's validator keeps: it names a bad value (`validation` is not
+/// empty) exactly when the solver rejects the input.
+inline void CheckValidatorAgrees(const std::string& validation, physics::ImpactStatus status) {
+  const bool named = !validation.empty();
+  if (named != (status == physics::ImpactStatus::kInvalidInput)) {
+    Fail("validator names a bad value exactly when the solver rejects", named, static_cast<double>(status));
+  }
 }
 
 /// Equal bit for bit, NaN matching NaN: what "returned unchanged" means.
