@@ -236,6 +236,13 @@ std::string JsonString(std::string_view text) {
   return out + "\"";
 }
 
+// `text` in capitals: a ball kind or ball on in the spelling --table and --on read.
+std::string Upper(std::string_view text) {
+  std::string out;
+  for (const char c : text) out += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return out;
+}
+
 // A table in snooker plan's --table format (balls "b<index>" but the cue ball), the
 // positions to the last bit (17 digits), so that it is read back to the same doubles.
 std::string TableJson(const planner::TableState& table) {
@@ -244,8 +251,7 @@ std::string TableJson(const planner::TableState& table) {
   j << "{\"balls\": [";
   int n = 0;
   for (const planner::Ball& b : table.balls) {
-    std::string kind = planner::ToString(b.kind);
-    for (char& c : kind) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    const std::string kind = Upper(planner::ToString(b.kind));
     j << (n ? ", " : "") << "{\"id\": \"" << (b.kind == planner::BallKind::kCue ? std::string("cue") : "b" + std::to_string(n))
       << "\", \"kind\": \"" << kind << "\", \"position\": {\"x\": " << b.position.x()
       << ", \"y\": " << b.position.y() << "}}";
@@ -258,8 +264,7 @@ std::string TableJson(const planner::TableState& table) {
 // One stroke as a JSON line (--strokes); with `tables`, the turn's table too
 // (--stroke-tables).
 void PrintStroke(const planner::StrokeRecord& s, bool tables, std::ostream& out) {
-  std::string on;
-  for (const char* c = planner::ToString(s.ball_on); *c != '\0'; ++c) on += static_cast<char>(std::toupper(*c));
+  const std::string on = Upper(planner::ToString(s.ball_on));
   const char* in_hand = s.turn == planner::TurnType::kOnTable ? "false" : "true";
   std::ostringstream j;
   j << "{\"frame\": " << s.frame << ", \"stroke\": " << s.stroke << ", \"striker\": \"" << (s.striker == 0 ? "A" : "B")
