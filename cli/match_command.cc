@@ -82,7 +82,8 @@ Match:
                          thin_break_off; off by default: docs/whole-frame-planner.md)
   --strokes out.jsonl    write one JSON line per stroke, as it is played: {"frame",
                          "stroke", "striker" ("A" or "B"), "turn" ("on table", "in
-                         hand", "break-off"), "kind", "route", "stall",
+                         hand", "break-off"), "kind" (the plan's, null for a
+                         stall), "route" (a pot's, else null), "stall",
                          "potProbability" (the plan's Monte Carlo, pots only, else
                          null), "planScore" (its ranking score, points), "potted",
                          "foul" ("none" or the foul), "points", "penalty", "scoreA",
@@ -98,12 +99,14 @@ Match:
                          the turn's plan (a string of digits)
   --stroke-tables        with --strokes, every line adds the turn's "on",
                          "inHand" and "table" (as for a stall): with the match's
-                         flags, a turn of `default` plays again to the same shot
-                         when --max-simulations is set: `snooker plan --table
-                         T.json --on ON [--cue-in-hand] --seed planSeed --shots 1
-                         --break-value B --squirt-uncertainty 0
-                         --throw-uncertainty 0`, B the match's break value
-                         (docs/operations.md)
+                         flags, any turn plays again to the same shot when
+                         --max-simulations is set: `snooker plan --table T.json
+                         --on ON [--cue-in-hand] --seed planSeed --shots 1
+                         --squirt-uncertainty 0 --throw-uncertainty 0` and the
+                         player's flags: default `--break-value B`, one-ply
+                         `--break-value B --no-lookahead` (B the match's break
+                         value), direct-pots `--kinds POT --routes DIRECT
+                         --no-lookahead` (docs/operations.md)
   --help                 this text
 )";
 
@@ -261,6 +264,9 @@ std::string TableJson(const planner::TableState& table) {
   return j.str();
 }
 
+// A name as a JSON string, or null.
+std::string Quoted(const char* name) { return name == nullptr ? "null" : "\"" + std::string(name) + "\""; }
+
 // One stroke as a JSON line (--strokes); with `tables`, the turn's table too
 // (--stroke-tables).
 void PrintStroke(const planner::StrokeRecord& s, bool tables, std::ostream& out) {
@@ -268,8 +274,9 @@ void PrintStroke(const planner::StrokeRecord& s, bool tables, std::ostream& out)
   const char* in_hand = s.turn == planner::TurnType::kOnTable ? "false" : "true";
   std::ostringstream j;
   j << "{\"frame\": " << s.frame << ", \"stroke\": " << s.stroke << ", \"striker\": \"" << (s.striker == 0 ? "A" : "B")
-    << "\", \"turn\": \"" << planner::ToString(s.turn) << "\", \"kind\": \"" << planner::ToString(s.kind)
-    << "\", \"route\": \"" << planner::ToString(s.route) << "\", \"stall\": " << (s.stall ? "true" : "false")
+    << "\", \"turn\": \"" << planner::ToString(s.turn) << "\", \"kind\": " << Quoted(s.stall ? nullptr : planner::ToString(s.kind))
+    << ", \"route\": " << Quoted(!s.stall && s.kind == planner::ShotKind::kPot ? planner::ToString(s.route) : nullptr)
+    << ", \"stall\": " << (s.stall ? "true" : "false")
     << ", \"potProbability\": " << Number(s.pot_probability) << ", \"planScore\": " << Number(s.plan_score)
     << ", \"potted\": " << s.potted << ", \"foul\": \"" << planner::ToString(s.foul) << "\", \"points\": " << s.points
     << ", \"penalty\": " << s.penalty << ", \"scoreA\": " << s.score[0] << ", \"scoreB\": " << s.score[1]

@@ -4,6 +4,7 @@
 // operation (server/plan_api.h), here or on a server (--server: Plan, or PlanStream
 // with --stream), and prints the same answer either way.
 
+#include <algorithm>
 #include <cstdint>
 #include <fstream>
 #include <iomanip>
@@ -14,6 +15,7 @@
 #include <set>
 #include <sstream>
 #include <string_view>
+#include <vector>
 
 #include "cli/args.h"
 #include "cli/model_file.h"
@@ -41,6 +43,7 @@ constexpr const char* kPlanHelp = R"(usage: snooker plan --table T.json|builtin:
                     [--noise-position-mm X] [--min-speed X] [--max-speed X]
                     [--max-topspin X] [--max-sidespin X] [--cue-clearance-m X] [--pot-only]
                     [--max-simulations N] [--samples N] [--cue-in-hand] [--break-value P]
+                    [--kinds K,...] [--routes R,...] [--no-lookahead]
                     [--server HOST:PORT [--tls-ca CA.pem] [--tls-cert C --tls-key K]
                     [--tls-server-name N] [--deadline-ms MS]]
 
@@ -113,6 +116,13 @@ Robot limits:
                                    always level)
 Planner:
   --pot-only             ignore the position left (the comparison of docs/planner.md)
+  --kinds K,...          the kinds of shot it may offer, of POT, SAFETY, ESCAPE,
+                         BREAK_OFF, FOUL (default all)
+  --routes R,...         the routes its pots may take, of DIRECT, PLANT, DOUBLE, KICK
+                         (default all)
+  --no-lookahead         estimate the position each shot leaves, without searching
+                         the next shot (one-ply); --kinds POT --routes DIRECT
+                         --no-lookahead plays as snooker match's direct-pots
   --max-simulations N    cap on simulations (default: from the budget)
   --samples N            Monte Carlo samples per ranked shot (default 48)
   --help                 this text
@@ -229,6 +239,42 @@ bool SetBallOn(Args& args, v1::PlanRequest* req, std::ostream& err) {
   return true;
 }
 
+// --kinds and --routes (comma-separated API names) into the request's kinds and
+// routes. False after saying why on `err`.
+bool SetKindsAndRoutes(Args& args, v1::PlanRequest* req, std::ostream& err) {
+  const auto parse = [&](const char* flag, const std::vector<std::string>& names, auto add) {
+    if (!args.Has(flag)) return true;
+    const std::string list = *args.Text(flag, "");
+    std::string joined;
+    for (const std::string& n : names) joined += (joined.empty() ? "" : ", ") + n;
+    size_t begin = 0;
+    while (true) {
+      const size_t end = std::min(list.find(',', begin), list.size());
+      const std::string item = list.substr(begin, end - begin);
+      const auto it = std::find(names.begin(), names.end(), item);
+      if (it == names.end()) {
+        err << "snooker plan: --" << flag << " '" << list << "': '" << item << "' is not one of " << joined
+            << " (a comma-separated list)\n";
+        return false;
+      }
+      add(item);
+      if (end == list.size()) return true;
+      begin = end + 1;
+    }
+  };
+  return parse("kinds", {"POT", "SAFETY", "ESCAPE", "BREAK_OFF", "FOUL"},
+               [&](const std::string& name) {
+                 v1::ShotKind kind{};
+                 v1::ShotKind_Parse(name, &kind);
+                 req->add_kinds(kind);
+               }) &&
+         parse("routes", {"DIRECT", "PLANT", "DOUBLE", "KICK"}, [&](const std::string& name) {
+           v1::PotRoute route{};
+           v1::PotRoute_Parse(name, &route);
+           req->add_routes(route);
+         });
+}
+
 // The request's fields from the flags given. Each option sets its API field only
 // when given: unset fields keep the planner's defaults. A flag's value must parse as
 // the field's type (a finite number; a whole number that fits the field): anything
@@ -279,6 +325,7 @@ void SetRequestFields(Args& args, v1::PlanRequest* req) {
   number("max-elevation-deg", [&](double x) { limits->set_max_elevation_deg(x); });
   if (args.Switch("pot-only")) req->set_position_play(false);
   if (args.Switch("cue-in-hand")) req->set_cue_in_hand(true);
+  if (args.Switch("no-lookahead")) req->set_lookahead(false);
 }
 
 // Reads and checks the flags, and the table, into `s`. An exit code when the command
@@ -291,9 +338,9 @@ std::optional<int> ParsePlanFlags(const std::vector<std::string>& argv, std::ost
                                   "throw-uncertainty", "max-elevation-deg",
                                   "noise-position-mm", "min-speed", "max-speed", "max-topspin",
                                   "max-sidespin", "cue-clearance-m", "max-simulations", "samples",
-                                  "vision-tolerance-mm", "model", "break-value"};
+                                  "vision-tolerance-mm", "model", "break-value", "kinds", "routes"};
   for (const std::string& flag : ClientFlags()) valued.insert(flag);
-  Args args(argv, valued, {"json", "help", "pot-only", "stream", "cue-in-hand"});
+  Args args(argv, valued, {"json", "help", "pot-only", "stream", "cue-in-hand", "no-lookahead"});
   if (args.error().empty() && args.Switch("help")) {
     out << kPlanHelp << kModelFlagHelp << "\n" << ClientFlagsHelp();
     return kExitOk;
@@ -307,6 +354,7 @@ std::optional<int> ParsePlanFlags(const std::vector<std::string>& argv, std::ost
   }
   const auto table_path = args.Text("table", std::nullopt);
   if (args.Has("on") && !SetBallOn(args, &s->request, err)) return kExitUsage;
+  if (!SetKindsAndRoutes(args, &s->request, err)) return kExitUsage;
   SetRequestFields(args, &s->request);
   const auto vision = args.Number("vision-tolerance-mm", server::limits::kDefaultVisionToleranceMm);
   if (!ClientOptionsFrom(args, "snooker plan", "server", 60'000, &s->client, err)) return kExitUsage;

@@ -99,6 +99,12 @@ std::optional<FieldError> ToApiError(const planner::FieldError& e, const v1::Pla
   return out;
 }
 
+// An enum field's value as its name, or as the number when it names no value.
+std::string EnumText(const google::protobuf::EnumDescriptor* type, int value) {
+  const google::protobuf::EnumValueDescriptor* v = type->FindValueByNumber(value);
+  return v != nullptr ? std::string(v->name()) : std::to_string(value);
+}
+
 // What only the API has: its enum values, the ids of the per-ball sigmas, and the
 // server's largest budget (--max-budget-ms, within the planner's range).
 void CheckApiFields(const v1::PlanRequest& r, const PlanBounds& bounds, std::vector<FieldError>* errors) {
@@ -111,6 +117,18 @@ void CheckApiFields(const v1::PlanRequest& r, const PlanBounds& bounds, std::vec
     if (!known) {
       errors->push_back({"noise.ball_position_sigma_mm[" + QuoteId(id) + "]", FormatNumber(sigma),
                          "names no ball of the table"});
+    }
+  }
+  for (int i = 0; i < r.kinds_size(); ++i) {
+    if (!ShotKindFrom(static_cast<v1::ShotKind>(r.kinds(i)))) {
+      errors->push_back({"kinds[" + std::to_string(i) + "]", EnumText(v1::ShotKind_descriptor(), r.kinds(i)),
+                         "must be POT, SAFETY, ESCAPE, BREAK_OFF or FOUL"});
+    }
+  }
+  for (int i = 0; i < r.routes_size(); ++i) {
+    if (!PotRouteFrom(static_cast<v1::PotRoute>(r.routes(i)))) {
+      errors->push_back({"routes[" + std::to_string(i) + "]", EnumText(v1::PotRoute_descriptor(), r.routes(i)),
+                         "must be DIRECT, PLANT, DOUBLE or KICK"});
     }
   }
   if (r.cue_in_hand()) {
@@ -274,7 +292,41 @@ planner::PlanRequest PlanRequestFrom(const v1::PlanRequest& r, std::optional<dou
   if (r.has_max_simulations()) p.max_simulations = r.max_simulations();
   if (r.has_monte_carlo_samples()) p.monte_carlo_samples = r.monte_carlo_samples();
   if (r.has_break_value()) p.break_value = r.break_value();
+  if (r.kinds_size() > 0) {
+    p.kinds = planner::ShotKinds::None();
+    for (const int k : r.kinds()) {
+      if (const auto kind = ShotKindFrom(static_cast<v1::ShotKind>(k))) p.kinds = p.kinds.With(*kind);
+    }
+  }
+  if (r.routes_size() > 0) {
+    p.routes = planner::PotRoutes::None();
+    for (const int k : r.routes()) {
+      if (const auto route = PotRouteFrom(static_cast<v1::PotRoute>(k))) p.routes = p.routes.With(*route);
+    }
+  }
+  if (r.has_lookahead()) p.lookahead = r.lookahead();
   return p;
+}
+
+std::optional<planner::ShotKind> ShotKindFrom(v1::ShotKind kind) {
+  switch (kind) {
+    case v1::POT: return planner::ShotKind::kPot;
+    case v1::SAFETY: return planner::ShotKind::kSafety;
+    case v1::ESCAPE: return planner::ShotKind::kEscape;
+    case v1::BREAK_OFF: return planner::ShotKind::kBreakOff;
+    case v1::FOUL: return planner::ShotKind::kFoul;
+    default: return std::nullopt;
+  }
+}
+
+std::optional<planner::PotRoute> PotRouteFrom(v1::PotRoute route) {
+  switch (route) {
+    case v1::DIRECT: return planner::PotRoute::kDirect;
+    case v1::PLANT: return planner::PotRoute::kPlant;
+    case v1::DOUBLE: return planner::PotRoute::kDouble;
+    case v1::KICK: return planner::PotRoute::kKick;
+    default: return std::nullopt;
+  }
 }
 
 v1::ShotKind ToProto(planner::ShotKind kind) {

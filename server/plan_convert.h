@@ -59,6 +59,10 @@ std::optional<planner::BallOn> BallOnFrom(v1::BallOn on);
 
 v1::ShotKind ToProto(planner::ShotKind kind);
 v1::PotRoute ToProto(planner::PotRoute route);
+/// The planner's kind or route for the API's; nullopt for *_UNSPECIFIED or a number
+/// that names no value.
+std::optional<planner::ShotKind> ShotKindFrom(v1::ShotKind kind);
+std::optional<planner::PotRoute> PotRouteFrom(v1::PotRoute route);
 
 /// One planned shot in API form: ball indices become the ids of `table` (the
 /// request's), and an index past its balls the placed cue ball's, kPlacedCueId;

@@ -5,8 +5,10 @@
 #include <google/protobuf/util/message_differencer.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cctype>
 #include <fstream>
+#include <ostream>
 #include <set>
 #include <string>
 
@@ -107,7 +109,8 @@ TEST(CliMatchTest, TheSameSeedPlaysTheSameMatch) {
 }
 
 // --strokes: one JSON line per stroke, as many as the match's "shots", the last
-// line of each frame carrying its score; a path that cannot be written fails before
+// line of each frame carrying its score, a kind but for a stall and a route only for
+// a pot; a path that cannot be written fails before
 // any frame is played.
 TEST(CliMatchTest, TheStrokeLogHasALinePerStroke) {
   const std::string path = testing::TempDir() + "match_strokes.jsonl";
@@ -132,6 +135,11 @@ TEST(CliMatchTest, TheStrokeLogHasALinePerStroke) {
     const auto& f = s.fields();
     const bool stall = f.at("stall").bool_value();
     EXPECT_EQ(Keys(s), stall ? stall_names : names) << line;
+    // A stall has no plan's kind; only a pot has a route.
+    const bool pot = f.at("kind").kind_case() == google::protobuf::Value::kStringValue &&
+                     f.at("kind").string_value() == "POT";
+    EXPECT_EQ(f.at("kind").kind_case() == google::protobuf::Value::kNullValue, stall) << line;
+    EXPECT_EQ(f.at("route").kind_case() == google::protobuf::Value::kStringValue, pot) << line;
     if (stall && stalls++ == 0) {
       // A stall says why, and its table plans again through snooker plan's own input.
       EXPECT_FALSE(f.at("stallReason").string_value().empty()) << line;
@@ -165,31 +173,51 @@ TEST(CliMatchTest, TheStrokeLogHasALinePerStroke) {
 }
 
 // --stroke-tables: every line carries its turn's table, ball on and whether the
-// cue ball was in hand; with the plan's seed and the match's flags, `snooker plan`
-// plays a turn of `default` again to the shot the log records.
-TEST(CliMatchTest, AStrokeTableReplaysTheTurnThroughSnookerPlan) {
+// cue ball was in hand; with the plan's seed, the match's flags and the player's
+// own (its kinds, routes, lookahead and break value), `snooker plan` plays any
+// player's turn again to the shot the log records.
+struct ReplayCase {
+  const char* name;
+  const char* players;  // the match's --player-a and --player-b
+  const char* flags_a;  // `snooker plan`'s flags for A's turns, then B's
+  const char* flags_b;
+  int seed;  // a match in which both players plan a stroke in the first ten
+};
+
+void PrintTo(const ReplayCase& c, std::ostream* os) { *os << c.name; }
+
+constexpr const char* kDefaultFlags = " --break-value 100";
+constexpr const char* kOnePlyFlags = " --break-value 100 --no-lookahead";
+constexpr const char* kDirectPotsFlags = " --kinds POT --routes DIRECT --no-lookahead";
+
+class CliMatchReplayTest : public testing::TestWithParam<ReplayCase> {};
+
+TEST_P(CliMatchReplayTest, AStrokeTableReplaysTheTurnThroughSnookerPlan) {
+  const ReplayCase& c = GetParam();
   const std::string noise =
       " --noise-heading-deg 0.02 --noise-speed 0.01 --noise-spin 2 --noise-aim-deg 0 --noise-cue-speed 0"
       " --noise-tip-mm 0 --noise-elevation-deg 0 --noise-position-mm 0.2";
   const std::string caps = " --max-simulations 60 --samples 8 --budget-ms 30000";
-  const std::string path = testing::TempDir() + "match_stroke_tables.jsonl";
-  const RunResult r =
-      RunCli("match --frames 1 --seed 11 --max-shots 8 --strokes " + path + " --stroke-tables" + noise + caps);
+  const std::string path = testing::TempDir() + "match_stroke_tables_" + c.name + ".jsonl";
+  const RunResult r = RunCli("match --frames 1 --seed " + std::to_string(c.seed) + " --max-shots 10 " + c.players + " --strokes " +
+                             path + " --stroke-tables" + noise + caps);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::ifstream in(path);
   std::string line;
-  int replayed = 0, pots = 0;
+  std::array<int, 2> replayed{}, pots{};
   while (std::getline(in, line)) {
     Struct s;
     ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(line, &s).ok()) << line;
     const auto& f = s.fields();
     ASSERT_TRUE(f.count("table") && f.count("on") && f.count("inHand")) << line;
     ASSERT_FALSE(f.at("planSeed").string_value().empty()) << line;
-    if (f.at("striker").string_value() != "A" || f.at("stall").bool_value()) continue;
+    if (f.at("stall").bool_value()) continue;
+    const int striker = f.at("striker").string_value() == "A" ? 0 : 1;
     const std::string table = TempFile("stroke_table.json", StructJson(f.at("table").struct_value()));
     const RunResult again = RunCli("plan --table " + table + " --on " + f.at("on").string_value() +
                                    (f.at("inHand").bool_value() ? " --cue-in-hand" : "") + " --seed " +
-                                   f.at("planSeed").string_value() + " --shots 1 --break-value 100" +
+                                   f.at("planSeed").string_value() + " --shots 1" +
+                                   (striker == 0 ? c.flags_a : c.flags_b) +
                                    " --squirt-uncertainty 0 --throw-uncertainty 0 --json" + noise + caps);
     ASSERT_EQ(again.exit_code, 0) << again.err << "\n" << line;
     Struct plan;
@@ -199,15 +227,24 @@ TEST(CliMatchTest, AStrokeTableReplaysTheTurnThroughSnookerPlan) {
     const auto& shot = shots[0].struct_value().fields();
     EXPECT_EQ(shot.at("kind").string_value(), f.at("kind").string_value()) << line << "\n" << again.out;
     if (f.at("kind").string_value() == "POT") {
-      ++pots;
+      ++pots[static_cast<size_t>(striker)];
+      EXPECT_EQ(shot.at("route").string_value(), f.at("route").string_value()) << line << "\n" << again.out;
       EXPECT_NEAR(shot.at("potProbability").number_value(), f.at("potProbability").number_value(), 1e-9)
           << line << "\n" << again.out;
     }
-    ++replayed;
+    ++replayed[static_cast<size_t>(striker)];
   }
-  EXPECT_GE(replayed, 2);
-  EXPECT_GE(pots, 1);
+  // Both players' turns were played again, pots among them.
+  EXPECT_GE(replayed[0], 1);
+  EXPECT_GE(replayed[1], 1);
+  EXPECT_GE(pots[0] + pots[1], 1);
 }
+
+INSTANTIATE_TEST_SUITE_P(Players, CliMatchReplayTest,
+                         testing::Values(ReplayCase{"DefaultAgainstDirectPots", "", kDefaultFlags, kDirectPotsFlags, 13},
+                                         ReplayCase{"OnePlyAgainstDefault", "--player-a one-ply --player-b default",
+                                                    kOnePlyFlags, kDefaultFlags, 11}),
+                         [](const testing::TestParamInfo<ReplayCase>& p) { return std::string(p.param.name); });
 
 // --thin-break-off: the planners search the thin break beside the soft one, and the
 // JSON says so; one frame's break-off only.

@@ -126,6 +126,29 @@ TEST(ValidatePlanRequestTest, TheBreakValueIsInPoints) {
   EXPECT_EQ(ValidatePlanRequest(r, physics::DefaultTable())[0].value, "-1");
 }
 
+// kinds and routes take the API's values, *_UNSPECIFIED excepted: a bad entry is
+// named by its index, with its name or, when it names no value, its number.
+TEST(ValidatePlanRequestTest, KindsAndRoutesNameEachBadEntry) {
+  v1::PlanRequest r = ObviousPot();
+  r.add_kinds(v1::POT);
+  r.add_kinds(v1::SHOT_KIND_UNSPECIFIED);
+  r.add_kinds(static_cast<v1::ShotKind>(42));
+  r.add_routes(v1::POT_ROUTE_UNSPECIFIED);
+  r.add_routes(v1::KICK);
+  const std::vector<FieldError> errors = ValidatePlanRequest(r, physics::DefaultTable());
+  ASSERT_EQ(Fields(errors), (std::vector<std::string>{"kinds[1]", "kinds[2]", "routes[0]"})) << Describe(errors);
+  EXPECT_EQ(errors[0].value, "SHOT_KIND_UNSPECIFIED");
+  EXPECT_EQ(errors[0].rule, "must be POT, SAFETY, ESCAPE, BREAK_OFF or FOUL");
+  EXPECT_EQ(errors[1].value, "42");
+  EXPECT_EQ(errors[2].value, "POT_ROUTE_UNSPECIFIED");
+  EXPECT_EQ(errors[2].rule, "must be DIRECT, PLANT, DOUBLE or KICK");
+  // Every named value is accepted, repeated or not.
+  v1::PlanRequest all = ObviousPot();
+  for (const v1::ShotKind k : {v1::POT, v1::SAFETY, v1::ESCAPE, v1::BREAK_OFF, v1::FOUL, v1::POT}) all.add_kinds(k);
+  for (const v1::PotRoute k : {v1::DIRECT, v1::PLANT, v1::DOUBLE, v1::KICK}) all.add_routes(k);
+  EXPECT_TRUE(ValidatePlanRequest(all, physics::DefaultTable()).empty());
+}
+
 TEST(ValidatePlanRequestTest, MoreBallsOfAKindThanSnookerHas) {
   v1::PlanRequest r = ObviousPot();
   AddBall(&r, "black-2", v1::BLACK, 0.3, 0.3);
@@ -208,6 +231,63 @@ TEST(PlanRequestFromTest, ConvertsUnitsAtTheEdge) {
   const planner::PlanRequest in_hand = PlanRequestFrom(ObviousPotInHand());
   EXPECT_TRUE(in_hand.cue_in_hand);
   EXPECT_EQ(in_hand.table.balls.size(), 2u);
+}
+
+// Empty kinds and routes are every one, and lookahead unset is on; given, they are
+// exactly the set asked for (direct-pots' request: pots, direct, one-ply).
+TEST(PlanRequestFromTest, KindsRoutesAndLookahead) {
+  const planner::PlanRequest d = PlanRequestFrom(ObviousPot());
+  EXPECT_EQ(d.kinds, planner::ShotKinds{});
+  EXPECT_EQ(d.routes, planner::PotRoutes{});
+  EXPECT_TRUE(d.lookahead);
+  v1::PlanRequest r = ObviousPot();
+  r.add_kinds(v1::POT);
+  r.add_routes(v1::DIRECT);
+  r.set_lookahead(false);
+  const planner::PlanRequest p = PlanRequestFrom(r);
+  EXPECT_EQ(p.kinds, planner::ShotKinds::Of(planner::ShotKind::kPot));
+  EXPECT_EQ(p.routes, planner::PotRoutes::Of(planner::PotRoute::kDirect));
+  EXPECT_FALSE(p.lookahead);
+  r.add_kinds(v1::SAFETY);
+  r.add_kinds(v1::POT);
+  r.add_routes(v1::KICK);
+  const planner::PlanRequest more = PlanRequestFrom(r);
+  EXPECT_EQ(more.kinds, planner::ShotKinds::Of(planner::ShotKind::kPot).With(planner::ShotKind::kSafety));
+  EXPECT_EQ(more.routes, planner::PotRoutes::Of(planner::PotRoute::kDirect).With(planner::PotRoute::kKick));
+  // Each planner kind and route has its API value, and back.
+  for (int k = 0; k < planner::kShotKindCount; ++k) {
+    const auto kind = static_cast<planner::ShotKind>(k);
+    EXPECT_EQ(ShotKindFrom(ToProto(kind)), kind) << planner::ToString(kind);
+  }
+  for (int k = 0; k < planner::kPotRouteCount; ++k) {
+    const auto route = static_cast<planner::PotRoute>(k);
+    EXPECT_EQ(PotRouteFrom(ToProto(route)), route) << planner::ToString(route);
+  }
+  EXPECT_FALSE(ShotKindFrom(v1::SHOT_KIND_UNSPECIFIED).has_value());
+  EXPECT_FALSE(PotRouteFrom(v1::POT_ROUTE_UNSPECIFIED).has_value());
+}
+
+// A plan returns only the kinds and routes asked for: safeties alone where a pot is
+// near certain, and pots alone by their route.
+TEST(PlanTest, ReturnsOnlyTheKindsAndRoutesAskedFor) {
+  v1::PlanRequest r = ObviousPot();
+  r.set_max_shots(5);
+  r.add_kinds(v1::SAFETY);
+  v1::PlanResponse safeties;
+  ASSERT_TRUE(Plan(r, &safeties).ok());
+  ASSERT_GT(safeties.shots_size(), 0) << safeties.reason();
+  for (const v1::PlannedShot& s : safeties.shots()) EXPECT_EQ(s.kind(), v1::SAFETY) << s.ShortDebugString();
+  r.clear_kinds();
+  r.add_kinds(v1::POT);
+  r.add_routes(v1::DIRECT);
+  r.set_lookahead(false);
+  v1::PlanResponse pots;
+  ASSERT_TRUE(Plan(r, &pots).ok());
+  ASSERT_GT(pots.shots_size(), 0) << pots.reason();
+  for (const v1::PlannedShot& s : pots.shots()) {
+    EXPECT_EQ(s.kind(), v1::POT) << s.ShortDebugString();
+    EXPECT_EQ(s.route(), v1::DIRECT) << s.ShortDebugString();
+  }
 }
 
 TEST(PlanTest, AnswersWithTheTablesIds) {

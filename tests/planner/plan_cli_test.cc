@@ -4,6 +4,7 @@
 // the drawing is written with or without a shot, and bad input names the value.
 #include <google/protobuf/struct.pb.h>
 #include <google/protobuf/util/json_util.h>
+#include <google/protobuf/util/message_differencer.h>
 #include <gtest/gtest.h>
 
 #include <array>
@@ -241,6 +242,45 @@ TEST(CliPlanTest, WithTheCueBallInHandEachShotSaysWhereToPlaceIt) {
   std::remove(svg.c_str());
 }
 
+// The shots of a `snooker plan --json` answer (its timing and counts left out).
+Value ShotsOf(const RunResult& r) {
+  Struct json;
+  EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &json).ok()) << r.err << r.out;
+  return json.fields().at("shots");
+}
+
+bool Same(const Value& a, const Value& b) { return google::protobuf::util::MessageDifferencer::Equals(a, b); }
+
+// --kinds and --routes limit the shots offered to those named; --no-lookahead plans
+// one-ply, which spends the search's simulations differently: another answer, the
+// same one each time.
+TEST(CliPlanTest, KindsRoutesAndLookaheadReachThePlan) {
+  const std::string table = WriteFile("plan_kinds", kTable);
+  const std::string caps = " --max-simulations 300 --samples 16 --budget-ms 30000 --shots 4 --json";
+  const RunResult safeties = RunCli("plan --table " + table + caps + " --kinds SAFETY,ESCAPE");
+  ASSERT_EQ(safeties.exit_code, 0) << safeties.err;
+  Struct json;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(safeties.out, &json).ok()) << safeties.out;
+  ASSERT_GT(json.fields().at("shots").list_value().values_size(), 0) << safeties.out;
+  for (const Value& shot : json.fields().at("shots").list_value().values()) {
+    const std::string kind = shot.struct_value().fields().at("kind").string_value();
+    EXPECT_TRUE(kind == "SAFETY" || kind == "ESCAPE") << safeties.out;
+  }
+  const RunResult pots = RunCli("plan --table " + table + caps + " --kinds POT --routes DIRECT");
+  ASSERT_EQ(pots.exit_code, 0) << pots.err;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(pots.out, &json).ok()) << pots.out;
+  ASSERT_GT(json.fields().at("shots").list_value().values_size(), 0) << pots.out;
+  for (const Value& shot : json.fields().at("shots").list_value().values()) {
+    EXPECT_EQ(shot.struct_value().fields().at("kind").string_value(), "POT") << pots.out;
+    EXPECT_EQ(shot.struct_value().fields().at("route").string_value(), "DIRECT") << pots.out;
+  }
+  const Value two_ply = ShotsOf(RunCli("plan --table builtin:red" + caps));
+  const Value one_ply = ShotsOf(RunCli("plan --table builtin:red --no-lookahead" + caps));
+  EXPECT_FALSE(Same(one_ply, two_ply));
+  EXPECT_TRUE(Same(ShotsOf(RunCli("plan --table builtin:red --no-lookahead" + caps)), one_ply));
+  std::remove(table.c_str());
+}
+
 struct BadInput {
   const char* args;
   const char* must_mention;
@@ -276,6 +316,9 @@ INSTANTIATE_TEST_SUITE_P(
                     BadInput{"plan --table TABLE --max-simulations -1", "max_simulations = -1"},
                     BadInput{"plan --table TABLE --samples 100001", "monte_carlo_samples = 100001"},
                     BadInput{"plan --table TABLE --break-value 148", "break_value = 148 (must be in [0, 147] points)"},
+                    BadInput{"plan --table TABLE --kinds POT,PUSH",
+                             "--kinds 'POT,PUSH': 'PUSH' is not one of POT, SAFETY, ESCAPE, BREAK_OFF, FOUL"},
+                    BadInput{"plan --table TABLE --routes DIRECT,", "--routes 'DIRECT,': '' is not one of DIRECT"},
                     // The command checks only that a value fits the field's type.
                     BadInput{"plan --table TABLE --shots 3000000000",
                              "--shots 3000000000 is out of range [-2147483648, 2147483647]"},

@@ -267,6 +267,10 @@ const BadPlan kBadPlans[] = {
      "table.balls[1].id = \"cue\" (a BLACK ball) (is taken with cue_in_hand"},
     {"BreakValueAboveAMaximumBreak", [](v1::PlanRequest* r) { r->set_break_value(148); },
      "break_value = 148 (must be in [0, 147] points)"},
+    {"KindUnspecified", [](v1::PlanRequest* r) { r->add_kinds(v1::SHOT_KIND_UNSPECIFIED); },
+     "kinds[0] = SHOT_KIND_UNSPECIFIED (must be POT, SAFETY, ESCAPE, BREAK_OFF or FOUL)"},
+    {"RouteOutOfTheEnum", [](v1::PlanRequest* r) { r->add_routes(static_cast<v1::PotRoute>(9)); },
+     "routes[0] = 9 (must be DIRECT, PLANT, DOUBLE or KICK)"},
     {"NoCueBallNotInHand", [](v1::PlanRequest* r) { r->mutable_table()->mutable_balls()->DeleteSubrange(0, 1); },
      "table.balls = 0 CUE balls (must have exactly one)"},
 };
