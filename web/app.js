@@ -567,7 +567,27 @@ function planRequest() {
   const seed = readNumber($('seed'));
   if (seed !== undefined) request.seed = String(Math.round(seed));
   if (inHand) request.cueInHand = true;
+  // Every kind (or route) ticked is the API's default, an empty list: sent only when
+  // some are not.
+  for (const [selector, field] of [['[data-kind]', 'kinds'], ['[data-route]', 'routes']]) {
+    const boxes = [...document.querySelectorAll(selector)];
+    const ticked = boxes.filter((b) => b.checked).map((b) => b.dataset.kind || b.dataset.route);
+    if (ticked.length < boxes.length) request[field] = ticked;
+  }
+  if (!$('lookahead').checked) request.lookahead = false;
+  const breakValue = readNumber($('break-value'));
+  if (breakValue !== undefined) request.breakValue = breakValue;
   return request;
+}
+
+// A kind or route box changed: plan again, unless it was the last one ticked, which
+// stays ticked (none would be the API's "every one").
+function onChoiceChange(event, selector) {
+  if (![...document.querySelectorAll(selector)].some((b) => b.checked)) {
+    event.target.checked = true;
+    return;
+  }
+  plan('options');
 }
 
 // ---------------------------------------------------------------------------
@@ -1070,6 +1090,13 @@ function start() {
   $('save-file').addEventListener('click', saveTable);
   $('cue-in-hand').addEventListener('change', () => { drawBalls(); plan('options'); });
   $('ball-on').addEventListener('change', () => plan('options'));
+  for (const selector of ['[data-kind]', '[data-route]']) {
+    for (const box of document.querySelectorAll(selector)) {
+      box.addEventListener('change', (event) => onChoiceChange(event, selector));
+    }
+  }
+  $('lookahead').addEventListener('change', () => plan('options'));
+  $('break-value').addEventListener('change', () => plan('options'));
   $('noise-preset').addEventListener('change', () => {
     applyNoisePreset($('noise-preset').value);
     plan('options');

@@ -1,8 +1,8 @@
 // Drives the page that `snooker serve --http` serves in headless Chromium: the first
 // plan of the default built-in table (against a direct Plan call), a ball dragged and
 // the plan made again, the replay, a bad table's error in the service's words, the
-// console (no error allowed), the timings against their targets, and screenshots at
-// 1280x800 and 768x1024.
+// kinds, routes, lookahead and break value asked for, the console (no error allowed),
+// the timings against their targets, and screenshots at 1280x800 and 768x1024.
 //
 //   node page_test.mjs --snooker build/cli/snooker [--screenshots DIR]
 //   node page_test.mjs --url http://127.0.0.1:PORT/   (a server already running)
@@ -145,6 +145,8 @@ async function waitForReplay(page, afterSeq) {
 async function dragBall(page, id, dx, dy) {
   const handle = await page.$(`#layer-balls circle[data-id="${id}"]`);
   if (!handle) throw new Error(`no ball ${id} on the page`);
+  // In view first: a click on a control lower down the form may have scrolled it away.
+  await handle.evaluate((e) => e.scrollIntoView({ block: 'center', inline: 'center' }));
   const box = await handle.boundingBox();
   const x = box.x + box.width / 2, y = box.y + box.height / 2;
   await page.mouse.move(x, y);
@@ -408,6 +410,54 @@ async function main() {
     const errorHidden = await page.$eval('#error', (e) => e.hidden);
     check('a built-in table plans again after the error', colours.trigger === 'table' && errorHidden,
       `${colours.shots} shots in ${colours.ms.toFixed(0)} ms`);
+
+    // 5b. What to offer: the kinds and routes ticked, the lookahead and the break
+    // value go into the request as the API names them, and the answer keeps to them.
+    {
+      const click = async (selector) => {
+        const before = await page.evaluate(() => window.snookerPage.planSeq);
+        await page.click(selector);
+        return waitForPlan(page, before);
+      };
+      for (const kind of ['POT', 'ESCAPE', 'BREAK_OFF', 'FOUL']) await click(`[data-kind="${kind}"]`);
+      const safeties = await page.evaluate(() => ({
+        request: window.snookerPage.lastPlanRequest,
+        kinds: ((window.snookerPage.lastPlanResponse || {}).shots || []).map((x) => x.kind),
+        state: document.body.dataset.planState,
+      }));
+      check('safeties alone: the request asks for SAFETY, every shot is one',
+        JSON.stringify(safeties.request.kinds) === '["SAFETY"]' && safeties.state === 'done' &&
+        safeties.kinds.length > 0 && safeties.kinds.every((k) => k === 'SAFETY'),
+        `kinds ${JSON.stringify(safeties.request.kinds)}; shots ${safeties.kinds.join(', ')}`);
+      const seqBeforeLast = await page.evaluate(() => window.snookerPage.planSeq);
+      await page.click('[data-kind="SAFETY"]');
+      await sleep(200);
+      const last = await page.evaluate(() => ({
+        ticked: document.querySelector('[data-kind="SAFETY"]').checked, seq: window.snookerPage.planSeq,
+      }));
+      check('the last kind ticked stays ticked, with no plan', last.ticked && last.seq === seqBeforeLast);
+      for (const kind of ['POT', 'ESCAPE', 'BREAK_OFF', 'FOUL']) await click(`[data-kind="${kind}"]`);
+      await click('[data-route="KICK"]');
+      await page.$eval('#budget', (e) => { e.value = '5000'; });
+      await page.$eval('#max-simulations', (e) => { e.value = '1500'; });
+      await page.$eval('#break-value', (e) => { e.value = '100'; });
+      await click('#lookahead');
+      const request = await page.evaluate(() => window.snookerPage.lastPlanRequest);
+      const texts = (await shotRows(page)).map((r) => r.pot);
+      const answer = await unary(base, 'Plan', request);
+      const expected = ((answer.body && answer.body.shots) || []).map((x) => pct(x.potProbability));
+      check('routes, lookahead and break value in the request; the rows equal a direct Plan call\'s',
+        request.kinds === undefined && JSON.stringify(request.routes) === '["DIRECT","PLANT","DOUBLE"]' &&
+        request.lookahead === false && request.breakValue === 100 &&
+        texts.length > 0 && JSON.stringify(texts) === JSON.stringify(expected),
+        `routes ${JSON.stringify(request.routes)}, lookahead ${request.lookahead}, breakValue ${request.breakValue}; ` +
+        `page ${texts.join(', ')}; Plan ${expected.join(', ')}`);
+      await page.$eval('#budget', (e) => { e.value = ''; });
+      await page.$eval('#max-simulations', (e) => { e.value = ''; });
+      await page.$eval('#break-value', (e) => { e.value = ''; });
+      await click('[data-route="KICK"]');
+      await click('#lookahead');
+    }
 
     // 6. Progress messages drawn while plans ran, what the page loaded, the console.
     const progressShown = await page.evaluate(() => window.snookerPage.progressShown);
