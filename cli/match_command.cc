@@ -46,7 +46,7 @@ Players:
   one-ply       the default without the lookahead
 
   --frames N       frames to play (1 to 100000)
-  --seed S         seed of the frames, the noise and the planners
+  --seed S         seed of the frames, the noise and the planners (0 to 2^64 - 1)
   --player-a NAME  player A (default: default)
   --player-b NAME  player B (default: direct-pots)
   --budget-ms MS   planning budget per shot for both players, ms (default 80)
@@ -121,7 +121,7 @@ struct Parsed {
 std::string Parse(Args& args, Parsed* p) {
   planner::MatchOptions& o = p->options;
   const auto frames = args.Integer("frames", std::nullopt, 1, 100'000);
-  const auto seed = args.Integer("seed", std::nullopt, 0, std::numeric_limits<long>::max());
+  const auto seed = args.Unsigned64("seed", std::nullopt);
   const auto player_a = args.Text("player-a", "default");
   const auto player_b = args.Text("player-b", "direct-pots");
   const auto shots = args.Integer("max-shots", planner::kFrameShotCap, 1, planner::kFrameShotCap);
@@ -138,7 +138,7 @@ std::string Parse(Args& args, Parsed* p) {
   if (!a) return "--player-a '" + *player_a + "' is not a player " + players;
   if (!b) return "--player-b '" + *player_b + "' is not a player " + players;
   o.frames = static_cast<int>(*frames);
-  o.seed = static_cast<std::uint64_t>(*seed);
+  o.seed = *seed;
   o.players = {*a, *b};
   p->budget_ms = play.budget_ms;
   o.time_budget = play.budget_ms * 1e-3;

@@ -30,7 +30,7 @@ rules. The break goes on until a miss, a foul or a cleared table; potted colours
 re-spotted while reds remain.
 
   --frames N       frames to play (1 to 100000)
-  --seed S         seed of the frames, the noise and the planner
+  --seed S         seed of the frames, the noise and the planner (0 to 2^64 - 1)
   --budget-ms N    planning budget per shot, ms (default 80)
   --json           print one JSON object: {"meanBreak", "maxBreak", "potRate",
                    "planMsP50", "planMsP99", "frames", "shots"} (points, points, share
@@ -65,7 +65,7 @@ int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::os
   }
   planner::SelfPlayOptions o;
   const auto frames = args.Integer("frames", std::nullopt, 1, 100'000);
-  const auto seed = args.Integer("seed", std::nullopt, 0, std::numeric_limits<long>::max());
+  const auto seed = args.Unsigned64("seed", std::nullopt);
   PlayFlags defaults, play;
   defaults.noise = o.noise;
   defaults.limits = o.limits;
@@ -78,7 +78,7 @@ int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::os
     return kExitUsage;
   }
   o.frames = static_cast<int>(*frames);
-  o.seed = static_cast<std::uint64_t>(*seed);
+  o.seed = *seed;
   o.time_budget = play.budget_ms * 1e-3;
   o.noise = play.noise;
   o.limits = play.limits;

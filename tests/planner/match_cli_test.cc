@@ -246,6 +246,15 @@ INSTANTIATE_TEST_SUITE_P(Players, CliMatchReplayTest,
                                                     kOnePlyFlags, kDefaultFlags, 11}),
                          [](const testing::TestParamInfo<ReplayCase>& p) { return std::string(p.param.name); });
 
+// A seed is any uint64, as the API's: the largest plays, and the JSON gives it whole.
+TEST(CliMatchTest, TheLargestSeedPlays) {
+  const RunResult r = RunCli(
+      "match --frames 1 --seed 18446744073709551615 --json --max-simulations 40 --samples 8 --budget-ms 30000 "
+      "--max-shots 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"seed\": 18446744073709551615,"), std::string::npos) << r.out;
+}
+
 // --thin-break-off: the planners search the thin break beside the soft one, and the
 // JSON says so; one frame's break-off only.
 TEST(CliMatchTest, TheThinBreakOffIsAskedForByFlag) {
@@ -293,7 +302,10 @@ INSTANTIATE_TEST_SUITE_P(
                     BadFlag{"match --frames 1 --seed 1 --break-value 148", "--break-value 148 is out of range [0, 147]"},
                     BadFlag{"match --frames 1 --seed 1 --break-value lots", "--break-value 'lots'"},
                     BadFlag{"match --frames 1 --seed 1 --stroke-tables", "--stroke-tables needs --strokes"},
-                    BadFlag{"match --frames 1 --seed 1 --colour pink", "unknown option --colour"}),
+                    BadFlag{"match --frames 1 --seed 1 --colour pink", "unknown option --colour"},
+                    BadFlag{"match --frames 1 --seed 18446744073709551616",
+                            "--seed '18446744073709551616' is not a whole number in [0, 18446744073709551615]"},
+                    BadFlag{"match --frames 1 --seed -1", "--seed '-1' is not a whole number"}),
     [](const testing::TestParamInfo<BadFlag>& param) {
       std::string name;
       for (const char c : std::string(param.param.args).substr(6)) {

@@ -338,7 +338,9 @@ INSTANTIATE_TEST_SUITE_P(
                     BadInput{"selfplay --seed 1", "--frames is required"},
                     BadInput{"selfplay --frames 0 --seed 1", "--frames 0 is out of range"},
                     BadInput{"selfplay --frames 1 --seed 1 --noise-position-mm -1", "--noise-position-mm -1"},
-                    BadInput{"selfplay --frames 1 --seed 1 --break-value -1", "--break-value -1 is out of range"}),
+                    BadInput{"selfplay --frames 1 --seed 1 --break-value -1", "--break-value -1 is out of range"},
+                    BadInput{"selfplay --frames 1 --seed 18446744073709551616",
+                             "--seed '18446744073709551616' is not a whole number in [0, 18446744073709551615]"}),
     [](const testing::TestParamInfo<BadInput>& param) {
       // The command line itself, as a name: "plan_on_PURPLE", "selfplay_frames_0_seed_1".
       std::string name;
