@@ -28,6 +28,26 @@ using physics::Vec2;
 // Monte Carlo samples come in blocks with their own random streams.
 constexpr int kBlock = 8;
 
+// The kinds and routes a request limits the plan to, in the API's names: "kinds
+// SAFETY, ESCAPE; routes PLANT" (each part only when some are left out).
+std::string AskedFor(const PlanRequest& r) {
+  std::string out;
+  auto part = [&](const char* label, auto set, int count, auto as) {
+    if (set == decltype(set){}) return;
+    out += out.empty() ? "" : "; ";
+    out += label;
+    bool first = true;
+    for (int k = 0; k < count; ++k) {
+      if (!set.Has(as(k))) continue;
+      out += (first ? " " : ", ") + std::string(ToString(as(k)));
+      first = false;
+    }
+  };
+  part("kinds", r.kinds, kShotKindCount, [](int k) { return static_cast<ShotKind>(k); });
+  part("routes", r.routes, kPotRouteCount, [](int k) { return static_cast<PotRoute>(k); });
+  return out;
+}
+
 // One worker's simulators, reused across its tasks.
 struct Worker {
   Worker(const physics::TableModel& table, const Planner::Config& c)
@@ -261,8 +281,14 @@ bool PlanRun::Prepare() {
   answer_.candidates = static_cast<int>(candidates_.size());
   if (candidates_.empty()) {
     std::ostringstream why;
-    why << "no pot: none of the " << pots_.pairs << " ball-pocket pairs for the ball on (" << ToString(on_)
-        << ") survives pruning";
+    if (!request_.kinds.Has(ShotKind::kPot) || !request_.routes.Has(PotRoute::kDirect)) {
+      // Direct pots were not asked for: say what was, which this table does not offer.
+      why << "no pot: no candidate for the ball on (" << ToString(on_) << ") among the shots asked for ("
+          << AskedFor(request_) << ")";
+    } else {
+      why << "no pot: none of the " << pots_.pairs << " ball-pocket pairs for the ball on (" << ToString(on_)
+          << ") survives pruning";
+    }
     for (int k = 1; k < kPruneReasonCount; ++k) {
       if (pots_.pruned[static_cast<size_t>(k)] > 0) {
         why << "; " << ToString(static_cast<PruneReason>(k)) << ": " << pots_.pruned[static_cast<size_t>(k)];

@@ -268,7 +268,8 @@ TEST(PlanRequestFromTest, KindsRoutesAndLookahead) {
 }
 
 // A plan returns only the kinds and routes asked for: safeties alone where a pot is
-// near certain, and pots alone by their route.
+// near certain, and pots alone by their route; none, saying why, when the table
+// offers none of them.
 TEST(PlanTest, ReturnsOnlyTheKindsAndRoutesAskedFor) {
   v1::PlanRequest r = ObviousPot();
   r.set_max_shots(5);
@@ -288,6 +289,22 @@ TEST(PlanTest, ReturnsOnlyTheKindsAndRoutesAskedFor) {
     EXPECT_EQ(s.kind(), v1::POT) << s.ShortDebugString();
     EXPECT_EQ(s.route(), v1::DIRECT) << s.ShortDebugString();
   }
+  // Kinds and routes this table does not offer (it is no break-off, and its one red
+  // has no plant): no shot, and the reason names what was asked for.
+  r.clear_kinds();
+  r.clear_routes();
+  r.add_kinds(v1::BREAK_OFF);
+  v1::PlanResponse none;
+  ASSERT_TRUE(Plan(r, &none).ok());
+  EXPECT_EQ(none.shots_size(), 0);
+  EXPECT_EQ(none.reason(), "no pot: no candidate for the ball on (red) among the shots asked for (kinds BREAK_OFF)");
+  r.clear_kinds();
+  r.add_kinds(v1::POT);
+  r.add_routes(v1::PLANT);
+  ASSERT_TRUE(Plan(r, &none).ok());
+  EXPECT_EQ(none.shots_size(), 0);
+  EXPECT_EQ(none.reason(),
+            "no pot: no candidate for the ball on (red) among the shots asked for (kinds POT; routes PLANT)");
 }
 
 TEST(PlanTest, AnswersWithTheTablesIds) {
