@@ -4,6 +4,8 @@
 // operation (server/plan_api.h), here or on a server (--server: Plan, or PlanStream
 // with --stream), and prints the same answer either way.
 
+#include <google/protobuf/descriptor.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <fstream>
@@ -239,40 +241,43 @@ bool SetBallOn(Args& args, v1::PlanRequest* req, std::ostream& err) {
   return true;
 }
 
-// --kinds and --routes (comma-separated API names) into the request's kinds and
-// routes. False after saying why on `err`.
-bool SetKindsAndRoutes(Args& args, v1::PlanRequest* req, std::ostream& err) {
-  const auto parse = [&](const char* flag, const std::vector<std::string>& names, auto add) {
-    if (!args.Has(flag)) return true;
-    const std::string list = *args.Text(flag, "");
-    std::string joined;
-    for (const std::string& n : names) joined += (joined.empty() ? "" : ", ") + n;
-    size_t begin = 0;
-    while (true) {
-      const size_t end = std::min(list.find(',', begin), list.size());
-      const std::string item = list.substr(begin, end - begin);
-      const auto it = std::find(names.begin(), names.end(), item);
-      if (it == names.end()) {
-        err << "snooker plan: --" << flag << " '" << list << "': '" << item << "' is not one of " << joined
-            << " (a comma-separated list)\n";
-        return false;
+// A flag's comma-separated names of an API enum's values (*_UNSPECIFIED, the value
+// 0, is none) into their numbers. False after saying why on `err`.
+bool EnumList(Args& args, const char* flag, const google::protobuf::EnumDescriptor* type, std::vector<int>* out,
+              std::ostream& err) {
+  if (!args.Has(flag)) return true;
+  const std::string list = *args.Text(flag, "");
+  size_t begin = 0;
+  while (true) {
+    const size_t end = std::min(list.find(',', begin), list.size());
+    const std::string item = list.substr(begin, end - begin);
+    const google::protobuf::EnumValueDescriptor* value = type->FindValueByName(item);
+    if (value == nullptr || value->number() == 0) {
+      std::string names;
+      for (int k = 0; k < type->value_count(); ++k) {
+        if (type->value(k)->number() != 0) names += (names.empty() ? "" : ", ") + std::string(type->value(k)->name());
       }
-      add(item);
-      if (end == list.size()) return true;
-      begin = end + 1;
+      err << "snooker plan: --" << flag << " '" << list << "': '" << item << "' is not one of " << names
+          << " (a comma-separated list)\n";
+      return false;
     }
-  };
-  return parse("kinds", {"POT", "SAFETY", "ESCAPE", "BREAK_OFF", "FOUL"},
-               [&](const std::string& name) {
-                 v1::ShotKind kind{};
-                 v1::ShotKind_Parse(name, &kind);
-                 req->add_kinds(kind);
-               }) &&
-         parse("routes", {"DIRECT", "PLANT", "DOUBLE", "KICK"}, [&](const std::string& name) {
-           v1::PotRoute route{};
-           v1::PotRoute_Parse(name, &route);
-           req->add_routes(route);
-         });
+    out->push_back(value->number());
+    if (end == list.size()) return true;
+    begin = end + 1;
+  }
+}
+
+// --kinds and --routes into the request's kinds and routes. False after saying why
+// on `err`.
+bool SetKindsAndRoutes(Args& args, v1::PlanRequest* req, std::ostream& err) {
+  std::vector<int> kinds, routes;
+  if (!EnumList(args, "kinds", v1::ShotKind_descriptor(), &kinds, err) ||
+      !EnumList(args, "routes", v1::PotRoute_descriptor(), &routes, err)) {
+    return false;
+  }
+  for (const int k : kinds) req->add_kinds(static_cast<v1::ShotKind>(k));
+  for (const int r : routes) req->add_routes(static_cast<v1::PotRoute>(r));
+  return true;
 }
 
 // The request's fields from the flags given. Each option sets its API field only

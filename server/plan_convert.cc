@@ -1,5 +1,7 @@
 #include "server/plan_convert.h"
 
+#include <google/protobuf/descriptor.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
