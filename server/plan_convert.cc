@@ -107,6 +107,43 @@ std::string EnumText(const google::protobuf::EnumDescriptor* type, int value) {
   return v != nullptr ? std::string(v->name()) : std::to_string(value);
 }
 
+// The planner's value of E (kCount of them) whose API value is `value` (ToProto's
+// inverse); nullopt for *_UNSPECIFIED or a number that names no value.
+template <typename E, int kCount>
+std::optional<E> FromApi(int value) {
+  for (int k = 0; k < kCount; ++k) {
+    if (static_cast<int>(ToProto(static_cast<E>(k))) == value) return static_cast<E>(k);
+  }
+  return std::nullopt;
+}
+
+// An error for each entry of a repeated enum field (kinds, routes) that names no
+// planner value: "kinds[1] = SHOT_KIND_UNSPECIFIED (must be POT, ... or FOUL)".
+template <typename E, int kCount>
+void CheckEnumList(const std::string& field, const google::protobuf::RepeatedField<int>& values,
+                   const google::protobuf::EnumDescriptor* type, std::vector<FieldError>* errors) {
+  std::string rule = "must be ";
+  for (int k = 0; k < kCount; ++k) {
+    rule += std::string(k == 0 ? "" : k + 1 == kCount ? " or " : ", ") + planner::ToString(static_cast<E>(k));
+  }
+  for (int i = 0; i < values.size(); ++i) {
+    if (!FromApi<E, kCount>(values[i])) {
+      errors->push_back({field + "[" + std::to_string(i) + "]", EnumText(type, values[i]), rule});
+    }
+  }
+}
+
+// A repeated enum field as the planner's set: empty is every value.
+template <typename E, int kCount>
+planner::EnumSet<E, kCount> SetFromApi(const google::protobuf::RepeatedField<int>& values) {
+  if (values.empty()) return {};
+  auto set = planner::EnumSet<E, kCount>::None();
+  for (const int v : values) {
+    if (const auto e = FromApi<E, kCount>(v)) set = set.With(*e);
+  }
+  return set;
+}
+
 // What only the API has: its enum values, the ids of the per-ball sigmas, and the
 // server's largest budget (--max-budget-ms, within the planner's range).
 void CheckApiFields(const v1::PlanRequest& r, const PlanBounds& bounds, std::vector<FieldError>* errors) {
@@ -121,18 +158,8 @@ void CheckApiFields(const v1::PlanRequest& r, const PlanBounds& bounds, std::vec
                          "names no ball of the table"});
     }
   }
-  for (int i = 0; i < r.kinds_size(); ++i) {
-    if (!ShotKindFrom(static_cast<v1::ShotKind>(r.kinds(i)))) {
-      errors->push_back({"kinds[" + std::to_string(i) + "]", EnumText(v1::ShotKind_descriptor(), r.kinds(i)),
-                         "must be POT, SAFETY, ESCAPE, BREAK_OFF or FOUL"});
-    }
-  }
-  for (int i = 0; i < r.routes_size(); ++i) {
-    if (!PotRouteFrom(static_cast<v1::PotRoute>(r.routes(i)))) {
-      errors->push_back({"routes[" + std::to_string(i) + "]", EnumText(v1::PotRoute_descriptor(), r.routes(i)),
-                         "must be DIRECT, PLANT, DOUBLE or KICK"});
-    }
-  }
+  CheckEnumList<planner::ShotKind, planner::kShotKindCount>("kinds", r.kinds(), v1::ShotKind_descriptor(), errors);
+  CheckEnumList<planner::PotRoute, planner::kPotRouteCount>("routes", r.routes(), v1::PotRoute_descriptor(), errors);
   if (r.cue_in_hand()) {
     // The answer names the placed cue ball "cue": no ball of the table may.
     for (int i = 0; i < r.table().balls_size(); ++i) {
@@ -294,41 +321,18 @@ planner::PlanRequest PlanRequestFrom(const v1::PlanRequest& r, std::optional<dou
   if (r.has_max_simulations()) p.max_simulations = r.max_simulations();
   if (r.has_monte_carlo_samples()) p.monte_carlo_samples = r.monte_carlo_samples();
   if (r.has_break_value()) p.break_value = r.break_value();
-  if (r.kinds_size() > 0) {
-    p.kinds = planner::ShotKinds::None();
-    for (const int k : r.kinds()) {
-      if (const auto kind = ShotKindFrom(static_cast<v1::ShotKind>(k))) p.kinds = p.kinds.With(*kind);
-    }
-  }
-  if (r.routes_size() > 0) {
-    p.routes = planner::PotRoutes::None();
-    for (const int k : r.routes()) {
-      if (const auto route = PotRouteFrom(static_cast<v1::PotRoute>(k))) p.routes = p.routes.With(*route);
-    }
-  }
+  p.kinds = SetFromApi<planner::ShotKind, planner::kShotKindCount>(r.kinds());
+  p.routes = SetFromApi<planner::PotRoute, planner::kPotRouteCount>(r.routes());
   if (r.has_lookahead()) p.lookahead = r.lookahead();
   return p;
 }
 
 std::optional<planner::ShotKind> ShotKindFrom(v1::ShotKind kind) {
-  switch (kind) {
-    case v1::POT: return planner::ShotKind::kPot;
-    case v1::SAFETY: return planner::ShotKind::kSafety;
-    case v1::ESCAPE: return planner::ShotKind::kEscape;
-    case v1::BREAK_OFF: return planner::ShotKind::kBreakOff;
-    case v1::FOUL: return planner::ShotKind::kFoul;
-    default: return std::nullopt;
-  }
+  return FromApi<planner::ShotKind, planner::kShotKindCount>(kind);
 }
 
 std::optional<planner::PotRoute> PotRouteFrom(v1::PotRoute route) {
-  switch (route) {
-    case v1::DIRECT: return planner::PotRoute::kDirect;
-    case v1::PLANT: return planner::PotRoute::kPlant;
-    case v1::DOUBLE: return planner::PotRoute::kDouble;
-    case v1::KICK: return planner::PotRoute::kKick;
-    default: return std::nullopt;
-  }
+  return FromApi<planner::PotRoute, planner::kPotRouteCount>(route);
 }
 
 v1::ShotKind ToProto(planner::ShotKind kind) {
