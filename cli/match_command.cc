@@ -77,8 +77,8 @@ constexpr const char* kMatchHelpTail = R"(Planner:
 Match:
   --max-shots N          strokes after which a frame is stopped (1 to 200, default 200)
   --progress             print each frame's score on stderr as it ends
-  --thin-break-off       the planners also search the thin break-off on an end red
-                         beside the soft break into the pack (PlannerConfig::
+  --thin-break-off       the players' break-offs also search the thin break on an
+                         end red beside the soft break into the pack (the request's
                          thin_break_off; off by default: docs/whole-frame-planner.md)
   --strokes out.jsonl    write one JSON line per stroke, as it is played: {"frame",
                          "stroke", "striker" ("A" or "B"), "turn" ("on table", "in
@@ -106,7 +106,8 @@ Match:
                          player's flags: default `--break-value B`, one-ply
                          `--break-value B --no-lookahead` (B the match's break
                          value), direct-pots `--kinds POT --routes DIRECT
-                         --no-lookahead` (docs/operations.md)
+                         --no-lookahead`, and `--thin-break-off` if the match had
+                         it (docs/operations.md)
   --help                 this text
 )";
 
@@ -114,7 +115,6 @@ struct Parsed {
   planner::MatchOptions options;
   double budget_ms = 80;
   std::optional<physics::Model> model;  // the planners' (--model)
-  bool thin_break_off = false;          // --thin-break-off
 };
 
 // The options from the flags; an error message naming the flag and value otherwise.
@@ -149,7 +149,7 @@ std::string Parse(Args& args, Parsed* p) {
   o.threads = play.threads;
   o.break_value = play.break_value.value_or(planner::kFrameBreakValue);
   o.max_shots_per_frame = static_cast<int>(*shots);
-  p->thin_break_off = args.Switch("thin-break-off");
+  o.thin_break_off = args.Switch("thin-break-off");
   if (args.Switch("stroke-tables") && !args.Has("strokes")) return "--stroke-tables needs --strokes out.jsonl";
   o.world = play.world;
   p->model = play.model;
@@ -181,7 +181,7 @@ void PrintJson(const Parsed& p, const planner::MatchReport& r, std::ostream& out
     << "\", \"seed\": " << o.seed << ", \"budgetMs\": " << Number(p.budget_ms)
     << ", \"maxSimulations\": " << o.max_simulations << ", \"samples\": " << o.monte_carlo_samples
     << ", \"threads\": " << o.threads << ", \"breakValue\": " << Number(o.break_value)
-    << ", \"thinBreakOff\": " << (p.thin_break_off ? "true" : "false")
+    << ", \"thinBreakOff\": " << (o.thin_break_off ? "true" : "false")
     << ", \"noiseHeadingDeg\": " << Number(physics::RadToDeg(o.noise.heading))
     << ", \"noiseSpeed\": " << Number(o.noise.speed_fraction) << ", \"noiseSpin\": " << Number(o.noise.topspin)
     << ", \"noiseAimDeg\": " << Number(physics::RadToDeg(o.noise.aim))
@@ -358,11 +358,7 @@ int RunMatch(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   // After each safety: the opponent's best pot probability, by the planner's own
   // fast estimate (outlook.h; from the D when the cue ball is in hand).
   std::optional<planner::Planner> own;
-  if (p.model || p.thin_break_off) {
-    planner::PlannerConfig config = p.model ? planner::PlannerConfig{}.WithModel(*p.model) : planner::PlannerConfig{};
-    config.thin_break_off = p.thin_break_off;
-    own.emplace(config);
-  }
+  if (p.model) own.emplace(planner::PlannerConfig{}.WithModel(*p.model));
   const planner::Planner& planner = own ? *own : planner::Planner::Default();
   planner::PlanRequest seen;
   seen.noise = p.options.noise;

@@ -46,6 +46,7 @@ constexpr const char* kPlanHelp = R"(usage: snooker plan --table T.json|builtin:
                     [--max-topspin X] [--max-sidespin X] [--cue-clearance-m X] [--pot-only]
                     [--max-simulations N] [--samples N] [--cue-in-hand] [--break-value P]
                     [--kinds K,...] [--routes R,...] [--no-lookahead]
+                    [--thin-break-off]
                     [--server HOST:PORT [--tls-ca CA.pem] [--tls-cert C --tls-key K]
                     [--tls-server-name N] [--deadline-ms MS]]
 
@@ -125,6 +126,8 @@ Planner:
   --no-lookahead         estimate the position each shot leaves, without searching
                          the next shot (one-ply); --kinds POT --routes DIRECT
                          --no-lookahead plays as snooker match's direct-pots
+  --thin-break-off       on the break-off's table, also search the thin break on an
+                         end red beside the soft break into the pack
   --max-simulations N    cap on simulations (default: from the budget)
   --samples N            Monte Carlo samples per ranked shot (default 48)
   --help                 this text
@@ -331,6 +334,7 @@ void SetRequestFields(Args& args, v1::PlanRequest* req) {
   if (args.Switch("pot-only")) req->set_position_play(false);
   if (args.Switch("cue-in-hand")) req->set_cue_in_hand(true);
   if (args.Switch("no-lookahead")) req->set_lookahead(false);
+  if (args.Switch("thin-break-off")) req->set_thin_break_off(true);
 }
 
 // Reads and checks the flags, and the table, into `s`. An exit code when the command
@@ -345,7 +349,8 @@ std::optional<int> ParsePlanFlags(const std::vector<std::string>& argv, std::ost
                                   "max-sidespin", "cue-clearance-m", "max-simulations", "samples",
                                   "vision-tolerance-mm", "model", "break-value", "kinds", "routes"};
   for (const std::string& flag : ClientFlags()) valued.insert(flag);
-  Args args(argv, valued, {"json", "help", "pot-only", "stream", "cue-in-hand", "no-lookahead"});
+  Args args(argv, valued, {"json", "help", "pot-only", "stream", "cue-in-hand", "no-lookahead",
+                                 "thin-break-off"});
   if (args.error().empty() && args.Switch("help")) {
     out << kPlanHelp << kModelFlagHelp << "\n" << ClientFlagsHelp();
     return kExitOk;

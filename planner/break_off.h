@@ -38,9 +38,10 @@
 // the pack and the reds nearly where they were. An opponent who pots as well as
 // this planner punishes the red or two that a thin break at 6-7 m/s knocks loose
 // (docs/frame-play.md measures it), and a stroke into the pack leaves fewer. The
-// planner plays the soft break; the thin break only when PlannerConfig::thin_break_off
-// is set, and then the two kinds are searched alternately and the Monte Carlo of
-// each searched stroke decides between them. It is off because the search's
+// planner plays the soft break; the thin break only when the request asks for it
+// (PlanRequest::thin_break_off; unset, PlannerConfig::thin_break_off), and then the
+// two kinds are searched alternately and the Monte Carlo of each searched stroke
+// decides between them. It is off because the search's
 // noiseless score prefers the thin break, so that only thin breaks reached the Monte
 // Carlo (a median of -27 points where the soft break alone has -2), and in whole
 // frames against direct-pots the thin break let it pot a red at once in 32 of 50

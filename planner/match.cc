@@ -172,6 +172,7 @@ void FillTurnRequest(const MatchOptions& o, PlayerKind player, bool cue_in_hand,
   req->max_simulations = o.max_simulations;
   req->monte_carlo_samples = o.monte_carlo_samples;
   ConfigureRequest(player, req, o.break_value);
+  req->thin_break_off = o.thin_break_off;
 }
 
 // What the striker plays this turn.

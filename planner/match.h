@@ -124,6 +124,8 @@ struct MatchOptions {
   int monte_carlo_samples = 48;
   /// The break value of `default` and `one-ply` (ConfigureRequest), points.
   double break_value = kFrameBreakValue;
+  /// Every player's break-offs also search the thin break (PlanRequest::thin_break_off).
+  bool thin_break_off = false;
   /// Strokes after which a frame is stopped (1 to kFrameShotCap).
   int max_shots_per_frame = kFrameShotCap;
   /// Evaluates the table a safety leaves for the opponent; unset: not measured.

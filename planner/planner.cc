@@ -335,7 +335,7 @@ bool PlanRun::AddBreakOff() {
   // Carlo then picks between the kinds.
   const std::vector<BreakOffCandidate> soft = SoftBreakCandidates(table_, *config_.table);
   const std::vector<BreakOffCandidate> thin =
-      config_.thin_break_off ? BreakOffCandidates(table_, *config_.table) : std::vector<BreakOffCandidate>{};
+      request_.thin_break_off.value_or(config_.thin_break_off) ? BreakOffCandidates(table_, *config_.table) : std::vector<BreakOffCandidate>{};
   std::vector<BreakOffCandidate> all;
   for (size_t k = 0; k < std::max(soft.size(), thin.size()); ++k) {
     if (k < soft.size()) all.push_back(soft[k]);

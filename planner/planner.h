@@ -96,6 +96,9 @@ struct PlanRequest {
   /// frame against an opponent about 100 wins more frames, since a miss also hands
   /// the opponent the table (docs/whole-frame-planner.md).
   std::optional<double> break_value;
+  /// At the break-off, also search the thin break beside the soft one; nullopt: the
+  /// configured choice (PlannerConfig::thin_break_off, off).
+  std::optional<bool> thin_break_off;
   /// Worker threads (the caller's included).
   int threads = 2;
   /// Cap on simulations; 0: derived from the budget (Planner::Config).

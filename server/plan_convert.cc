@@ -324,6 +324,7 @@ planner::PlanRequest PlanRequestFrom(const v1::PlanRequest& r, std::optional<dou
   p.kinds = SetFromApi<planner::ShotKind, planner::kShotKindCount>(r.kinds());
   p.routes = SetFromApi<planner::PotRoute, planner::kPotRouteCount>(r.routes());
   if (r.has_lookahead()) p.lookahead = r.lookahead();
+  if (r.has_thin_break_off()) p.thin_break_off = r.thin_break_off();
   return p;
 }
 

@@ -316,6 +316,31 @@ TEST(MatchTest, EveryLoggedTurnPlansAgainToItsShot) {
   EXPECT_GT(differs, 0);
 }
 
+// A match with the thin break-off asks each player's break-off plan for it, so the
+// logged break-off plans again to its score from the record and the options alone;
+// the same turn without it is another plan.
+TEST(MatchTest, TheThinBreakOffIsInTheReplayedRequest) {
+  MatchOptions o = ShortMatch();
+  o.frames = 1;
+  o.max_shots_per_frame = 1;
+  o.thin_break_off = true;
+  std::vector<StrokeRecord> log;
+  o.on_stroke = [&log](const StrokeRecord& s) { log.push_back(s); };
+  (void)RunMatch(Planner::Default(), o);
+  ASSERT_EQ(log.size(), 1u);
+  const StrokeRecord& s = log.front();
+  ASSERT_EQ(s.turn, TurnType::kBreakOff);
+  ASSERT_FALSE(s.stall) << s.stall_reason;
+  const PlanRequest req = ReplayRequest(o, s);
+  EXPECT_EQ(req.thin_break_off, std::optional<bool>(true));
+  const PlanAnswer again = Planner::Default().Plan(req);
+  ASSERT_FALSE(again.shots.empty()) << again.reason;
+  EXPECT_EQ(again.shots.front().score, s.plan_score);
+  o.thin_break_off = false;
+  const PlanAnswer soft = Planner::Default().Plan(ReplayRequest(o, s));
+  EXPECT_LT(soft.searched, again.searched);
+}
+
 TEST(MatchTest, AMatchIsAFunctionOfItsSeed) {
   const MatchOptions o = ShortMatch();
   const MatchReport a = RunMatch(Planner::Default(), o);

@@ -233,21 +233,27 @@ TEST(PlanRequestFromTest, ConvertsUnitsAtTheEdge) {
   EXPECT_EQ(in_hand.table.balls.size(), 2u);
 }
 
-// Empty kinds and routes are every one, and lookahead unset is on; given, they are
-// exactly the set asked for (direct-pots' request: pots, direct, one-ply).
-TEST(PlanRequestFromTest, KindsRoutesAndLookahead) {
+// Empty kinds and routes are every one, lookahead unset is on and the thin break-off
+// unset is the server's choice; given, they are exactly what was asked for
+// (direct-pots' request: pots, direct, one-ply).
+TEST(PlanRequestFromTest, KindsRoutesLookaheadAndTheThinBreakOff) {
   const planner::PlanRequest d = PlanRequestFrom(ObviousPot());
   EXPECT_EQ(d.kinds, planner::ShotKinds{});
   EXPECT_EQ(d.routes, planner::PotRoutes{});
   EXPECT_TRUE(d.lookahead);
+  EXPECT_FALSE(d.thin_break_off.has_value());  // the server's configuration
   v1::PlanRequest r = ObviousPot();
   r.add_kinds(v1::POT);
   r.add_routes(v1::DIRECT);
   r.set_lookahead(false);
+  r.set_thin_break_off(false);
   const planner::PlanRequest p = PlanRequestFrom(r);
   EXPECT_EQ(p.kinds, planner::ShotKinds::Of(planner::ShotKind::kPot));
   EXPECT_EQ(p.routes, planner::PotRoutes::Of(planner::PotRoute::kDirect));
   EXPECT_FALSE(p.lookahead);
+  EXPECT_EQ(p.thin_break_off, std::optional<bool>(false));
+  r.set_thin_break_off(true);
+  EXPECT_EQ(PlanRequestFrom(r).thin_break_off, std::optional<bool>(true));
   r.add_kinds(v1::SAFETY);
   r.add_kinds(v1::POT);
   r.add_routes(v1::KICK);

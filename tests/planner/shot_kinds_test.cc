@@ -283,21 +283,38 @@ TEST(ShotKindsTest, TheBreakOffHitsARedAndKeepsTheCueBall) {
 
 // The default break-off is the soft break into the pack, at most half again its
 // nominal pace (planner.cc's FromBreakOff); the thin break (5.5-7.5 m/s) is searched
-// beside it only when the configuration asks for it.
+// beside it only when the request asks for it, or, the request silent, the
+// configuration; a request's no overrides the configuration's yes.
 TEST(ShotKindsTest, TheBreakOffIsSoftUnlessTheThinBreakIsAsked) {
-  const PlanRequest r = BreakOffRequest();
+  PlanRequest r = BreakOffRequest();
+  r.max_shots = 8;
   const PlanAnswer soft = Planner::Default().Plan(r);
   ASSERT_FALSE(soft.shots.empty()) << soft.reason;
-  for (const PlannedShot& s : soft.shots) {
-    EXPECT_EQ(s.kind, ShotKind::kBreakOff);
-    EXPECT_LE(s.shot.speed, 1.5 * BreakOffOptions{}.soft_speed + 1e-9);
-  }
+  auto thin_shots = [](const PlanAnswer& a) {
+    int n = 0;
+    for (const PlannedShot& s : a.shots) {
+      EXPECT_EQ(s.kind, ShotKind::kBreakOff);
+      if (s.shot.speed > 1.5 * BreakOffOptions{}.soft_speed + 1e-9) ++n;
+    }
+    return n;
+  };
+  EXPECT_EQ(thin_shots(soft), 0);
   EXPECT_FALSE(Planner::Config{}.thin_break_off);
   Planner::Config config;
   config.thin_break_off = true;
-  const PlanAnswer both = Planner(config).Plan(r);
+  const Planner thin_planner(config);
+  const PlanAnswer both = thin_planner.Plan(r);
   ASSERT_FALSE(both.shots.empty()) << both.reason;
   EXPECT_GT(both.searched, soft.searched);
+  EXPECT_GT(thin_shots(both), 0);
+  r.thin_break_off = true;
+  const PlanAnswer asked = Planner::Default().Plan(r);
+  EXPECT_EQ(asked.searched, both.searched);
+  EXPECT_GT(thin_shots(asked), 0);
+  r.thin_break_off = false;
+  const PlanAnswer refused = thin_planner.Plan(r);
+  EXPECT_EQ(refused.searched, soft.searched);
+  EXPECT_EQ(thin_shots(refused), 0);
 }
 
 TEST(ShotKindsTest, WithTheCueBallInHandAPotIsPlayedFromTheD) {
