@@ -198,9 +198,13 @@ class PlanRun {
   void Fallback();
   void LookAhead();
   double NextShotValue(Worker& w, const PlannedShot& ps, int evaluations, int* simulations) const;
+  // The fallback's scan runs when the request takes a stroke that need not pot: a
+  // safety, an escape or (with none of them legal) a foul.
   bool FallbackAllowed() const {
-    return request_.kinds.Has(ShotKind::kSafety) || request_.kinds.Has(ShotKind::kEscape);
+    return request_.kinds.Has(ShotKind::kSafety) || request_.kinds.Has(ShotKind::kEscape) ||
+           request_.kinds.Has(ShotKind::kFoul);
   }
+  std::string FallbackOutcome() const;
   void RankByMonteCarlo();
   void Conclude();
   void AddWorkers(int count) {
@@ -230,6 +234,8 @@ class PlanRun {
   std::vector<Candidate> candidates_;
   std::string no_candidates_;  // why there were none to search, when so
   bool fallback_past_budget_ = false;  // the fallback's stroke was verified after the budget
+  bool fallback_scanned_ = false;  // the fallback's scan ran to its end
+  std::optional<ShotKind> fallback_unasked_;  // the kind of its stroke, when not one asked for
   CandidateSet pots_;  // the direct pots' pruning counts, for the reason
   double best_pot_ = 0;  // the best pot estimate
   LayoutSummary layout_;  // the request's table, for the layout term
@@ -673,9 +679,17 @@ void PlanRun::Fallback() {
   const auto found = FindLegalStroke(table, table.cue_index(), on_, ctx_, settings_, w.full, interrupt, options);
   if (!found) {
     answer_.deadline_hit = answer_.deadline_hit || interrupt.Due();
+    fallback_scanned_ = !interrupt.Due();
     return;
   }
+  fallback_scanned_ = true;
   answer_.simulations += found->simulations;
+  if (!request_.kinds.Has(found->kind)) {
+    // A stroke of a kind the caller did not ask for (an escape when only safeties
+    // were, a legal stroke when only fouls were): not answered, the reason says so.
+    fallback_unasked_ = found->kind;
+    return;
+  }
   Candidate c;
   c.kind = found->kind;
   c.object = found->object;
@@ -849,7 +863,7 @@ void PlanRun::Conclude() {
                      " candidates started)";
   } else if (!no_candidates_.empty()) {
     answer_.status = PlanStatus::kNoPot;
-    answer_.reason = no_candidates_ + ", and no legal stroke was found";
+    answer_.reason = no_candidates_ + FallbackOutcome();
   } else {
     answer_.status = PlanStatus::kNoPot;
     answer_.reason = "no shot found: the search of " + std::to_string(answer_.searched) + " of " +
@@ -858,7 +872,23 @@ void PlanRun::Conclude() {
     if (answer_.verification_failures > 0) {
       answer_.reason += " (" + std::to_string(answer_.verification_failures) + " failed the full-fidelity check)";
     }
+    answer_.reason += FallbackOutcome();
   }
+}
+
+// What the fallback's scan adds to the reason of an answer without shots: nothing
+// when it did not run (the request took pots only) or ran out of time.
+std::string PlanRun::FallbackOutcome() const {
+  if (fallback_unasked_) {
+    std::string s = std::string(", and the one stroke the scan found is ") +
+                    (*fallback_unasked_ == ShotKind::kEscape ? "an " : "a ") + ToString(*fallback_unasked_) +
+                    ", which was not asked for";
+    if (*fallback_unasked_ != ShotKind::kFoul && request_.kinds.Has(ShotKind::kFoul)) {
+      s += ": a foul is offered only when no legal stroke exists";
+    }
+    return s;
+  }
+  return fallback_scanned_ ? ", and no legal stroke was found" : "";
 }
 
 }  // namespace

@@ -153,6 +153,37 @@ TEST(ShotKindsTest, ASnookeredCueBallEscapes) {
   }
 }
 
+// A plan answers only the kinds asked for, the fallback's stroke included: snookered,
+// a request for safeties alone gets no escape, and one for fouls alone no foul (a
+// legal stroke exists); each reason names the stroke that was found.
+TEST(ShotKindsTest, TheFallbackAnswersOnlyTheKindsAskedFor) {
+  TableState t;
+  t.balls = {{BallKind::kCue, Vec2(0.9, 1.0)}, {BallKind::kRed, Vec2(0.9, 2.2)},
+             {BallKind::kBlue, Vec2(0.9, 1.6)}, {BallKind::kPink, Vec2(1.3, 1.6)}};
+  PlanRequest r = Request(t);
+  r.kinds = ShotKinds::Of(ShotKind::kSafety);
+  const PlanAnswer safeties = Planner::Default().Plan(r);
+  EXPECT_TRUE(safeties.shots.empty()) << ToString(safeties.shots.front().kind);
+  EXPECT_EQ(safeties.status, PlanStatus::kNoPot);
+  EXPECT_NE(safeties.reason.find("the one stroke the scan found is an ESCAPE, which was not asked for"),
+            std::string::npos)
+      << safeties.reason;
+  EXPECT_EQ(safeties.reason.find("a foul is offered"), std::string::npos) << safeties.reason;
+  r.kinds = ShotKinds::Of(ShotKind::kFoul);
+  const PlanAnswer fouls = Planner::Default().Plan(r);
+  EXPECT_TRUE(fouls.shots.empty()) << ToString(fouls.shots.front().kind);
+  EXPECT_NE(fouls.reason.find("an ESCAPE, which was not asked for: a foul is offered only when no legal stroke "
+                              "exists"),
+            std::string::npos)
+      << fouls.reason;
+  // Pots alone: the scan does not run, and the reason does not say it found nothing.
+  r.kinds = ShotKinds::Of(ShotKind::kPot);
+  const PlanAnswer pots = Planner::Default().Plan(r);
+  EXPECT_TRUE(pots.shots.empty());
+  EXPECT_EQ(pots.reason.find("legal stroke"), std::string::npos) << pots.reason;
+  EXPECT_EQ(pots.reason.find("scan"), std::string::npos) << pots.reason;
+}
+
 // The cue ball in a ring of six reds, 1 mm apart, with a colour on: every stroke hits
 // a red first. A robot still gets a stroke, labelled a foul: replayed it fouls, and it
 // nominates the yellow (the penalty is 4, the least there is). A caller that allows
@@ -192,6 +223,13 @@ TEST(ShotKindsTest, HemmedInByBallsNotOnTheShotIsTheLeastCostlyFoul) {
   EXPECT_TRUE(legal_only.shots.empty());
   EXPECT_EQ(legal_only.status, PlanStatus::kNoPot);
   EXPECT_NE(legal_only.reason.find("no legal stroke was found"), std::string::npos) << legal_only.reason;
+
+  // Fouls alone: with no legal stroke, the same foul.
+  r.kinds = ShotKinds::Of(ShotKind::kFoul);
+  const PlanAnswer fouls_only = Planner::Default().Plan(r);
+  ASSERT_EQ(fouls_only.shots.size(), 1u) << fouls_only.reason;
+  EXPECT_EQ(fouls_only.shots.front().kind, ShotKind::kFoul);
+  EXPECT_EQ(fouls_only.shots.front().object_ball, s.object_ball);
 }
 
 TEST(ShotKindsTest, ASafetyPlaysABallOnAndFoulsNothing) {
