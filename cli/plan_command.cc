@@ -63,7 +63,9 @@ with its route (direct, plant, double, kick).
                    in metres, x across from the left cushion, y from the baulk cushion;
                    or builtin:NAME, a built-in table: black (the black on its spot, three
                    reds near it), red (a red by the top-right pocket, the black, a red
-                   in baulk), colours (the reds gone, the colours on their spots)
+                   in baulk), colours (the reds gone, the colours on their spots),
+                   break-off (the 15 reds racked, the colours on their spots, the cue
+                   ball in hand: --cue-in-hand is implied)
   --on BALL        the ball on: RED, a colour, or COLOUR (any colour, the planner
                    choosing); default: a red while reds remain, else the lowest colour
   --budget-ms N    planning time budget, ms (default 80; 1 to 60000; with --server,
@@ -133,11 +135,18 @@ Planner:
   --help                 this text
 )";
 
-bool ReadTable(const std::string& path, v1::TableState* table, std::ostream& err) {
+// The table of --table into the request's; a built-in table with the cue ball in hand
+// (the break-off's) sets cue_in_hand too.
+bool ReadTable(const std::string& path, v1::PlanRequest* request, std::ostream& err) {
+  v1::TableState* table = request->mutable_table();
   constexpr std::string_view kBuiltin = "builtin:";
   if (path.compare(0, kBuiltin.size(), kBuiltin) == 0) {
     const std::string name = path.substr(kBuiltin.size());
-    if (BuiltinTable(name, table)) return true;
+    bool in_hand = false;
+    if (BuiltinTable(name, table, &in_hand)) {
+      if (in_hand) request->set_cue_in_hand(true);
+      return true;
+    }
     err << "snooker plan: --table '" << path << "': no built-in table '" << name
         << "' (there are: " << BuiltinTableNames() << ")\n";
     return false;
@@ -382,7 +391,7 @@ std::optional<int> ParsePlanFlags(const std::vector<std::string>& argv, std::ost
     err << "snooker plan: " << args.error() << "\n(see snooker plan --help)\n";
     return kExitUsage;
   }
-  if (!ReadTable(*table_path, s->request.mutable_table(), err)) return kExitUsage;
+  if (!ReadTable(*table_path, &s->request, err)) return kExitUsage;
   s->table_path = *table_path;
   s->vision_tolerance_mm = *vision;
   s->vision_tolerance_given = args.Has("vision-tolerance-mm");

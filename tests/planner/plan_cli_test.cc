@@ -281,6 +281,36 @@ TEST(CliPlanTest, KindsRoutesAndLookaheadReachThePlan) {
   std::remove(table.c_str());
 }
 
+// builtin:break-off is the frame's opening with the cue ball in hand: every shot is
+// a break-off placed in the D, the soft break into the pack unless --thin-break-off
+// asks for the thin break beside it.
+TEST(CliPlanTest, TheBreakOffIsABuiltInTable) {
+  // A soft break is played at most half again its nominal 1.6 m/s (the planner's
+  // BreakOffOptions::soft_speed); a thin one at 5.5-7.5 m/s.
+  constexpr double kSoftBreakMaxSpeed = 1.5 * 1.6;
+  constexpr double kBaulkLineY = 0.737;  // the D lies behind it
+  auto thin_breaks = [&](const std::string& flag) {
+    const RunResult r = RunCli("plan --table builtin:break-off --shots 8 --max-simulations 300 --samples 8"
+                               " --budget-ms 30000 --json" + flag);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    Struct json;
+    EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &json).ok()) << r.out;
+    const auto& shots = json.fields().at("shots").list_value().values();
+    EXPECT_GE(shots.size(), 2) << r.out;
+    int thin = 0;
+    for (const Value& shot : shots) {
+      const auto& f = shot.struct_value().fields();
+      EXPECT_EQ(f.at("kind").string_value(), "BREAK_OFF") << r.out;
+      EXPECT_LE(f.at("cueBallStart").struct_value().fields().at("y").number_value(), kBaulkLineY) << r.out;
+      if (f.at("speed").number_value() > kSoftBreakMaxSpeed) ++thin;
+    }
+    return thin;
+  };
+  EXPECT_EQ(thin_breaks(""), 0);
+  EXPECT_EQ(thin_breaks(" --cue-in-hand"), 0);  // implied, and allowed
+  EXPECT_GT(thin_breaks(" --thin-break-off"), 0);
+}
+
 struct BadInput {
   const char* args;
   const char* must_mention;

@@ -236,7 +236,7 @@ TEST(PlanServerTest, TheServersErrorsExitAsTheLocalOnes) {
   EXPECT_TRUE(Mentions(limits.err, "monte_carlo_samples = -1 (must be in [0, 100000])")) << limits.err;
   const RunResult unknown = RunCli("plan --table builtin:snooker --server " + s.target);
   EXPECT_EQ(unknown.exit_code, 2);
-  EXPECT_TRUE(Mentions(unknown.err, "no built-in table 'snooker' (there are: black, red, colours)"))
+  EXPECT_TRUE(Mentions(unknown.err, "no built-in table 'snooker' (there are: black, red, colours, break-off)"))
       << unknown.err;
 }
 
@@ -258,12 +258,22 @@ TEST(LoadTestTest, PlansAreCheckedAgainstTheirLimits) {
 }
 
 TEST(LoadTablesTest, BuiltInNamedTablesAreValid) {
-  for (const char* name : {"black", "red", "colours"}) {
+  for (const char* name : {"black", "red", "colours", "break-off"}) {
     v1::TableState t;
-    ASSERT_TRUE(cli::BuiltinTable(name, &t)) << name;
-    const server::TableCheck check = server::CheckTable(t, physics::DefaultTable(), 0);
+    bool in_hand = true;
+    ASSERT_TRUE(cli::BuiltinTable(name, &t, &in_hand)) << name;
+    EXPECT_EQ(in_hand, std::string(name) == "break-off") << name;
+    const server::TableCheck check = server::CheckTable(
+        t, physics::DefaultTable(), 0, in_hand ? server::CueBall::kInHand : server::CueBall::kOnTable);
     EXPECT_TRUE(check.errors.empty()) << name << ": " << server::Describe(check.errors);
   }
+  // The opening: 15 reds and the six colours, no cue ball.
+  v1::TableState rack;
+  ASSERT_TRUE(cli::BuiltinTable("break-off", &rack));
+  EXPECT_EQ(rack.balls_size(), 21);
+  int reds = 0;
+  for (const v1::Ball& b : rack.balls()) reds += b.kind() == v1::RED ? 1 : 0;
+  EXPECT_EQ(reds, 15);
   v1::TableState t;
   EXPECT_FALSE(cli::BuiltinTable("snooker", &t));
 }
