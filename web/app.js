@@ -16,7 +16,9 @@ const PLACED_CUE_ID = 'cue';  // the planner's name for the cue ball placed from
 // BuiltinTable), with the default table's spots and opening reds
 // (physics/table/table.cc): "black" has the cue ball at the black spot + (0.45, -0.30)
 // and reds 1, 5 and 10 of the triangle, "colours" the cue ball at the brown spot +
-// (0.12, 0.35). The browser test checks them against GetModel's spots and triangle.
+// (0.12, 0.35), "break-off" the 15 reds racked and the colours on their spots with
+// the cue ball in hand. The browser test checks them against GetModel's spots and
+// triangle.
 const BUILTIN_TABLES = {
   black: [
     { id: 'cue', kind: 'CUE', position: { x: 1.339, y: 2.945 } },
@@ -41,6 +43,21 @@ const BUILTIN_TABLES = {
     { id: 'black', kind: 'BLACK', position: { x: 0.889, y: 3.245 } },
   ],
 };
+// The opening triangle (physics::TableModel::reds()): the apex on the centre line a
+// ball's width and the apex gap (1 mm) above the pink spot, five rows a radius times
+// sqrt 3 apart, the balls of a row two radii apart; numbered row by row from the apex.
+BUILTIN_TABLES['break-off'] = [];
+for (let row = 0, i = 1; row < 5; ++row) {
+  for (let k = 0; k <= row; ++k, ++i) {
+    const R = 0.02625;
+    BUILTIN_TABLES['break-off'].push({
+      id: `red-${i}`, kind: 'RED', position: { x: 0.889 + (2 * k - row) * R, y: 2.73025 + row * Math.sqrt(3) * R },
+    });
+  }
+}
+BUILTIN_TABLES['break-off'].push(...BUILTIN_TABLES.colours.filter((b) => b.kind !== 'CUE'));
+// The built-in tables that leave the cue ball in hand.
+const IN_HAND_TABLES = new Set(['break-off']);
 
 // Noise presets: NoiseModel (plan.proto), one standard deviation of each error.
 //  * robot: the server's defaults (planner/pot_estimate.h, argued in
@@ -575,6 +592,7 @@ function planRequest() {
     if (ticked.length < boxes.length) request[field] = ticked;
   }
   if (!$('lookahead').checked) request.lookahead = false;
+  if ($('thin-break-off').checked) request.thinBreakOff = true;
   const breakValue = readNumber($('break-value'));
   if (breakValue !== undefined) request.breakValue = breakValue;
   return request;
@@ -1072,7 +1090,7 @@ function start() {
   $('builtin').addEventListener('change', () => {
     const name = $('builtin').value;
     if (!BUILTIN_TABLES[name]) return;
-    $('cue-in-hand').checked = false;
+    $('cue-in-hand').checked = IN_HAND_TABLES.has(name);
     setBalls(BUILTIN_TABLES[name]);
     plan('table');
   });
@@ -1096,6 +1114,7 @@ function start() {
     }
   }
   $('lookahead').addEventListener('change', () => plan('options'));
+  $('thin-break-off').addEventListener('change', () => plan('options'));
   $('break-value').addEventListener('change', () => plan('options'));
   $('noise-preset').addEventListener('change', () => {
     applyNoisePreset($('noise-preset').value);

@@ -1,7 +1,8 @@
 // Drives the page that `snooker serve --http` serves in headless Chromium: the first
 // plan of the default built-in table (against a direct Plan call), a ball dragged and
 // the plan made again, the replay, a bad table's error in the service's words, the
-// kinds, routes, lookahead and break value asked for, the console (no error allowed),
+// kinds, routes, lookahead and break value asked for, the break-off table with and
+// without the thin break, the console (no error allowed),
 // the timings against their targets, and screenshots at 1280x800 and 768x1024.
 //
 //   node page_test.mjs --snooker build/cli/snooker [--screenshots DIR]
@@ -114,7 +115,10 @@ function checkBuiltinTables(tables, model) {
   if (!near(at('colours', 'cue'), { x: brown.x + 0.12, y: brown.y + 0.35 })) problems.push('colours: cue');
   for (const c of ['YELLOW', 'GREEN', 'BROWN', 'BLUE', 'PINK', 'BLACK']) {
     if (!near(at('colours', c.toLowerCase()), spot(c))) problems.push(`colours: ${c.toLowerCase()}`);
+    if (!near(at('break-off', c.toLowerCase()), spot(c))) problems.push(`break-off: ${c.toLowerCase()}`);
   }
+  reds.forEach((red, i) => { if (!near(at('break-off', `red-${i + 1}`), red)) problems.push(`break-off: red-${i + 1}`); });
+  if (reds.length !== 15 || tables['break-off'].length !== 21) problems.push('break-off: 15 reds and 6 colours');
   return problems;
 }
 
@@ -457,6 +461,52 @@ async function main() {
       await page.$eval('#break-value', (e) => { e.value = ''; });
       await click('[data-route="KICK"]');
       await click('#lookahead');
+    }
+
+    // 5c. The break-off table: the cue ball in hand, only break-offs placed in the D;
+    // "Thin break-off" asks for the thin break too, which is faster than any soft one
+    // (at most half again 1.6 m/s), and with a cap the rows equal a direct Plan call's.
+    {
+      const before = await page.evaluate(() => window.snookerPage.planSeq);
+      await page.select('#builtin', 'break-off');
+      await waitForPlan(page, before);
+      const seen = async () => page.evaluate(() => ({
+        request: window.snookerPage.lastPlanRequest,
+        shots: (window.snookerPage.lastPlanResponse || {}).shots || [],
+        inHand: document.getElementById('cue-in-hand').checked,
+        state: document.body.dataset.planState,
+      }));
+      const soft = await seen();
+      const breakOffs = (s) => s.shots.length > 0 && s.shots.every((x) => x.kind === 'BREAK_OFF' && x.cueBallStart &&
+        x.cueBallStart.y <= 0.737);
+      check('the break-off table: cue ball in hand, every shot a break-off from the D',
+        soft.state === 'done' && soft.inHand && soft.request.cueInHand === true &&
+        soft.request.table.balls.length === 21 && soft.request.table.balls.every((b) => b.kind !== 'CUE') &&
+        soft.request.thinBreakOff === undefined && breakOffs(soft),
+        `in hand ${soft.inHand}; ${soft.request.table.balls.length} balls; shots ` +
+        soft.shots.map((x) => `${x.kind} at ${Number(x.speed).toFixed(2)} m/s`).join(', '));
+      const click = async (selector) => {
+        const seq = await page.evaluate(() => window.snookerPage.planSeq);
+        await page.click(selector);
+        return waitForPlan(page, seq);
+      };
+      await page.$eval('#budget', (e) => { e.value = '5000'; });
+      await page.$eval('#max-simulations', (e) => { e.value = '300'; });
+      await page.$eval('#max-shots', (e) => { e.value = '8'; });
+      await click('#thin-break-off');
+      const thin = await seen();
+      const answer = await unary(base, 'Plan', thin.request);
+      const speeds = (shots) => JSON.stringify(shots.map((x) => Number(x.speed).toFixed(4)));
+      check('"Thin break-off" in the request: a thin break among the shots, the rows a direct Plan call\'s',
+        thin.state === 'done' && thin.request.thinBreakOff === true && breakOffs(thin) &&
+        thin.shots.some((x) => x.speed > 1.5 * 1.6) && answer.status === 200 &&
+        speeds(answer.body.shots || []) === speeds(thin.shots),
+        `shots at ${thin.shots.map((x) => Number(x.speed).toFixed(2)).join(', ')} m/s; ` +
+        `Plan ${(answer.body.shots || []).map((x) => Number(x.speed).toFixed(2)).join(', ')} m/s`);
+      await page.$eval('#budget', (e) => { e.value = ''; });
+      await page.$eval('#max-simulations', (e) => { e.value = ''; });
+      await page.$eval('#max-shots', (e) => { e.value = '5'; });
+      await click('#thin-break-off');
     }
 
     // 6. Progress messages drawn while plans ran, what the page loaded, the console.
