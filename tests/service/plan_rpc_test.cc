@@ -272,7 +272,8 @@ const BadPlan kBadPlans[] = {
     {"RouteOutOfTheEnum", [](v1::PlanRequest* r) { r->add_routes(static_cast<v1::PotRoute>(9)); },
      "routes[0] = 9 (must be DIRECT, PLANT, DOUBLE or KICK)"},
     {"NoCueBallNotInHand", [](v1::PlanRequest* r) { r->mutable_table()->mutable_balls()->DeleteSubrange(0, 1); },
-     "table.balls = 0 CUE balls (must have exactly one)"},
+     "table.balls = 0 CUE balls (must have exactly one, or none with cue_in_hand set: the planner then places "
+     "it)"},
 };
 
 void PrintTo(const BadPlan& p, std::ostream* os) { *os << p.name; }
