@@ -135,12 +135,16 @@ TEST(ShotKindsTest, AKickReachesTheRedOffACushion) {
   for (const PlannedShot& s : answer.shots) ExpectPotAsLabelled(r, s, PotRoute::kKick);
 }
 
-TEST(ShotKindsTest, ASnookeredCueBallEscapes) {
-  // The only red hidden behind the blue, the pink beside it.
+// Snookered: the only red hidden behind the blue, the pink beside it.
+TableState SnookeredOnTheRed() {
   TableState t;
   t.balls = {{BallKind::kCue, Vec2(0.9, 1.0)}, {BallKind::kRed, Vec2(0.9, 2.2)},
              {BallKind::kBlue, Vec2(0.9, 1.6)}, {BallKind::kPink, Vec2(1.3, 1.6)}};
-  PlanRequest r = Request(t);
+  return t;
+}
+
+TEST(ShotKindsTest, ASnookeredCueBallEscapes) {
+  PlanRequest r = Request(SnookeredOnTheRed());
   r.kinds = ShotKinds::Of(ShotKind::kEscape);
   const PlanAnswer answer = Planner::Default().Plan(r);
   ASSERT_FALSE(answer.shots.empty()) << answer.reason;
@@ -157,10 +161,7 @@ TEST(ShotKindsTest, ASnookeredCueBallEscapes) {
 // a request for safeties alone gets no escape, and one for fouls alone no foul (a
 // legal stroke exists); each reason names the stroke that was found.
 TEST(ShotKindsTest, TheFallbackAnswersOnlyTheKindsAskedFor) {
-  TableState t;
-  t.balls = {{BallKind::kCue, Vec2(0.9, 1.0)}, {BallKind::kRed, Vec2(0.9, 2.2)},
-             {BallKind::kBlue, Vec2(0.9, 1.6)}, {BallKind::kPink, Vec2(1.3, 1.6)}};
-  PlanRequest r = Request(t);
+  PlanRequest r = Request(SnookeredOnTheRed());
   r.kinds = ShotKinds::Of(ShotKind::kSafety);
   const PlanAnswer safeties = Planner::Default().Plan(r);
   EXPECT_TRUE(safeties.shots.empty()) << ToString(safeties.shots.front().kind);
