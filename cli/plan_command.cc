@@ -358,8 +358,8 @@ std::optional<int> ParsePlanFlags(const std::vector<std::string>& argv, std::ost
                                   "max-sidespin", "cue-clearance-m", "max-simulations", "samples",
                                   "vision-tolerance-mm", "model", "break-value", "kinds", "routes"};
   for (const std::string& flag : ClientFlags()) valued.insert(flag);
-  Args args(argv, valued, {"json", "help", "pot-only", "stream", "cue-in-hand", "no-lookahead",
-                                 "thin-break-off"});
+  Args args(argv, valued,
+            {"json", "help", "pot-only", "stream", "cue-in-hand", "no-lookahead", "thin-break-off"});
   if (args.error().empty() && args.Switch("help")) {
     out << kPlanHelp << kModelFlagHelp << "\n" << ClientFlagsHelp();
     return kExitOk;

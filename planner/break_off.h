@@ -41,11 +41,11 @@
 // planner plays the soft break; the thin break only when the request asks for it
 // (PlanRequest::thin_break_off; unset, PlannerConfig::thin_break_off), and then the
 // two kinds are searched alternately and the Monte Carlo of each searched stroke
-// decides between them. It is off because the search's
-// noiseless score prefers the thin break, so that only thin breaks reached the Monte
-// Carlo (a median of -27 points where the soft break alone has -2), and in whole
-// frames against direct-pots the thin break let it pot a red at once in 32 of 50
-// frames and the soft break in none of 50 (docs/whole-frame-planner.md §9).
+// decides between them. It is off because the search's noiseless score prefers the
+// thin break, so that only thin breaks reached the Monte Carlo (a median of -27
+// points where the soft break alone has -2), and in whole frames against direct-pots
+// the thin break let it pot a red at once in 32 of 50 frames and the soft break in
+// none of 50 (docs/whole-frame-planner.md §9).
 //
 // The rack is untouched when every one of the 15 reds lies within rack_tolerance of
 // a distinct position of the opening triangle (physics::TableModel::reds()): a

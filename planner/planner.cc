@@ -340,8 +340,9 @@ bool PlanRun::AddBreakOff() {
   // only the first few (a break into the pack is a long simulation), and the Monte
   // Carlo then picks between the kinds.
   const std::vector<BreakOffCandidate> soft = SoftBreakCandidates(table_, *config_.table);
+  const bool thin_too = request_.thin_break_off.value_or(config_.thin_break_off);
   const std::vector<BreakOffCandidate> thin =
-      request_.thin_break_off.value_or(config_.thin_break_off) ? BreakOffCandidates(table_, *config_.table) : std::vector<BreakOffCandidate>{};
+      thin_too ? BreakOffCandidates(table_, *config_.table) : std::vector<BreakOffCandidate>{};
   std::vector<BreakOffCandidate> all;
   for (size_t k = 0; k < std::max(soft.size(), thin.size()); ++k) {
     if (k < soft.size()) all.push_back(soft[k]);
@@ -880,7 +881,7 @@ void PlanRun::Conclude() {
 // when it did not run (the request took pots only) or ran out of time.
 std::string PlanRun::FallbackOutcome() const {
   if (fallback_unasked_) {
-    std::string s = std::string(", and the one stroke the scan found is ") +
+    std::string s = std::string(", and the scan's stroke is ") +
                     (*fallback_unasked_ == ShotKind::kEscape ? "an " : "a ") + ToString(*fallback_unasked_) +
                     ", which was not asked for";
     if (*fallback_unasked_ != ShotKind::kFoul && request_.kinds.Has(ShotKind::kFoul)) {

@@ -166,7 +166,7 @@ TEST(ShotKindsTest, TheFallbackAnswersOnlyTheKindsAskedFor) {
   const PlanAnswer safeties = Planner::Default().Plan(r);
   EXPECT_TRUE(safeties.shots.empty()) << ToString(safeties.shots.front().kind);
   EXPECT_EQ(safeties.status, PlanStatus::kNoPot);
-  EXPECT_NE(safeties.reason.find("the one stroke the scan found is an ESCAPE, which was not asked for"),
+  EXPECT_NE(safeties.reason.find("the scan's stroke is an ESCAPE, which was not asked for"),
             std::string::npos)
       << safeties.reason;
   EXPECT_EQ(safeties.reason.find("a foul is offered"), std::string::npos) << safeties.reason;
