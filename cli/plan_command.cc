@@ -176,8 +176,8 @@ void PrintReadable(const v1::PlanResponse& r, std::ostream& out) {
   for (const v1::PlannedShot& s : r.shots()) {
     out << std::fixed << "#" << ++rank << "  " << ShotLabel(s) << std::setprecision(3) << "   ";
     if (s.kind() == v1::POT) out << "P(pot) " << s.pot_probability() << ", ";
-    out << "P(foul) " << s.foul_probability() << ", position " << s.position_value()
-        << (s.next_ball().empty() ? "" : " (next: " + s.next_ball() + ")") << "\n";
+    const std::string leave = LeaveLabel(s, 3);
+    out << "P(foul) " << s.foul_probability() << (leave.empty() ? "" : ", " + leave) << "\n";
     if (s.has_cue_ball_start()) {
       out << "    cue ball in hand: place it at (" << s.cue_ball_start().x() << ", " << s.cue_ball_start().y()
           << ") m, in the D\n";
@@ -206,7 +206,8 @@ void PrintProgress(const v1::PlanResponse& r, bool json, std::ostream& out, std:
     out << std::fixed << std::setprecision(1) << "progress " << r.elapsed_ms() << " ms: " << ShotLabel(s)
         << std::setprecision(3);
     if (s.kind() == v1::POT) out << ", P(pot) estimate " << s.pot_probability();
-    out << ", position " << s.position_value() << std::setprecision(4) << "; speed " << s.speed()
+    const std::string leave = LeaveLabel(s, 3);
+    out << (leave.empty() ? "" : ", " + leave) << std::setprecision(4) << "; speed " << s.speed()
         << " m/s, heading " << s.heading_deg() << " deg\n";
   }
   out << std::flush;

@@ -121,7 +121,7 @@ std::string Headline(const v1::PlannedShot& s) {
 // The shot's lines of the panel, under its number.
 void AddShotLines(svg::Canvas& c, const v1::PlannedShot& s, int number) {
   c.AddPanelLine({Headline(s), true, number, number == 1, 8});
-  std::ostringstream odds, cue, leaves;
+  std::ostringstream odds, cue;
   if (s.kind() == v1::POT) odds << "P(pot) " << Percent(s.pot_probability()) << ", ";
   odds << "P(foul) " << Percent(s.foul_probability());
   c.AddPanelLine({odds.str()});
@@ -140,9 +140,7 @@ void AddShotLines(svg::Canvas& c, const v1::PlannedShot& s, int number) {
           << s.cue_ball_start().y() << ") m";
     c.AddPanelLine({place.str()});
   }
-  leaves << std::fixed << std::setprecision(2) << "leaves position " << s.position_value() << ", next ball "
-         << (s.next_ball().empty() ? "none" : s.next_ball());
-  c.AddPanelLine({leaves.str()});
+  if (const std::string leave = LeaveLabel(s, 2); !leave.empty()) c.AddPanelLine({"leaves " + leave});
 }
 
 const physics::Pocket* PocketNamed(const physics::TableModel& table, const std::string& name) {
@@ -173,7 +171,8 @@ void LabelBest(svg::Canvas& c, const physics::TableModel& table, const Drawn& d,
   }
   for (const v1::FinalBall& f : d.result.final_balls()) {
     if (f.id() == s.next_ball() && !f.pocketed()) {
-      c.Label("next: " + f.id(), c.X(f.position().x()), c.Y(f.position().y()), 9, false);
+      c.Label((s.kind() == v1::POT ? "next: " : "theirs: ") + f.id(), c.X(f.position().x()), c.Y(f.position().y()),
+              9, false);
     }
   }
 }

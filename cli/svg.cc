@@ -71,4 +71,14 @@ std::string ShotLabel(const v1::PlannedShot& s) {
   return label + ")";
 }
 
+std::string LeaveLabel(const v1::PlannedShot& s, int precision) {
+  if (s.kind() == v1::FOUL) return "";
+  const bool pot = s.kind() == v1::POT;
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(precision) << (pot ? "position " : "the opponent's position ")
+      << s.position_value() << (pot ? ", next ball " : ", their best ball ")
+      << (s.next_ball().empty() ? "none" : s.next_ball());
+  return out.str();
+}
+
 }  // namespace snooker::cli

@@ -37,6 +37,12 @@ std::string TableSvg(const physics::TableModel& table, const v1::TableState& tab
 /// top-right (pot, plant off red-2)", "safety, red-3 first", "escape, no ball hit".
 std::string ShotLabel(const v1::PlannedShot& shot);
 
+/// What a planned shot leaves, in words, its values to `precision` decimals: after a
+/// pot the striker's position and next ball ("position 0.82, next ball black");
+/// after a safety, escape or break-off the opponent's ("the opponent's position
+/// 0.12, their best ball red-3"); "" for a foul, whose leave is not scored so.
+std::string LeaveLabel(const v1::PlannedShot& shot, int precision);
+
 /// How a drawing simulates a shot: the operation `snooker simulate` calls
 /// (server::Simulate with the model in use, or a server's Simulate).
 using SimulateFn = std::function<server::ApiStatus(const v1::SimulateRequest&, v1::SimulateResponse*)>;

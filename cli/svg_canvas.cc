@@ -337,7 +337,7 @@ void Canvas::AddKey(bool plan) {
   key_.push_back({3, "shots 2 on: the object ball's path, its number at the end"});
   key_.push_back({4, "shot 1's pocket, with P(pot) beside it"});
   key_.push_back({5, "ghost ball (the cue ball at contact); + the aim point"});
-  key_.push_back({6, "the next ball shot 1 plays for"});
+  key_.push_back({6, "shot 1's next ball (after a pot; else the opponent's best)"});
 }
 
 double Canvas::PanelHeight() const {

@@ -681,6 +681,15 @@ function planFailed(e) {
 
 // "pot, direct" in sentences; in the list a pot is named by its route alone. A foul
 // (the last resort when no legal stroke exists) names the colour it nominates.
+// The position a shot leaves, after the cue ball's place: ours after a pot, the
+// opponent's after a safety, escape or break-off (their position is the planner's
+// estimate of the table they get); a foul's is not scored so.
+function leaveWords(shot) {
+  if (shot.kind === 'FOUL') return '';
+  const whose = shot.kind === 'POT' ? 'position' : 'the opponent\'s position';
+  return `, ${whose} ${fixed(shot.positionValue, 2)}`;
+}
+
 function shotLabel(shot, short) {
   const kind = shot.kind || 'SHOT_KIND_UNSPECIFIED';
   if (kind === 'POT') return (short ? '' : 'pot, ') + words(shot.route || 'direct');
@@ -751,7 +760,10 @@ function renderShots(response, balls) {
       target,
       html('td', { class: 'num pot', text: pct(shot.potProbability), 'data-value': String(num(shot.potProbability)) }),
       html('td', { class: 'num foul', text: pct(shot.foulProbability), 'data-value': String(num(shot.foulProbability)) }),
-      html('td', { class: 'num', text: fixed(shot.positionValue, 2) }),
+      html('td', shot.kind === 'POT'
+        ? { class: 'num pos', text: fixed(shot.positionValue, 2) }
+        : { class: 'num pos theirs', text: fixed(shot.positionValue, 2),
+          title: 'the opponent\'s position: what the table left offers them (low is good)' }),
       html('td', {}, [ballLabel(shot.nextBall, balls)]),
     ]);
     row.addEventListener('click', () => selectShot(i));
@@ -857,9 +869,10 @@ function showDetail(shot, planned) {
     ['cue ball', `${fixed(shot.speed, 2)} m/s at ${fixed(shot.headingDeg, 2)}°, cut ${fixed(shot.cutDeg, 1)}°`],
     ['P(pot)', `${pct(shot.potProbability)} (this pocket ${pct(shot.pocketProbability)})`],
     ['P(foul)', pct(shot.foulProbability)],
-    ['leaves', `the cue ball at (${end.x.toFixed(3)}, ${end.y.toFixed(3)}) m, position ${fixed(shot.positionValue, 2)}`],
-    ['next ball', ballLabel(shot.nextBall, balls)],
+    ['leaves', `the cue ball at (${end.x.toFixed(3)}, ${end.y.toFixed(3)}) m` + leaveWords(shot)],
   ];
+  if (shot.kind === 'POT') rows.push(['next ball', ballLabel(shot.nextBall, balls)]);
+  else if (shot.kind !== 'FOUL') rows.push(['their best ball', ballLabel(shot.nextBall, balls)]);
   if (shot.cueBallStart) {
     const s = vec(shot.cueBallStart);
     rows.unshift(['place cue ball', `(${s.x.toFixed(3)}, ${s.y.toFixed(3)}) m`]);

@@ -428,11 +428,15 @@ async function main() {
         request: window.snookerPage.lastPlanRequest,
         kinds: ((window.snookerPage.lastPlanResponse || {}).shots || []).map((x) => x.kind),
         state: document.body.dataset.planState,
+        theirs: [...document.querySelectorAll('#shots tbody td.pos')].every((td) => td.title.includes('opponent')),
+        detail: document.getElementById('detail-list').textContent,
       }));
-      check('safeties alone: the request asks for SAFETY, every shot is one',
+      check('safeties alone: the request asks for SAFETY, every shot is one, its leave the opponent\'s',
         JSON.stringify(safeties.request.kinds) === '["SAFETY"]' && safeties.state === 'done' &&
-        safeties.kinds.length > 0 && safeties.kinds.every((k) => k === 'SAFETY'),
-        `kinds ${JSON.stringify(safeties.request.kinds)}; shots ${safeties.kinds.join(', ')}`);
+        safeties.kinds.length > 0 && safeties.kinds.every((k) => k === 'SAFETY') && safeties.theirs &&
+        safeties.detail.includes('the opponent\'s position') && safeties.detail.includes('their best ball'),
+        `kinds ${JSON.stringify(safeties.request.kinds)}; shots ${safeties.kinds.join(', ')}; ` +
+        `detail "${safeties.detail}"`);
       const seqBeforeLast = await page.evaluate(() => window.snookerPage.planSeq);
       await page.click('[data-kind="SAFETY"]');
       await sleep(200);

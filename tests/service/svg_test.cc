@@ -225,9 +225,14 @@ TEST_F(PlanPictureTest, TheLegendGivesEachShotAsTheAnswerDoes) {
                   s.cue().elevation_deg(), std::abs(s.cue().tip_side()), s.cue().tip_side() < 0 ? "left" : "right",
                   std::abs(s.cue().tip_height()), s.cue().tip_height() < 0 ? "down" : "up");
     EXPECT_TRUE(Mentions(legend, cue)) << cue << " not in: " << legend;
-    char leaves[64];
-    std::snprintf(leaves, sizeof leaves, "leaves position %.2f, next ball ", s.position_value());
-    EXPECT_TRUE(Mentions(legend, leaves + (s.next_ball().empty() ? "none" : s.next_ball()))) << legend;
+    // After a pot our position and next ball; after another stroke the opponent's.
+    const bool pot = s.kind() == v1::POT;
+    char leaves[96];
+    std::snprintf(leaves, sizeof leaves, "leaves %sposition %.2f, %s ", pot ? "" : "the opponent's ",
+                  s.position_value(), pot ? "next ball" : "their best ball");
+    if (s.kind() != v1::FOUL) {
+      EXPECT_TRUE(Mentions(legend, leaves + (s.next_ball().empty() ? "none" : s.next_ball()))) << legend;
+    }
   }
 }
 
@@ -305,6 +310,33 @@ TEST(PlanPictureNoShotTest, TheTableItsBallsAndWhy) {
   EXPECT_TRUE(Contains(AllTexts(doc, "label"), "no shot")) << doc;
   EXPECT_EQ(Legend(doc), "no shot: " + XmlText(plan.reason()));
   std::remove(table.c_str());
+  std::remove(svg.c_str());
+}
+
+// A safety's leave is the opponent's: the panel, the text and the ring's label say
+// so, with the position value and ball the JSON gives.
+TEST(PlanPictureSafetyTest, ASafetyLeavesTheOpponentsPosition) {
+  const std::string svg = testing::TempDir() + "picture_safety_" + std::to_string(getpid()) + ".svg";
+  const std::string flags = " --table builtin:red --kinds SAFETY --shots 1 --max-simulations 600 --budget-ms 30000";
+  const RunResult r = RunCli("plan --json --svg " + svg + flags);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  v1::PlanResponse plan;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &plan).ok()) << r.out;
+  ASSERT_EQ(plan.shots_size(), 1) << r.out;
+  const v1::PlannedShot& s = plan.shots(0);
+  ASSERT_EQ(s.kind(), v1::SAFETY);
+  ASSERT_FALSE(s.next_ball().empty()) << r.out;  // the red by the pocket is theirs
+  char leave[96];
+  std::snprintf(leave, sizeof leave, "the opponent's position %.2f, their best ball %s", s.position_value(),
+                s.next_ball().c_str());
+  const std::string doc = ReadAll(svg);
+  EXPECT_TRUE(Mentions(Legend(doc), std::string("leaves ") + leave)) << Legend(doc);
+  EXPECT_TRUE(Contains(AllTexts(doc, "label"), "theirs: " + s.next_ball())) << doc;
+  const RunResult text = RunCli("plan" + flags);
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  std::snprintf(leave, sizeof leave, "the opponent's position %.3f, their best ball %s", s.position_value(),
+                s.next_ball().c_str());
+  EXPECT_TRUE(Mentions(text.out, leave)) << text.out;
   std::remove(svg.c_str());
 }
 
