@@ -867,7 +867,7 @@ function showDetail(shot, planned) {
     ['tip', side === 0 && height === 0 ? 'centre ball' : `${side_}, ${height_}`],
     ['elevation', `${elevation.toFixed(1)}°`],
     ['cue ball', `${fixed(shot.speed, 2)} m/s at ${fixed(shot.headingDeg, 2)}°, cut ${fixed(shot.cutDeg, 1)}°`],
-    ['P(pot)', `${pct(shot.potProbability)} (this pocket ${pct(shot.pocketProbability)})`],
+    ...(shot.kind === 'POT' ? [['P(pot)', `${pct(shot.potProbability)} (this pocket ${pct(shot.pocketProbability)})`]] : []),
     ['P(foul)', pct(shot.foulProbability)],
     ['leaves', `the cue ball at (${end.x.toFixed(3)}, ${end.y.toFixed(3)}) m` + leaveWords(shot)],
   ];
