@@ -269,9 +269,13 @@ bool CheckBalls(const v1::TableState& t, const physics::TableModel& table, CueBa
     std::string value = std::to_string(cue_ids.size()) + (cue_ids.size() == 1 ? " CUE ball" : " CUE balls");
     for (std::size_t i = 0; i < cue_ids.size(); ++i) value += (i == 0 ? " (" : ", ") + cue_ids[i];
     if (!cue_ids.empty()) value += ")";
-    errors.push_back({"table.balls", value,
-                      cues == 1 ? "must have exactly one"
-                                : "must have none: the cue ball is in hand (cue_in_hand), the planner places it"});
+    const char* rule = "must have none: the cue ball is in hand (cue_in_hand), the planner places it";
+    if (cues == 1) {
+      rule = cue == CueBall::kOnTableUnlessInHand && cue_ids.empty()
+                 ? "must have exactly one, or none with cue_in_hand set: the planner then places it"
+                 : "must have exactly one";
+    }
+    errors.push_back({"table.balls", value, rule});
   }
   return placeable;
 }

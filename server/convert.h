@@ -70,9 +70,10 @@ struct TableCheck {
 };
 
 /// Where the cue ball of a table state is: on the table (exactly one CUE ball:
-/// Simulate, and Plan), or in hand (no CUE ball: Plan with cue_in_hand, where the
-/// planner places it).
-enum class CueBall : std::uint8_t { kOnTable, kInHand };
+/// Simulate), on the table where the request could have put it in hand (Plan
+/// without cue_in_hand: a missing cue ball's error names that choice), or in hand
+/// (no CUE ball: Plan with cue_in_hand, where the planner places it).
+enum class CueBall : std::uint8_t { kOnTable, kOnTableUnlessInHand, kInHand };
 
 /// Checks a table state: the ball count first, before anything that grows with it;
 /// ids not empty, unique and at most limits::kMaxIdBytes; kinds; one cue ball (none

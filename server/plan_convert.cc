@@ -240,16 +240,9 @@ PlanCheck CheckPlanRequest(const v1::PlanRequest& r, const physics::TableModel& 
       r.has_vision_tolerance_mm() ? std::optional<double>(r.vision_tolerance_mm()) : std::nullopt,
       bounds.vision_tolerance_mm, "vision_tolerance_mm", &tolerance_errors);
   TableCheck check = CheckTable(r.table(), table, tolerance.value_or(bounds.vision_tolerance_mm * 1e-3),
-                                r.cue_in_hand() ? CueBall::kInHand : CueBall::kOnTable);
+                                r.cue_in_hand() ? CueBall::kInHand : CueBall::kOnTableUnlessInHand);
   std::vector<FieldError>& errors = result.errors;
   errors = std::move(check.errors);
-  // A plan's table may leave the cue ball out when it is in hand: say so where it is
-  // missing.
-  for (FieldError& e : errors) {
-    if (!r.cue_in_hand() && e.field == "table.balls" && e.value == "0 CUE balls") {
-      e.rule = "must have exactly one, or none with cue_in_hand set: the planner then places it";
-    }
-  }
   const bool table_ok = errors.empty();
   errors.insert(errors.end(), tolerance_errors.begin(), tolerance_errors.end());
   result.repaired = std::move(check.repaired);

@@ -201,7 +201,7 @@ TEST(SimulateApiTest, BadTablesAreRejectedNamingTheBall) {
       {[](v1::SimulateRequest* r) { r->mutable_table()->mutable_balls(1)->set_kind(v1::CUE); },
        "table.balls = 2 CUE balls (\"cue\", \"black\") (must have exactly one)"},
       {[](v1::SimulateRequest* r) { r->mutable_table()->mutable_balls(0)->set_kind(v1::RED); },
-       "0 CUE balls"},
+       "table.balls = 0 CUE balls (must have exactly one)"},  // no cue ball in hand here
       {[](v1::SimulateRequest* r) {
          r->mutable_table()->mutable_balls(1)->clear_kind();
        },
