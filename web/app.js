@@ -47,17 +47,14 @@ const BUILTIN_TABLES = {
 // ball's width and the apex gap (1 mm) above the pink spot, five rows a radius times
 // sqrt 3 apart, the balls of a row two radii apart; numbered row by row from the apex.
 BUILTIN_TABLES['break-off'] = [];
-for (let row = 0, i = 1; row < 5; ++row) {
+for (let row = 0, i = 1, R = 0.02625; row < 5; ++row) {
   for (let k = 0; k <= row; ++k, ++i) {
-    const R = 0.02625;
     BUILTIN_TABLES['break-off'].push({
       id: `red-${i}`, kind: 'RED', position: { x: 0.889 + (2 * k - row) * R, y: 2.73025 + row * Math.sqrt(3) * R },
     });
   }
 }
 BUILTIN_TABLES['break-off'].push(...BUILTIN_TABLES.colours.filter((b) => b.kind !== 'CUE'));
-// The built-in tables that leave the cue ball in hand.
-const IN_HAND_TABLES = new Set(['break-off']);
 
 // Noise presets: NoiseModel (plan.proto), one standard deviation of each error.
 //  * robot: the server's defaults (planner/pot_estimate.h, argued in
@@ -1103,7 +1100,8 @@ function start() {
   $('builtin').addEventListener('change', () => {
     const name = $('builtin').value;
     if (!BUILTIN_TABLES[name]) return;
-    $('cue-in-hand').checked = IN_HAND_TABLES.has(name);
+    // A built-in table without a cue ball (the break-off's) has it in hand.
+    $('cue-in-hand').checked = !BUILTIN_TABLES[name].some((b) => b.kind === 'CUE');
     setBalls(BUILTIN_TABLES[name]);
     plan('table');
   });
