@@ -122,10 +122,9 @@ v1::Shot ShotAtABall(const v1::TableState& table, LoadRandom& random) {
   return shot;
 }
 
-bool BuiltinTable(const std::string& name, v1::TableState* t, bool* cue_in_hand) {
+bool BuiltinTable(const std::string& name, v1::TableState* t) {
   const physics::TableModel& table = physics::DefaultTable();
   t->Clear();
-  if (cue_in_hand != nullptr) *cue_in_hand = false;
   const std::pair<physics::Colour, std::pair<const char*, v1::BallKind>> colours[] = {
       {physics::Colour::kYellow, {"yellow", v1::YELLOW}}, {physics::Colour::kGreen, {"green", v1::GREEN}},
       {physics::Colour::kBrown, {"brown", v1::BROWN}},    {physics::Colour::kBlue, {"blue", v1::BLUE}},
@@ -155,7 +154,6 @@ bool BuiltinTable(const std::string& name, v1::TableState* t, bool* cue_in_hand)
     const auto reds = table.reds();
     for (std::size_t i = 0; i < reds.size(); ++i) Add(t, "red-" + std::to_string(i + 1), v1::RED, reds[i]);
     for (const auto& [colour, named] : colours) Add(t, named.first, named.second, table.spot(colour));
-    if (cue_in_hand != nullptr) *cue_in_hand = true;
     return true;
   }
   return false;

@@ -42,9 +42,9 @@ v1::Shot ShotAtABall(const v1::TableState& table, LoadRandom& random);
 /// it, the cue ball below and right of it), "red" (a red near the top-right pocket,
 /// the black, a red in baulk), "colours" (the reds gone, the six colours on their
 /// spots, the cue ball near the brown), "break-off" (the frame's opening: the 15
-/// reds racked, the colours on their spots and no cue ball, which is in hand:
-/// `cue_in_hand` is then set true). False for another name.
-bool BuiltinTable(const std::string& name, v1::TableState* table, bool* cue_in_hand = nullptr);
+/// reds racked, the colours on their spots and no cue ball, which is in hand).
+/// False for another name.
+bool BuiltinTable(const std::string& name, v1::TableState* table);
 /// The names BuiltinTable knows, comma-separated.
 const char* BuiltinTableNames();
 

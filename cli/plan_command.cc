@@ -135,16 +135,15 @@ Planner:
   --help                 this text
 )";
 
-// The table of --table into the request's; a built-in table with the cue ball in hand
-// (the break-off's) sets cue_in_hand too.
+// The table of --table into the request's; a built-in table without a cue ball (the
+// break-off's) has it in hand, and sets cue_in_hand too.
 bool ReadTable(const std::string& path, v1::PlanRequest* request, std::ostream& err) {
   v1::TableState* table = request->mutable_table();
   constexpr std::string_view kBuiltin = "builtin:";
   if (path.compare(0, kBuiltin.size(), kBuiltin) == 0) {
     const std::string name = path.substr(kBuiltin.size());
-    bool in_hand = false;
-    if (BuiltinTable(name, table, &in_hand)) {
-      if (in_hand) request->set_cue_in_hand(true);
+    if (BuiltinTable(name, table)) {
+      if (server::CueIndex(*table) < 0) request->set_cue_in_hand(true);
       return true;
     }
     err << "snooker plan: --table '" << path << "': no built-in table '" << name

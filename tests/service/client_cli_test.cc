@@ -260,8 +260,8 @@ TEST(LoadTestTest, PlansAreCheckedAgainstTheirLimits) {
 TEST(LoadTablesTest, BuiltInNamedTablesAreValid) {
   for (const char* name : {"black", "red", "colours", "break-off"}) {
     v1::TableState t;
-    bool in_hand = true;
-    ASSERT_TRUE(cli::BuiltinTable(name, &t, &in_hand)) << name;
+    ASSERT_TRUE(cli::BuiltinTable(name, &t)) << name;
+    const bool in_hand = server::CueIndex(t) < 0;  // the cue ball in hand: no CUE ball
     EXPECT_EQ(in_hand, std::string(name) == "break-off") << name;
     const server::TableCheck check = server::CheckTable(
         t, physics::DefaultTable(), 0, in_hand ? server::CueBall::kInHand : server::CueBall::kOnTable);
