@@ -84,8 +84,9 @@ with its route (direct, plant, double, kick).
                    "potProbability", "pocketProbability", "positionValue", "nextBall",
                    "cueBallEnd": {"x", "y"}, "events": [...], "kind", "route",
                    "firstBall", "foulProbability", "cueBallStart": {"x", "y"},
-                   "ballsEnd": [{"ball", "position", "pocket"}]}], "reason",
-                   "simulations", "evaluations", "elapsedMs", "final", "warnings"};
+                   "ballsEnd": [{"ball", "position", "pocket"}], "expectedPoints",
+                   "monteCarloSamples"}], "reason", "simulations", "evaluations",
+                   "elapsedMs", "final", "warnings"};
                    a shot's first four fields are a simulate shot file
   --svg out.svg    draw the plan (docs/plan-pictures.md): every ball's path of the
                    best shot (simulated again with the model in use), its ghost
@@ -176,7 +177,10 @@ void PrintReadable(const v1::PlanResponse& r, std::ostream& out) {
     out << std::fixed << "#" << ++rank << "  " << ShotLabel(s) << std::setprecision(3) << "   ";
     if (s.kind() == v1::POT) out << "P(pot) " << s.pot_probability() << ", ";
     const std::string leave = LeaveLabel(s, 3);
-    out << "P(foul) " << s.foul_probability() << (leave.empty() ? "" : ", " + leave) << "\n";
+    out << "P(foul) " << s.foul_probability() << (leave.empty() ? "" : ", " + leave) << "; worth "
+        << std::setprecision(2) << s.expected_points() << " points";
+    if (s.monte_carlo_samples() > 0) out << " over " << s.monte_carlo_samples() << " runs";
+    out << "\n";
     if (s.has_cue_ball_start()) {
       out << "    cue ball in hand: place it at (" << s.cue_ball_start().x() << ", " << s.cue_ball_start().y()
           << ") m, in the D\n";

@@ -175,12 +175,16 @@ struct PlannedShot {
   std::vector<BallEnd> balls_end;
   /// The full-fidelity simulation's events.
   std::vector<PlannedEvent> events;
+  /// What the stroke is worth to the striker, in points (the ranking score): the
+  /// Monte Carlo's mean objective, with lookahead's correction for the pots that
+  /// drop; the nominal run's objective until a Monte Carlo ran.
+  double score = 0;
+  /// The Monte Carlo runs behind the probabilities and `score` (0: none ran).
+  int monte_carlo_samples = 0;
 
-  // For reports and ranking (not part of the API's answer).
-  double score = 0;              ///< ranking score: Monte Carlo mean objective
+  // For reports (not part of the API's answer).
   double search_score = 0;       ///< the objective at the nominal shot
   double pot_estimate = 0;       ///< fast estimate from the nominal object-ball line
-  int monte_carlo_samples = 0;
   int source = -1;               ///< the plan's candidate it came from
   double position_points = 0;    ///< the leave's estimated expected points (position.h)
   double lookahead = 0;          ///< two-ply's change of the leave's value (NextShotValue)

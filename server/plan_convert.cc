@@ -412,6 +412,8 @@ void ToProto(const planner::PlannedShot& s, const v1::TableState& table,
   if (pot) out->set_route(ToProto(s.route));
   out->set_first_ball(id(s.first_ball));
   out->set_foul_probability(s.foul_probability);
+  out->set_expected_points(s.score);
+  out->set_monte_carlo_samples(s.monte_carlo_samples);
   if (s.cue_start) ToProto(*s.cue_start, out->mutable_cue_ball_start());
   for (std::size_t i = 0; i < s.balls_end.size(); ++i) {
     const planner::BallEnd& end = s.balls_end[i];

@@ -1,9 +1,9 @@
 // Tests of Plan at the API edge (server/plan_api.h, server/plan_convert.h):
 // validation names each bad field and value, units are converted at the edge, and
 // the answer carries the table's ids (the cue ball placed from hand named "cue"),
-// each shot's kind, route, first ball, foul probability, placement and balls' ends
-// in their JSON names, every planner outcome has one API status, and the proto's
-// comments quote the planner's ranges.
+// each shot's kind, route, first ball, foul probability, expected points, Monte
+// Carlo runs, placement and balls' ends in their JSON names, every planner outcome
+// has one API status, and the proto's comments quote the planner's ranges.
 #include "server/plan_api.h"
 
 #include <google/protobuf/struct.pb.h>
@@ -414,6 +414,44 @@ TEST(PlanTest, ACueBallVisionSawOverlappingARedIsRepairedToTouchItAndPlaysAway) 
   }
 }
 
+// Each probability of a shot is a count of its Monte Carlo runs, and the shots come
+// best first by what they are worth in points: on a table with pots and on one with
+// the black between the cue ball and the red, where an escape is ranked among them.
+TEST(PlanTest, ShotsComeRankedByExpectedPointsAndTheirProbabilitiesCountTheRuns) {
+  v1::PlanRequest snookered = ObviousPot();
+  const v1::Vec2 cue = snookered.table().balls(0).position(), red = snookered.table().balls(1).position();
+  snookered.mutable_table()->mutable_balls(2)->mutable_position()->set_x((cue.x() + red.x()) / 2);
+  snookered.mutable_table()->mutable_balls(2)->mutable_position()->set_y((cue.y() + red.y()) / 2);
+  std::set<v1::ShotKind> kinds;
+  for (v1::PlanRequest request : {ObviousPot(), snookered}) {
+    request.set_max_shots(4);
+    v1::PlanResponse resp;
+    const ApiStatus st = Plan(request, &resp);
+    ASSERT_TRUE(st.ok()) << st.message;
+    ASSERT_GT(resp.shots_size(), 0) << resp.reason();
+    for (int k = 0; k < resp.shots_size(); ++k) {
+      const v1::PlannedShot& s = resp.shots(k);
+      SCOPED_TRACE(testing::Message() << "shot " << k << ", " << v1::ShotKind_Name(s.kind()));
+      kinds.insert(s.kind());
+      ASSERT_GT(s.monte_carlo_samples(), 0);
+      EXPECT_LE(s.monte_carlo_samples(), request.monte_carlo_samples());
+      for (const double p : {s.pot_probability(), s.pocket_probability(), s.foul_probability()}) {
+        const double runs = p * s.monte_carlo_samples();
+        EXPECT_NEAR(runs, std::round(runs), 1e-9) << p;
+      }
+      EXPECT_TRUE(std::isfinite(s.expected_points()));
+      if (k > 0) {
+        EXPECT_LE(s.expected_points(), resp.shots(k - 1).expected_points());
+      }
+    }
+    // A sure pot of a red, the black to follow: worth at least the red.
+    if (resp.shots(0).kind() == v1::POT && resp.shots(0).pot_probability() == 1) {
+      EXPECT_GE(resp.shots(0).expected_points(), 1);
+    }
+  }
+  EXPECT_TRUE(kinds.count(v1::POT) == 1 && kinds.size() > 1);  // pots and another kind ranked
+}
+
 TEST(PlanTest, BadRequestIsInvalidArgument) {
   v1::PlanRequest r = ObviousPot();
   r.set_max_shots(99);
@@ -478,6 +516,8 @@ TEST(PlanConvertTest, EachKindOfShotInTheApisNames) {
   plant.first_ball = 2;
   plant.pocket = physics::PocketId::kTopLeft;
   plant.foul_probability = 0.125;
+  plant.score = 61.5;
+  plant.monte_carlo_samples = 8;
   plant.next_ball = 3;
   plant.balls_end = {{physics::Vec2(1.0, 1.0), std::nullopt},
                      {physics::Vec2(0.05, 3.52), physics::PocketId::kTopLeft},
@@ -513,6 +553,8 @@ TEST(PlanConvertTest, EachKindOfShotInTheApisNames) {
   EXPECT_EQ(p.pocket(), "top-left");
   EXPECT_EQ(p.next_ball(), "the-black");
   EXPECT_DOUBLE_EQ(p.foul_probability(), 0.125);
+  EXPECT_DOUBLE_EQ(p.expected_points(), 61.5);
+  EXPECT_EQ(p.monte_carlo_samples(), 8);
   EXPECT_FALSE(p.has_cue_ball_start());
   ASSERT_EQ(p.balls_end_size(), 4);
   EXPECT_EQ(p.balls_end(0).ball(), "white");
@@ -542,11 +584,13 @@ TEST(PlanConvertTest, EachKindOfShotInTheApisNames) {
             (std::set<std::string>{"speed", "headingDeg", "topspin", "sidespin", "cutDeg", "objectBall", "pocket",
                                    "potProbability", "pocketProbability", "positionValue", "nextBall",
                                    "cueBallEnd", "events", "kind", "route", "firstBall", "foulProbability",
-                                   "ballsEnd", "swerveSpin", "cue"}));
+                                   "ballsEnd", "swerveSpin", "cue", "expectedPoints", "monteCarloSamples"}));
   EXPECT_EQ(Text(ShotOf(json, 0), "kind"), "POT");
   EXPECT_EQ(Text(ShotOf(json, 0), "route"), "PLANT");
   EXPECT_EQ(Text(ShotOf(json, 0), "firstBall"), "r8");
   EXPECT_EQ(ShotOf(json, 0).fields().at("foulProbability").number_value(), 0.125);
+  EXPECT_EQ(ShotOf(json, 0).fields().at("expectedPoints").number_value(), 61.5);
+  EXPECT_EQ(ShotOf(json, 0).fields().at("monteCarloSamples").number_value(), 8);
   const google::protobuf::Struct& end = ShotOf(json, 0).fields().at("ballsEnd").list_value().values(1).struct_value();
   EXPECT_EQ(Keys(end), (std::set<std::string>{"ball", "position", "pocket"}));
   EXPECT_EQ(Text(end, "ball"), "r7");

@@ -66,7 +66,7 @@ TEST(CliPlanTest, JsonHasExactlyTheContractedNames) {
                                             "objectBall", "pocket", "potProbability", "pocketProbability",
                                             "positionValue", "nextBall", "cueBallEnd", "events", "kind",
                                             "route", "firstBall", "foulProbability", "ballsEnd", "swerveSpin",
-                                            "cue"}));
+                                            "cue", "expectedPoints", "monteCarloSamples"}));
   EXPECT_EQ(Keys(s.fields().at("cueBallEnd").struct_value()), (std::set<std::string>{"x", "y"}));
   EXPECT_EQ(Keys(s.fields().at("cue").struct_value()),
             (std::set<std::string>{"speed", "headingDeg", "tipSide", "tipHeight", "elevationDeg"}));

@@ -337,6 +337,11 @@ TEST(PlanPictureSafetyTest, ASafetyLeavesTheOpponentsPosition) {
   std::snprintf(leave, sizeof leave, "the opponent's position %.3f, their best ball %s", s.position_value(),
                 s.next_ball().c_str());
   EXPECT_TRUE(Mentions(text.out, leave)) << text.out;
+  // What it is worth: the opponent's table costs the striker, the runs counted.
+  char worth[64];
+  std::snprintf(worth, sizeof worth, "; worth %.2f points over %d runs", s.expected_points(), s.monte_carlo_samples());
+  EXPECT_TRUE(Mentions(text.out, worth)) << text.out;
+  EXPECT_GT(s.monte_carlo_samples(), 0);
   std::remove(svg.c_str());
 }
 
