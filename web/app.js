@@ -741,6 +741,9 @@ function finishPlan(request, balls, response, info) {
   document.body.dataset.planSeq = String(info.seq);
 }
 
+// How many Monte Carlo runs the probabilities and the points count.
+const runsWords = (shot) => (num(shot.monteCarloSamples) > 0 ? ` (${num(shot.monteCarloSamples)} runs)` : ' (its nominal run)');
+
 function renderShots(response, balls) {
   const body = $('shots').tBodies[0];
   body.classList.remove('stale');
@@ -757,6 +760,7 @@ function renderShots(response, balls) {
       target,
       html('td', { class: 'num pot', text: pct(shot.potProbability), 'data-value': String(num(shot.potProbability)) }),
       html('td', { class: 'num foul', text: pct(shot.foulProbability), 'data-value': String(num(shot.foulProbability)) }),
+      html('td', { class: 'num pts', text: fixed(shot.expectedPoints, 1), 'data-value': String(num(shot.expectedPoints)) }),
       html('td', shot.kind === 'POT'
         ? { class: 'num pos', text: fixed(shot.positionValue, 2) }
         : { class: 'num pos theirs', text: fixed(shot.positionValue, 2),
@@ -866,6 +870,7 @@ function showDetail(shot, planned) {
     ['cue ball', `${fixed(shot.speed, 2)} m/s at ${fixed(shot.headingDeg, 2)}°, cut ${fixed(shot.cutDeg, 1)}°`],
     ...(shot.kind === 'POT' ? [['P(pot)', `${pct(shot.potProbability)} (this pocket ${pct(shot.pocketProbability)})`]] : []),
     ['P(foul)', pct(shot.foulProbability)],
+    ['worth', `${fixed(shot.expectedPoints, 1)} points to the striker` + runsWords(shot)],
     ['leaves', `the cue ball at (${end.x.toFixed(3)}, ${end.y.toFixed(3)}) m` + leaveWords(shot)],
   ];
   if (shot.kind === 'POT') rows.push(['next ball', ballLabel(shot.nextBall, balls)]);

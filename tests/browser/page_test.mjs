@@ -126,6 +126,7 @@ async function shotRows(page) {
   return page.$$eval('#shots tbody tr', (rows) => rows.map((r) => ({
     cells: [...r.cells].map((c) => c.textContent.trim()),
     pot: r.querySelector('td.pot') ? r.querySelector('td.pot').textContent.trim() : null,
+    pts: r.querySelector('td.pts') ? r.querySelector('td.pts').textContent.trim() : null,
   })));
 }
 
@@ -245,10 +246,15 @@ async function main() {
       await page.click('#plan-button');
       const capped = await waitForPlan(page, seq);
       const request = await page.evaluate(() => window.snookerPage.lastPlanRequest);
-      const texts = (await shotRows(page)).map((r) => r.pot);
+      const cappedRows = await shotRows(page);
+      const texts = cappedRows.map((r) => `${r.pot} ${r.pts}`);
       const answer = await unary(base, 'Plan', request);
-      const expected = ((answer.body && answer.body.shots) || []).map((s) => pct(s.potProbability));
-      check('capped plan: the rows\' P(pot) equal a direct Plan call\'s', texts.length > 0 && JSON.stringify(texts) === JSON.stringify(expected),
+      const expected = ((answer.body && answer.body.shots) || [])
+        .map((s) => `${pct(s.potProbability)} ${(Number(s.expectedPoints) || 0).toFixed(1)}`);
+      const points = cappedRows.map((r) => parseFloat(r.pts));
+      const ranked = points.every((p, i) => Number.isFinite(p) && (i === 0 || p <= points[i - 1]));
+      check('capped plan: the rows\' P(pot) and points equal a direct Plan call\'s, best first',
+        texts.length > 0 && JSON.stringify(texts) === JSON.stringify(expected) && ranked,
         `page ${texts.join(', ')}; Plan ${expected.join(', ')} (${capped.shots} shots, maxSimulations ${request.maxSimulations})`);
       await page.$eval('#budget', (e) => { e.value = ''; });
       await page.$eval('#max-simulations', (e) => { e.value = ''; });
