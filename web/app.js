@@ -750,7 +750,7 @@ function renderShots(response, balls) {
   body.replaceChildren();
   const shots = response.shots || [];
   shots.forEach((shot, i) => {
-    const target = html('td');
+    const target = html('td', { class: 'target' });
     target.append(ballLabel(shot.objectBall, balls));
     if (shot.pocket) target.append(' → ' + shot.pocket);
     if (shot.route === 'PLANT' && shot.firstBall) target.append(' (off ', ballLabel(shot.firstBall, balls), ')');

@@ -268,12 +268,16 @@ async function main() {
     await page.evaluate(() => window.scrollTo(0, 0));
     const wide = await page.evaluate(() => {
       const t = document.getElementById('table').getBoundingClientRect();
-      const r = document.getElementById('results').getBoundingClientRect();
-      return { tableWidth: t.width, tableBottom: t.bottom, resultsLeft: r.left, resultsTop: r.top, height: window.innerHeight };
+      const results = document.getElementById('results');
+      const r = results.getBoundingClientRect();
+      return { tableWidth: t.width, tableBottom: t.bottom, resultsLeft: r.left, resultsTop: r.top, height: window.innerHeight,
+        listWidth: results.scrollWidth, panelWidth: results.clientWidth };
     });
-    check('desktop layout: the table beside the shots list, both in view',
-      wide.tableWidth > 700 && wide.tableBottom <= wide.height && wide.resultsLeft > wide.tableWidth && wide.resultsTop >= 0 && wide.resultsTop < wide.height / 2,
-      `table ${wide.tableWidth.toFixed(0)} px wide, shots at (${wide.resultsLeft.toFixed(0)}, ${wide.resultsTop.toFixed(0)})`);
+    check('desktop layout: the table beside the shots list, both in view, no column clipped',
+      wide.tableWidth > 700 && wide.tableBottom <= wide.height && wide.resultsLeft > wide.tableWidth && wide.resultsTop >= 0 &&
+        wide.resultsTop < wide.height / 2 && wide.listWidth <= wide.panelWidth,
+      `table ${wide.tableWidth.toFixed(0)} px wide, shots at (${wide.resultsLeft.toFixed(0)}, ${wide.resultsTop.toFixed(0)}), ` +
+      `the list ${wide.listWidth} px in a panel of ${wide.panelWidth}`);
     await page.screenshot({ path: join(shotsDir, 'page-1280x800.png') });
     await page.setViewport({ width: 768, height: 1024 });
     await page.evaluate(() => window.scrollTo(0, 0));
