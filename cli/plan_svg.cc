@@ -123,7 +123,8 @@ void AddShotLines(svg::Canvas& c, const v1::PlannedShot& s, int number) {
   c.AddPanelLine({Headline(s), true, number, number == 1, 8});
   std::ostringstream odds, cue;
   if (s.kind() == v1::POT) odds << "P(pot) " << Percent(s.pot_probability()) << ", ";
-  odds << "P(foul) " << Percent(s.foul_probability());
+  odds << "P(foul) " << Percent(s.foul_probability()) << ", worth " << std::fixed << std::setprecision(1)
+       << s.expected_points() << " pts";
   c.AddPanelLine({odds.str()});
   const v1::CueStrike& k = s.cue();
   cue << std::fixed << std::setprecision(2) << "cue " << k.speed() << " m/s, elevation " << std::setprecision(1)

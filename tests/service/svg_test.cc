@@ -214,7 +214,9 @@ TEST_F(PlanPictureTest, NumbersEachShotOnTheTableAndBesideIt) {
 TEST_F(PlanPictureTest, TheLegendGivesEachShotAsTheAnswerDoes) {
   const std::string legend = Legend(*svg_);
   for (const v1::PlannedShot& s : plan_->shots()) {
-    std::string odds = "P(foul) " + Percent(s.foul_probability());
+    char worth[48];
+    std::snprintf(worth, sizeof worth, ", worth %.1f pts", s.expected_points());
+    std::string odds = "P(foul) " + Percent(s.foul_probability()) + worth;
     if (s.kind() == v1::POT) {
       odds = "P(pot) " + Percent(s.pot_probability()) + ", " + odds;
       EXPECT_TRUE(Mentions(legend, s.object_ball() + " -&gt; " + s.pocket())) << legend;
