@@ -207,10 +207,14 @@ TEST_F(PlanRpcTest, PlanStreamSendsProgressThenTheFinalAnswerAsPlanGivesIt) {
     EXPECT_FALSE(messages[i].final());
     ASSERT_EQ(messages[i].shots_size(), 1);
     ExpectWithinLimits(request, messages[i]);
+    // The best verified so far, before any Monte Carlo: its nominal run's worth.
+    EXPECT_EQ(messages[i].shots(0).monte_carlo_samples(), 0);
+    EXPECT_TRUE(std::isfinite(messages[i].shots(0).expected_points()));
   }
   const v1::PlanResponse& last = messages.back();
   EXPECT_TRUE(last.final());
   EXPECT_EQ(ShotsOf(last), ShotsOf(unary));
+  for (const v1::PlannedShot& shot : last.shots()) EXPECT_GT(shot.monte_carlo_samples(), 0);
   EXPECT_EQ(last.simulations(), unary.simulations());
   WaitUntilIdle();
   EXPECT_GE(server_->counts().progress_messages, 1);
