@@ -85,7 +85,9 @@ with its route (direct, plant, double, kick).
                    "cueBallEnd": {"x", "y"}, "events": [...], "kind", "route",
                    "firstBall", "foulProbability", "cueBallStart": {"x", "y"},
                    "ballsEnd": [{"ball", "position", "pocket"}], "expectedPoints",
-                   "monteCarloSamples"}], "reason", "simulations", "evaluations",
+                   "monteCarloSamples", "opponent": {"potProbability",
+                   "expectedPoints", "snookered", "foulProbability",
+                   "penaltyPoints"}}], "reason", "simulations", "evaluations",
                    "elapsedMs", "final", "warnings"};
                    a shot's first four fields are a simulate shot file
   --svg out.svg    draw the plan (docs/plan-pictures.md): every ball's path of the

@@ -78,6 +78,7 @@ std::string LeaveLabel(const v1::PlannedShot& s, int precision) {
   out << std::fixed << std::setprecision(precision) << (pot ? "position " : "the opponent's position ")
       << s.position_value() << (pot ? ", next ball " : ", their best ball ")
       << (s.next_ball().empty() ? "none" : s.next_ball());
+  if (s.opponent().snookered()) out << ", snookered (P(foul) " << s.opponent().foul_probability() << ")";
   return out.str();
 }
 

@@ -40,7 +40,8 @@ std::string ShotLabel(const v1::PlannedShot& shot);
 /// What a planned shot leaves, in words, its values to `precision` decimals: after a
 /// pot the striker's position and next ball ("position 0.82, next ball black");
 /// after a safety, escape or break-off the opponent's ("the opponent's position
-/// 0.12, their best ball red-3"); "" for a foul, whose leave is not scored so.
+/// 0.12, their best ball red-3", and when it leaves them snookered ", snookered
+/// (P(foul) 0.50)"); "" for a foul, whose leave is not scored so.
 std::string LeaveLabel(const v1::PlannedShot& shot, int precision);
 
 /// How a drawing simulates a shot: the operation `snooker simulate` calls

@@ -580,6 +580,10 @@ std::optional<PlannedShot> PlanRun::Verify(Worker& w, const Candidate& cand, con
     leave.score = MonteCarloScore(setup, out, finals, after_ctx_, settings_);
   } else {
     leave = ScoreSafety(table, on_, out.first_hit, finals, out.potted, after_ctx_, settings_);
+    if (const std::optional<Outlook>& o = leave.opponent) {
+      ps.opponent = OpponentLeave{o->pot_probability, o->expected_points, o->snooker.snookered, o->foul_probability,
+                                  o->penalty};
+    }
   }
   ps.position_value = leave.position.value;
   ps.position_points = leave.position.expected_points;

@@ -131,6 +131,21 @@ struct BallEnd {
   std::optional<physics::PocketId> pocket;
 };
 
+/// What a stroke that hands the table over leaves the opponent: the outlook
+/// (outlook.h) of the table its verification run leaves, the estimate it is scored by.
+struct OpponentLeave {
+  /// Their best pot's probability (the fast estimate), and what their best pots are
+  /// worth to them (PositionValue::expected_points), points.
+  double pot_probability = 0;
+  double expected_points = 0;
+  /// They cannot hit a ball on directly; then the chance they foul by missing it (a
+  /// one-cushion escape's miss, or OutlookOptions::blind_miss) and the penalty that
+  /// gives the striker, points; both 0 when not snookered.
+  bool snookered = false;
+  double foul_probability = 0;
+  double penalty = 0;
+};
+
 struct PlannedShot {
   /// What the shot is, from its verification run; `route` for pots only.
   ShotKind kind = ShotKind::kPot;
@@ -181,6 +196,9 @@ struct PlannedShot {
   double score = 0;
   /// The Monte Carlo runs behind the probabilities and `score` (0: none ran).
   int monte_carlo_samples = 0;
+  /// A safety, escape or break-off that pots no ball on: what it leaves the
+  /// opponent (nullopt after a pot or a foul).
+  std::optional<OpponentLeave> opponent;
 
   // For reports (not part of the API's answer).
   double search_score = 0;       ///< the objective at the nominal shot

@@ -414,6 +414,14 @@ void ToProto(const planner::PlannedShot& s, const v1::TableState& table,
   out->set_foul_probability(s.foul_probability);
   out->set_expected_points(s.score);
   out->set_monte_carlo_samples(s.monte_carlo_samples);
+  if (s.opponent) {
+    v1::OpponentLeave* o = out->mutable_opponent();
+    o->set_pot_probability(s.opponent->pot_probability);
+    o->set_expected_points(s.opponent->expected_points);
+    o->set_snookered(s.opponent->snookered);
+    o->set_foul_probability(s.opponent->foul_probability);
+    o->set_penalty_points(s.opponent->penalty);
+  }
   if (s.cue_start) ToProto(*s.cue_start, out->mutable_cue_ball_start());
   for (std::size_t i = 0; i < s.balls_end.size(); ++i) {
     const planner::BallEnd& end = s.balls_end[i];

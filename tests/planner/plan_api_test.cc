@@ -2,8 +2,9 @@
 // validation names each bad field and value, units are converted at the edge, and
 // the answer carries the table's ids (the cue ball placed from hand named "cue"),
 // each shot's kind, route, first ball, foul probability, expected points, Monte
-// Carlo runs, placement and balls' ends in their JSON names, every planner outcome
-// has one API status, and the proto's comments quote the planner's ranges.
+// Carlo runs, what a safety leaves the opponent, placement and balls' ends in their
+// JSON names, every planner outcome has one API status, and the proto's comments
+// quote the planner's ranges.
 #include "server/plan_api.h"
 
 #include <google/protobuf/struct.pb.h>
@@ -534,6 +535,7 @@ TEST(PlanConvertTest, EachKindOfShotInTheApisNames) {
   safety.first_ball = 2;
   safety.pocket = physics::PocketId::kMiddleLeft;
   safety.foul_probability = 0.25;
+  safety.opponent = planner::OpponentLeave{0.125, 4.5, true, 0.375, 5};
   planner::PlannedShot escape;  // the cue ball hits nothing
   escape.kind = planner::ShotKind::kEscape;
   escape.object_ball = 1;
@@ -575,6 +577,13 @@ TEST(PlanConvertTest, EachKindOfShotInTheApisNames) {
   EXPECT_EQ(s.object_ball(), "r8");
   EXPECT_EQ(s.first_ball(), "r8");
   EXPECT_DOUBLE_EQ(s.foul_probability(), 0.25);
+  ASSERT_TRUE(s.has_opponent());
+  EXPECT_DOUBLE_EQ(s.opponent().pot_probability(), 0.125);
+  EXPECT_DOUBLE_EQ(s.opponent().expected_points(), 4.5);
+  EXPECT_TRUE(s.opponent().snookered());
+  EXPECT_DOUBLE_EQ(s.opponent().foul_probability(), 0.375);
+  EXPECT_DOUBLE_EQ(s.opponent().penalty_points(), 5);
+  EXPECT_FALSE(p.has_opponent());
   EXPECT_EQ(response.shots(2).kind(), v1::ESCAPE);
   EXPECT_EQ(response.shots(2).first_ball(), "");
   EXPECT_EQ(response.shots(3).kind(), v1::FOUL);
@@ -601,6 +610,8 @@ TEST(PlanConvertTest, EachKindOfShotInTheApisNames) {
   EXPECT_EQ(Text(end, "pocket"), "top-left");
   EXPECT_EQ(Keys(end.fields().at("position").struct_value()), (std::set<std::string>{"x", "y"}));
   EXPECT_EQ(Text(ShotOf(json, 1), "kind"), "SAFETY");
+  EXPECT_EQ(Keys(ShotOf(json, 1).fields().at("opponent").struct_value()),
+            (std::set<std::string>{"potProbability", "expectedPoints", "snookered", "foulProbability", "penaltyPoints"}));
   EXPECT_EQ(Text(ShotOf(json, 1), "route"), "POT_ROUTE_UNSPECIFIED");
   EXPECT_EQ(Text(ShotOf(json, 2), "kind"), "ESCAPE");
   EXPECT_EQ(Text(ShotOf(json, 3), "kind"), "FOUL");

@@ -19,6 +19,7 @@
 #include <utility>
 
 #include "physics/table/table.h"
+#include "snooker/v1/plan.pb.h"
 #include "tests/support/cli_support.h"
 
 namespace snooker {
@@ -309,6 +310,62 @@ TEST(CliPlanTest, TheBreakOffIsABuiltInTable) {
   EXPECT_EQ(thin_breaks(""), 0);
   EXPECT_EQ(thin_breaks(" --cue-in-hand"), 0);  // implied, and allowed
   EXPECT_GT(thin_breaks(" --thin-break-off"), 0);
+}
+
+// A safety says what it leaves the opponent, and without a Monte Carlo its worth is
+// exactly that outlook's: minus their expected points, plus the penalty their
+// expected foul gives. On the colours the safety snookers them (no ball on in
+// sight: a blind escape, 0.5 to miss, 4 points); on the red it does not; a pot has
+// no opponent's leave.
+TEST(CliPlanTest, ASafetySaysWhatItLeavesTheOpponent) {
+  auto plan = [](const std::string& table, const std::string& kinds) {
+    const RunResult r = RunCli("plan --table builtin:" + table + " --kinds " + kinds +
+                               " --shots 3 --max-simulations 2000 --budget-ms 30000 --samples 0 --json");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    v1::PlanResponse answer;
+    EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &answer).ok()) << r.out;
+    EXPECT_GT(answer.shots_size(), 0) << r.out;
+    return answer;
+  };
+  int snookered = 0, open = 0;
+  for (const std::string table : {"colours", "red"}) {
+    const v1::PlanResponse safeties = plan(table, "SAFETY");
+    for (const v1::PlannedShot& s : safeties.shots()) {
+      SCOPED_TRACE(table);
+      ASSERT_EQ(s.kind(), v1::SAFETY);
+      ASSERT_TRUE(s.has_opponent());
+      const v1::OpponentLeave& o = s.opponent();
+      EXPECT_EQ(s.monte_carlo_samples(), 0);
+      EXPECT_EQ(s.expected_points(), -(o.expected_points() - o.foul_probability() * o.penalty_points()));
+      EXPECT_GE(o.pot_probability(), 0);
+      EXPECT_LE(o.pot_probability(), s.position_value());  // the first of its weighted balls
+      if (o.snookered()) {
+        ++snookered;
+        EXPECT_GT(o.foul_probability(), 0);
+        EXPECT_LE(o.foul_probability(), 1);
+        EXPECT_GE(o.penalty_points(), 4);
+        EXPECT_LE(o.penalty_points(), 7);
+      } else {
+        ++open;
+        EXPECT_EQ(o.foul_probability(), 0);
+        EXPECT_EQ(o.penalty_points(), 0);
+      }
+    }
+  }
+  EXPECT_GT(snookered, 0);
+  EXPECT_GT(open, 0);
+  // The text says so beside the opponent's position.
+  const v1::PlanResponse colours = plan("colours", "SAFETY");
+  const RunResult text = RunCli("plan --table builtin:colours --kinds SAFETY --shots 3 --max-simulations 2000"
+                                " --budget-ms 30000 --samples 0");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  int said = 0;
+  for (size_t at = 0; (at = text.out.find(", snookered (P(foul) ", at)) != std::string::npos; ++at) ++said;
+  int expected = 0;
+  for (const v1::PlannedShot& s : colours.shots()) expected += s.opponent().snookered() ? 1 : 0;
+  EXPECT_EQ(said, expected) << text.out;
+  const v1::PlanResponse pots = plan("black", "POT");
+  for (const v1::PlannedShot& s : pots.shots()) EXPECT_FALSE(s.has_opponent());
 }
 
 struct BadInput {
