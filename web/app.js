@@ -687,6 +687,15 @@ function leaveWords(shot) {
   return `, ${whose} ${fixed(shot.positionValue, 2)}`;
 }
 
+// What a stroke that hands the table over leaves the opponent (the answer's
+// `opponent`): their best pot and expected points, and whether they are snookered.
+function opponentWords(o) {
+  const pot = `best pot ${pct(o.potProbability)}, ${fixed(o.expectedPoints, 1)} points expected`;
+  return o.snookered
+    ? `${pot}; snookered: ${pct(o.foulProbability)} to miss, a ${fixed(o.penaltyPoints, 0)}-point foul`
+    : pot;
+}
+
 function shotLabel(shot, short) {
   const kind = shot.kind || 'SHOT_KIND_UNSPECIFIED';
   if (kind === 'POT') return (short ? '' : 'pot, ') + words(shot.route || 'direct');
@@ -875,6 +884,7 @@ function showDetail(shot, planned) {
   ];
   if (shot.kind === 'POT') rows.push(['next ball', ballLabel(shot.nextBall, balls)]);
   else if (shot.kind !== 'FOUL') rows.push(['their best ball', ballLabel(shot.nextBall, balls)]);
+  if (shot.opponent) rows.push(['for them', opponentWords(shot.opponent)]);
   if (shot.cueBallStart) {
     const s = vec(shot.cueBallStart);
     rows.unshift(['place cue ball', `(${s.x.toFixed(3)}, ${s.y.toFixed(3)}) m`]);

@@ -437,14 +437,19 @@ async function main() {
       const safeties = await page.evaluate(() => ({
         request: window.snookerPage.lastPlanRequest,
         kinds: ((window.snookerPage.lastPlanResponse || {}).shots || []).map((x) => x.kind),
+        opponent: (((window.snookerPage.lastPlanResponse || {}).shots || [])[0] || {}).opponent,
         state: document.body.dataset.planState,
         theirs: [...document.querySelectorAll('#shots tbody td.pos')].every((td) => td.title.includes('opponent')),
         detail: document.getElementById('detail-list').textContent,
       }));
-      check('safeties alone: the request asks for SAFETY, every shot is one, its leave the opponent\'s',
+      const o = safeties.opponent || {};
+      const forThem = `for thembest pot ${pct(o.potProbability)}, `;  // the detail's <dt> and <dd>, joined
+      check('safeties alone: the request asks for SAFETY, every shot is one, its leave the opponent\'s, what it leaves them',
         JSON.stringify(safeties.request.kinds) === '["SAFETY"]' && safeties.state === 'done' &&
         safeties.kinds.length > 0 && safeties.kinds.every((k) => k === 'SAFETY') && safeties.theirs &&
-        safeties.detail.includes('the opponent\'s position') && safeties.detail.includes('their best ball'),
+        safeties.detail.includes('the opponent\'s position') && safeties.detail.includes('their best ball') &&
+        safeties.opponent !== undefined && safeties.detail.includes(forThem) &&
+        safeties.detail.includes('snookered:') === Boolean(o.snookered),
         `kinds ${JSON.stringify(safeties.request.kinds)}; shots ${safeties.kinds.join(', ')}; ` +
         `detail "${safeties.detail}"`);
       const seqBeforeLast = await page.evaluate(() => window.snookerPage.planSeq);
