@@ -131,7 +131,7 @@ std::optional<FallbackShot> FindLegalStroke(const TableState& table, int cue, Ba
         ShotSetup as_foul = setup;
         as_foul.kind = ShotKind::kFoul;
         as_foul.object = Nomination(table, on, ball);
-        const double score = MonteCarloScore(as_foul, out, finals, after_ctx, settings);
+        const double score = MonteCarloScore(as_foul, out, finals, after_ctx, settings).score;
         if (!best_foul || score > best_foul->score) {
           best_foul = FallbackShot{ShotKind::kFoul, as_foul.object, k, shot, score, 0};
         }

@@ -577,7 +577,7 @@ std::optional<PlannedShot> PlanRun::Verify(Worker& w, const Candidate& cand, con
   if (pot) {
     leave = ScoreLeave(table, on_, setup.object, finals, out.potted, ps.pot_probability, after_ctx_, settings_);
   } else if (foul) {
-    leave.score = MonteCarloScore(setup, out, finals, after_ctx_, settings_);
+    leave.score = MonteCarloScore(setup, out, finals, after_ctx_, settings_).score;
   } else {
     leave = ScoreSafety(table, on_, out.first_hit, finals, out.potted, after_ctx_, settings_);
     if (const std::optional<Outlook>& o = leave.opponent) {
@@ -828,6 +828,12 @@ void PlanRun::RankByMonteCarlo() {
       ps.pocket_probability = t.pocket_rate();
     }
     ps.foul_probability = t.foul_rate();
+    ps.handovers.runs = t.handovers;
+    ps.handovers.snookered_runs = t.handovers_snookered;
+    if (t.handovers > 0) {
+      ps.handovers.mean_pot_probability = t.opponent_pot_sum / t.handovers;
+      ps.handovers.mean_expected_points = t.opponent_points_sum / t.handovers;
+    }
     // Lookahead's correction of the position's estimate, for the pots that succeed.
     const double mean = tail_fit ? t.tail_corrected_score(config_.pot_tail_min_samples) : t.mean_score();
     ps.score = mean + t.success_rate() * ps.lookahead;

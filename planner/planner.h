@@ -146,6 +146,20 @@ struct OpponentLeave {
   double penalty = 0;
 };
 
+/// What the Monte Carlo's runs that handed the table to the opponent left them
+/// (robustness.h's SampleWorth): a pot's misses, a safety's leaves, every foul; a
+/// run that pots a ball on keeps the table, one that ends the frame leaves nothing.
+struct Handovers {
+  /// Runs that handed the table over (of PlannedShot::monte_carlo_samples), and of
+  /// those the runs that left them snookered.
+  int runs = 0;
+  int snookered_runs = 0;
+  /// Over those runs, the means of their best pot's probability and of their
+  /// expected points (Outlook's); 0 when `runs` is 0.
+  double mean_pot_probability = 0;
+  double mean_expected_points = 0;
+};
+
 struct PlannedShot {
   /// What the shot is, from its verification run; `route` for pots only.
   ShotKind kind = ShotKind::kPot;
@@ -199,6 +213,10 @@ struct PlannedShot {
   /// A safety, escape or break-off that pots no ball on: what it leaves the
   /// opponent (nullopt after a pot or a foul).
   std::optional<OpponentLeave> opponent;
+  /// What the Monte Carlo's runs left the opponent when they handed the table over
+  /// (all 0 when no Monte Carlo ran). For a safety with runs, the spread of leaves
+  /// the noise gives around `opponent`'s one.
+  Handovers handovers;
 
   // For reports (not part of the API's answer).
   double search_score = 0;       ///< the objective at the nominal shot

@@ -104,6 +104,10 @@ void MonteCarloTally::Add(const MonteCarloTally& o) {
   fouls += o.fouls;
   score_sum += o.score_sum;
   success_score_sum += o.success_score_sum;
+  handovers += o.handovers;
+  handovers_snookered += o.handovers_snookered;
+  opponent_pot_sum += o.opponent_pot_sum;
+  opponent_points_sum += o.opponent_points_sum;
   line_samples += o.line_samples;
   line_inside += o.line_inside;
   z_sum += o.z_sum;
@@ -130,14 +134,21 @@ double MonteCarloTally::tail_corrected_score(int min_line_samples) const {
   return mean_score() + (fitted_line_rate() - counted) * (n / samples) * (success - miss);
 }
 
-double MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span<const Vec2> finals,
-                       const PotContext& after_ctx, const SearchSettings& settings) {
+namespace {
+SampleWorth HandedOver(double score, const Outlook& o) {
+  return SampleWorth{score, true, o.pot_probability, o.expected_points, o.snooker.snookered};
+}
+}  // namespace
+
+SampleWorth MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span<const Vec2> finals,
+                            const PotContext& after_ctx, const SearchSettings& settings) {
   const TableState& table = *setup.table;
   if (out.success && setup.kind == ShotKind::kPot) {
-    return ScoreLeave(table, setup.on, setup.object, finals, out.potted, 1.0, after_ctx, settings).score;
+    return SampleWorth{ScoreLeave(table, setup.on, setup.object, finals, out.potted, 1.0, after_ctx, settings).score};
   }
   if (out.foul == Foul::kNone) {
-    return ScoreSafety(table, setup.on, out.first_hit, finals, out.potted, after_ctx, settings).score;
+    const Leave leave = ScoreSafety(table, setup.on, out.first_hit, finals, out.potted, after_ctx, settings);
+    return leave.opponent ? HandedOver(leave.score, *leave.opponent) : SampleWorth{leave.score};
   }
   const int named = setup.object >= 0 ? setup.object : out.first_hit;
   const std::optional<BallKind> nominated =
@@ -145,12 +156,11 @@ double MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span
   const int penalty = FoulPenalty(table, setup.on, nominated, out.first_hit, out.potted);
   // The opponent plays the table left, from the D when the cue ball went down.
   const TableState after = ApplyShot(table, setup.on, finals, out.potted, true, *after_ctx.table);
-  double opponent = 0;
   if (const auto opponent_on = OpeningBallOn(after)) {
     const Outlook o = OpponentOutlook(after, *opponent_on, after_ctx, settings);
-    opponent = o.expected_points - o.expected_penalty;
+    return HandedOver(-(penalty + (o.expected_points - o.expected_penalty)), o);
   }
-  return -(penalty + opponent);
+  return SampleWorth{-static_cast<double>(penalty)};
 }
 
 namespace {
@@ -185,9 +195,15 @@ MonteCarloTally RunSamples(const ShotSetup& setup, const physics::CueStrike& cue
     ++tally.samples;
     finals.clear();
     for (const physics::BallState& b : sim.final_balls()) finals.push_back(b.r);
-    const double score = MonteCarloScore(setup, out, finals, after_ctx, settings);
-    tally.score_sum += score;
-    if (out.success) tally.success_score_sum += score;
+    const SampleWorth worth = MonteCarloScore(setup, out, finals, after_ctx, settings);
+    tally.score_sum += worth.score;
+    if (out.success) tally.success_score_sum += worth.score;
+    if (worth.handed_over) {
+      ++tally.handovers;
+      if (worth.snookered) ++tally.handovers_snookered;
+      tally.opponent_pot_sum += worth.opponent_pot;
+      tally.opponent_points_sum += worth.opponent_points;
+    }
     if (measure_line && ctx.pockets != nullptr && out.first_line.valid && out.first_hit == setup.object) {
       const PocketWindow w = ctx.pockets->Window(setup.pocket, out.first_line.direction, out.first_line.arrival_speed);
       // An empty window (a line no pocket takes) counts as far outside.

@@ -78,6 +78,13 @@ struct MonteCarloTally {
   double score_sum = 0;
   /// Sum of the scores of the successes (the other samples': score_sum less this).
   double success_score_sum = 0;
+  /// Samples that handed the table to the opponent (SampleWorth::handed_over), of
+  /// those the samples that left them snookered, and the sums over those samples of
+  /// their best pot's probability and of their expected points (Outlook's).
+  int handovers = 0;
+  int handovers_snookered = 0;
+  double opponent_pot_sum = 0;
+  double opponent_points_sum = 0;
   /// A direct pot's lines at the pocket (RunSamples with measure_line): the samples
   /// whose object ball left its first contact on a measured line, how many of those
   /// lines lay inside the pocket's window, and the sums of z and z^2, z being the
@@ -105,13 +112,28 @@ struct MonteCarloTally {
   double Rate(int n) const { return samples > 0 ? static_cast<double>(n) / samples : 0; }
 };
 
+/// What one played sample is worth, and what it left the opponent when it handed
+/// them the table.
+struct SampleWorth {
+  /// Points for the striker (MonteCarloScore).
+  double score = 0;
+  /// The opponent is to play a table with a ball on left (no ball on dropped
+  /// legally: a pot's miss, a safety's leave, any foul); then their outlook's best
+  /// pot probability, expected points and whether they are snookered.
+  bool handed_over = false;
+  double opponent_pot = 0;
+  double opponent_points = 0;
+  bool snookered = false;
+};
+
 /// What one played sample is worth to the striker, in ShotScore's points, whatever
 /// the shot meant to do: a pot that drops, its value and the position left
 /// (ScoreLeave); any other legal stroke, what ScoreSafety makes of the table left
 /// (a ball on dropping after all continues the visit; otherwise the opponent's
 /// expected points, negated); a foul, minus the penalty and the opponent's
 /// expected points (OpponentOutlook: from the D when the cue ball went down).
-double MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span<const physics::Vec2> finals,
+/// With the opponent's outlook when the table went to them.
+SampleWorth MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span<const physics::Vec2> finals,
                        const PotContext& after_ctx, const SearchSettings& settings);
 
 /// Runs `count` samples of block stream `seed` for the stroke `cue` played as

@@ -150,7 +150,7 @@ struct Scan {
     PotContext after = ctx;
     after.position_sigma.clear();
     if (out != nullptr) *out = o;
-    return MonteCarloScore(setup, o, finals, after, settings);
+    return MonteCarloScore(setup, o, finals, after, settings).score;
   }
 };
 

@@ -1,6 +1,6 @@
 // The Monte Carlo's Gaussian fit of a direct pot's lines at the pocket: its closed
 // form, when it stands aside, and its agreement with counting where counting is
-// precise.
+// precise; and the tally of the runs that hand the table over.
 #include "planner/robustness.h"
 
 #include <gtest/gtest.h>
@@ -90,6 +90,53 @@ TEST_P(PotTailSamplesTest, TheFitAgreesWithTheCountAndTheCountWithThePots) {
   // Without measure_line nothing is tallied.
   const MonteCarloTally plain = RunSamples(setup, cue, ctx, settings, sim, StopControl{}, 5, 8);
   EXPECT_EQ(plain.line_samples, 0);
+}
+
+// The same pot under 0.3 deg of aim noise misses often (about 60 % of runs). Every miss hands the table over
+// (the red stays on it), no pot does, and a handed-over run is worth to the striker
+// exactly minus what the opponent can expect from it (no foul, no snooker: the
+// striker's cue ball stays in the open). The red left near the pocket is what the
+// opponent is most likely to pot.
+TEST(HandoverTallyTest, EveryMissOfAPotHandsTheOpponentWhatTheyCanExpect) {
+  const Planner& planner = Planner::Default();
+  const physics::TableModel& model = physics::DefaultTable();
+  const physics::Pocket& p = model.pocket(physics::PocketId::kBaulkLeft);
+  TableState t;
+  const Vec2 red = p.mouth_centre - 0.6 * p.axis;
+  t.balls = {{BallKind::kCue, red - 1.0 * p.axis}, {BallKind::kRed, red}};
+  PlanRequest r;
+  r.table = t;
+  r.noise.aim = 0.3 * physics::kPi / 180;
+  const PotContext ctx = planner.ContextFor(r);
+  ShotSimulator sim(model, planner.config().full);
+  const physics::CueStrike cue = LevelStrikeFor({1.5, Direction(p.axis), 0, 0}, ctx.cue_params(),
+                                                planner.config().full.ball, planner.config().full.cloth.g);
+  const ShotSetup setup{&t, 0, 1, p.id, BallOn::kRed};
+  const MonteCarloTally tally =
+      RunSamples(setup, cue, ctx, planner.config().search_settings, sim, StopControl{}, 11, 200);
+  ASSERT_EQ(tally.samples, 200);
+  ASSERT_EQ(tally.fouls, 0);
+  ASSERT_GT(tally.successes, 0);
+  ASSERT_LT(tally.successes, 200) << "the noise should make some runs miss";
+  EXPECT_EQ(tally.handovers, tally.samples - tally.successes);
+  EXPECT_EQ(tally.handovers_snookered, 0);
+  const double miss_score_sum = tally.score_sum - tally.success_score_sum;
+  EXPECT_NEAR(miss_score_sum, -tally.opponent_points_sum, 1e-9 * std::max(1.0, tally.opponent_points_sum));
+  EXPECT_LT(miss_score_sum, 0);
+  const double mean_pot = tally.opponent_pot_sum / tally.handovers;
+  EXPECT_GT(mean_pot, 0.5) << "a missed red 0.6 m from the pocket is left for them";
+  EXPECT_LE(mean_pot, 1.0);
+  // Blocks add up: two blocks' tallies, added, are their handovers together.
+  const SearchSettings& settings = planner.config().search_settings;
+  const MonteCarloTally a = RunSamples(setup, cue, ctx, settings, sim, StopControl{}, 12, 100);
+  const MonteCarloTally b = RunSamples(setup, cue, ctx, settings, sim, StopControl{}, 13, 100);
+  MonteCarloTally both = a;
+  both.Add(b);
+  EXPECT_EQ(both.handovers, a.handovers + b.handovers);
+  EXPECT_EQ(both.handovers_snookered, a.handovers_snookered + b.handovers_snookered);
+  EXPECT_EQ(both.opponent_pot_sum, a.opponent_pot_sum + b.opponent_pot_sum);
+  EXPECT_EQ(both.opponent_points_sum, a.opponent_points_sum + b.opponent_points_sum);
+  EXPECT_GT(both.handovers, 0);
 }
 
 INSTANTIATE_TEST_SUITE_P(AimNoise, PotTailSamplesTest, ::testing::Values(0.05, 0.1, 0.2),
