@@ -87,8 +87,9 @@ with its route (direct, plant, double, kick).
                    "ballsEnd": [{"ball", "position", "pocket"}], "expectedPoints",
                    "monteCarloSamples", "opponent": {"potProbability",
                    "expectedPoints", "snookered", "foulProbability",
-                   "penaltyPoints"}}], "reason", "simulations", "evaluations",
-                   "elapsedMs", "final", "warnings"};
+                   "penaltyPoints"}, "handovers": {"runs", "snookeredRuns",
+                   "meanPotProbability", "meanExpectedPoints"}}], "reason",
+                   "simulations", "evaluations", "elapsedMs", "final", "warnings"};
                    a shot's first four fields are a simulate shot file
   --svg out.svg    draw the plan (docs/plan-pictures.md): every ball's path of the
                    best shot (simulated again with the model in use), its ghost
@@ -186,6 +187,12 @@ void PrintReadable(const v1::PlanResponse& r, std::ostream& out) {
     if (s.has_cue_ball_start()) {
       out << "    cue ball in hand: place it at (" << s.cue_ball_start().x() << ", " << s.cue_ball_start().y()
           << ") m, in the D\n";
+    }
+    if (s.handovers().runs() > 0) {
+      const v1::Handovers& h = s.handovers();
+      out << "    handed over in " << h.runs() << " of " << s.monte_carlo_samples() << " runs: their best pot "
+          << std::setprecision(3) << h.mean_pot_probability() << " and " << std::setprecision(2)
+          << h.mean_expected_points() << " points on average, snookered in " << h.snookered_runs() << "\n";
     }
     out << "    shot: speed " << std::setprecision(4) << s.speed() << " m/s, heading "
         << s.heading_deg() << " deg, topspin " << std::setprecision(2) << s.topspin()

@@ -422,6 +422,13 @@ void ToProto(const planner::PlannedShot& s, const v1::TableState& table,
     o->set_foul_probability(s.opponent->foul_probability);
     o->set_penalty_points(s.opponent->penalty);
   }
+  if (s.monte_carlo_samples > 0) {
+    v1::Handovers* h = out->mutable_handovers();
+    h->set_runs(s.handovers.runs);
+    h->set_snookered_runs(s.handovers.snookered_runs);
+    h->set_mean_pot_probability(s.handovers.mean_pot_probability);
+    h->set_mean_expected_points(s.handovers.mean_expected_points);
+  }
   if (s.cue_start) ToProto(*s.cue_start, out->mutable_cue_ball_start());
   for (std::size_t i = 0; i < s.balls_end.size(); ++i) {
     const planner::BallEnd& end = s.balls_end[i];

@@ -523,6 +523,7 @@ TEST(PlanConvertTest, EachKindOfShotInTheApisNames) {
   plant.foul_probability = 0.125;
   plant.score = 61.5;
   plant.monte_carlo_samples = 8;
+  plant.handovers = planner::Handovers{3, 1, 0.75, 20.5};  // 3 of the 8 runs missed
   plant.next_ball = 3;
   plant.balls_end = {{physics::Vec2(1.0, 1.0), std::nullopt},
                      {physics::Vec2(0.05, 3.52), physics::PocketId::kTopLeft},
@@ -561,6 +562,11 @@ TEST(PlanConvertTest, EachKindOfShotInTheApisNames) {
   EXPECT_DOUBLE_EQ(p.foul_probability(), 0.125);
   EXPECT_DOUBLE_EQ(p.expected_points(), 61.5);
   EXPECT_EQ(p.monte_carlo_samples(), 8);
+  ASSERT_TRUE(p.has_handovers());
+  EXPECT_EQ(p.handovers().runs(), 3);
+  EXPECT_EQ(p.handovers().snookered_runs(), 1);
+  EXPECT_DOUBLE_EQ(p.handovers().mean_pot_probability(), 0.75);
+  EXPECT_DOUBLE_EQ(p.handovers().mean_expected_points(), 20.5);
   EXPECT_FALSE(p.has_cue_ball_start());
   ASSERT_EQ(p.balls_end_size(), 4);
   EXPECT_EQ(p.balls_end(0).ball(), "white");
@@ -584,6 +590,7 @@ TEST(PlanConvertTest, EachKindOfShotInTheApisNames) {
   EXPECT_DOUBLE_EQ(s.opponent().foul_probability(), 0.375);
   EXPECT_DOUBLE_EQ(s.opponent().penalty_points(), 5);
   EXPECT_FALSE(p.has_opponent());
+  EXPECT_FALSE(s.has_handovers()) << "no Monte Carlo ran for it";
   EXPECT_EQ(response.shots(2).kind(), v1::ESCAPE);
   EXPECT_EQ(response.shots(2).first_ball(), "");
   EXPECT_EQ(response.shots(3).kind(), v1::FOUL);
@@ -597,13 +604,16 @@ TEST(PlanConvertTest, EachKindOfShotInTheApisNames) {
             (std::set<std::string>{"speed", "headingDeg", "topspin", "sidespin", "cutDeg", "objectBall", "pocket",
                                    "potProbability", "pocketProbability", "positionValue", "nextBall",
                                    "cueBallEnd", "events", "kind", "route", "firstBall", "foulProbability",
-                                   "ballsEnd", "swerveSpin", "cue", "expectedPoints", "monteCarloSamples"}));
+                                   "ballsEnd", "swerveSpin", "cue", "expectedPoints", "monteCarloSamples",
+                                   "handovers"}));
   EXPECT_EQ(Text(ShotOf(json, 0), "kind"), "POT");
   EXPECT_EQ(Text(ShotOf(json, 0), "route"), "PLANT");
   EXPECT_EQ(Text(ShotOf(json, 0), "firstBall"), "r8");
   EXPECT_EQ(ShotOf(json, 0).fields().at("foulProbability").number_value(), 0.125);
   EXPECT_EQ(ShotOf(json, 0).fields().at("expectedPoints").number_value(), 61.5);
   EXPECT_EQ(ShotOf(json, 0).fields().at("monteCarloSamples").number_value(), 8);
+  EXPECT_EQ(Keys(ShotOf(json, 0).fields().at("handovers").struct_value()),
+            (std::set<std::string>{"runs", "snookeredRuns", "meanPotProbability", "meanExpectedPoints"}));
   const google::protobuf::Struct& end = ShotOf(json, 0).fields().at("ballsEnd").list_value().values(1).struct_value();
   EXPECT_EQ(Keys(end), (std::set<std::string>{"ball", "position", "pocket"}));
   EXPECT_EQ(Text(end, "ball"), "r7");

@@ -67,8 +67,10 @@ TEST(CliPlanTest, JsonHasExactlyTheContractedNames) {
                                             "objectBall", "pocket", "potProbability", "pocketProbability",
                                             "positionValue", "nextBall", "cueBallEnd", "events", "kind",
                                             "route", "firstBall", "foulProbability", "ballsEnd", "swerveSpin",
-                                            "cue", "expectedPoints", "monteCarloSamples"}));
+                                            "cue", "expectedPoints", "monteCarloSamples", "handovers"}));
   EXPECT_EQ(Keys(s.fields().at("cueBallEnd").struct_value()), (std::set<std::string>{"x", "y"}));
+  EXPECT_EQ(Keys(s.fields().at("handovers").struct_value()),
+            (std::set<std::string>{"runs", "snookeredRuns", "meanPotProbability", "meanExpectedPoints"}));
   EXPECT_EQ(Keys(s.fields().at("cue").struct_value()),
             (std::set<std::string>{"speed", "headingDeg", "tipSide", "tipHeight", "elevationDeg"}));
   EXPECT_EQ(s.fields().at("objectBall").string_value(), "red-1");
@@ -367,6 +369,69 @@ TEST(CliPlanTest, ASafetySaysWhatItLeavesTheOpponent) {
   EXPECT_GT(open, 0);
   const v1::PlanResponse pots = plan("black", "POT");
   for (const v1::PlannedShot& s : pots.shots()) EXPECT_FALSE(s.has_opponent());
+}
+
+// With a Monte Carlo each shot says what its runs that handed the table over left
+// the opponent. A safety all of whose runs hand over, none fouling, is worth minus
+// their mean expected points plus what the snookers among them make them expect to
+// give away: exactly minus the mean when none left them snookered, more otherwise.
+// A pot hands over only in runs that did not pot, and the text says how many.
+TEST(CliPlanTest, TheRunsThatHandTheTableOverSayWhatTheyLeft) {
+  auto command = [](const std::string& table, const std::string& kinds) {
+    return "plan --table builtin:" + table + " --kinds " + kinds +
+           " --shots 3 --max-simulations 2000 --budget-ms 30000 --samples 16";
+  };
+  int exact = 0, snookers = 0, handed_over = 0;
+  for (const std::string table : {"colours", "red", "black"}) {
+    SCOPED_TRACE(table);
+    const std::string kinds = table == "black" ? "POT" : "SAFETY";
+    const RunResult r = RunCli(command(table, kinds) + " --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    v1::PlanResponse answer;
+    ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &answer).ok()) << r.out;
+    ASSERT_GT(answer.shots_size(), 0) << r.out;
+    int said = 0;
+    for (const v1::PlannedShot& s : answer.shots()) {
+      const int n = s.monte_carlo_samples();
+      ASSERT_GT(n, 0);
+      ASSERT_TRUE(s.has_handovers());
+      const v1::Handovers& h = s.handovers();
+      EXPECT_GE(h.runs(), 0);
+      EXPECT_LE(h.runs(), n);
+      EXPECT_GE(h.snookered_runs(), 0);
+      EXPECT_LE(h.snookered_runs(), h.runs());
+      EXPECT_GE(h.mean_pot_probability(), 0);
+      EXPECT_LE(h.mean_pot_probability(), 1);
+      if (h.runs() == 0) {
+        EXPECT_EQ(h.mean_pot_probability(), 0);
+        EXPECT_EQ(h.mean_expected_points(), 0);
+      }
+      said += h.runs() > 0 ? 1 : 0;
+      handed_over += h.runs();
+      if (s.kind() == v1::POT) {
+        EXPECT_LE(h.runs() + std::lround(s.pot_probability() * n), n) << "a run that pots keeps the table";
+        continue;
+      }
+      if (h.runs() != n || s.foul_probability() != 0) continue;
+      const double mean = h.mean_expected_points();
+      const double tolerance = 1e-9 * std::max(1.0, std::abs(mean));
+      if (h.snookered_runs() == 0) {
+        ++exact;
+        EXPECT_NEAR(s.expected_points(), -mean, tolerance);
+      } else {
+        ++snookers;
+        EXPECT_GT(s.expected_points(), -mean + tolerance) << "their snookers give the striker points";
+      }
+    }
+    const RunResult text = RunCli(command(table, kinds));
+    ASSERT_EQ(text.exit_code, 0) << text.err;
+    int lines = 0;
+    for (size_t at = 0; (at = text.out.find("    handed over in ", at)) != std::string::npos; ++at) ++lines;
+    EXPECT_EQ(lines, said) << text.out;
+  }
+  EXPECT_GT(exact, 0);
+  EXPECT_GT(snookers, 0);
+  EXPECT_GT(handed_over, 0);
 }
 
 struct BadInput {
