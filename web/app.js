@@ -696,6 +696,16 @@ function opponentWords(o) {
     : pot;
 }
 
+// What the Monte Carlo's runs that handed the table over left the opponent (the
+// answer's `handovers`): how many runs, their best pot and expected points on
+// average, and how many left them snookered; '' when no run handed it over.
+function handoverWords(shot) {
+  const h = shot.handovers;
+  if (!h || num(h.runs) === 0) return '';
+  return `in ${num(h.runs)} of ${num(shot.monteCarloSamples)} runs: their best pot ${pct(h.meanPotProbability)}, ` +
+    `${fixed(h.meanExpectedPoints, 1)} points on average; snookered in ${num(h.snookeredRuns)}`;
+}
+
 function shotLabel(shot, short) {
   const kind = shot.kind || 'SHOT_KIND_UNSPECIFIED';
   if (kind === 'POT') return (short ? '' : 'pot, ') + words(shot.route || 'direct');
@@ -885,6 +895,7 @@ function showDetail(shot, planned) {
   if (shot.kind === 'POT') rows.push(['next ball', ballLabel(shot.nextBall, balls)]);
   else if (shot.kind !== 'FOUL') rows.push(['their best ball', ballLabel(shot.nextBall, balls)]);
   if (shot.opponent) rows.push(['for them', opponentWords(shot.opponent)]);
+  if (handoverWords(shot)) rows.push(['handed over', handoverWords(shot)]);
   if (shot.cueBallStart) {
     const s = vec(shot.cueBallStart);
     rows.unshift(['place cue ball', `(${s.x.toFixed(3)}, ${s.y.toFixed(3)}) m`]);

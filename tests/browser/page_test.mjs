@@ -438,18 +438,25 @@ async function main() {
         request: window.snookerPage.lastPlanRequest,
         kinds: ((window.snookerPage.lastPlanResponse || {}).shots || []).map((x) => x.kind),
         opponent: (((window.snookerPage.lastPlanResponse || {}).shots || [])[0] || {}).opponent,
+        first: ((window.snookerPage.lastPlanResponse || {}).shots || [])[0] || {},
         state: document.body.dataset.planState,
         theirs: [...document.querySelectorAll('#shots tbody td.pos')].every((td) => td.title.includes('opponent')),
         detail: document.getElementById('detail-list').textContent,
       }));
       const o = safeties.opponent || {};
       const forThem = `for thembest pot ${pct(o.potProbability)}, `;  // the detail's <dt> and <dd>, joined
-      check('safeties alone: the request asks for SAFETY, every shot is one, its leave the opponent\'s, what it leaves them',
+      // The runs that handed the table over, when the Monte Carlo ran: a safety hands
+      // it over unless a ball on drops after all.
+      const h = safeties.first.handovers || {};
+      const runs = Number(h.runs || 0), samples = Number(safeties.first.monteCarloSamples || 0);
+      const handedOver = `handed overin ${runs} of ${samples} runs: their best pot ${pct(h.meanPotProbability)}, `;
+      check('safeties alone: the request asks for SAFETY, every shot is one, its leave the opponent\'s, what it and its runs leave them',
         JSON.stringify(safeties.request.kinds) === '["SAFETY"]' && safeties.state === 'done' &&
         safeties.kinds.length > 0 && safeties.kinds.every((k) => k === 'SAFETY') && safeties.theirs &&
         safeties.detail.includes('the opponent\'s position') && safeties.detail.includes('their best ball') &&
         safeties.opponent !== undefined && safeties.detail.includes(forThem) &&
-        safeties.detail.includes('snookered:') === Boolean(o.snookered),
+        safeties.detail.includes('snookered:') === Boolean(o.snookered) &&
+        samples > 0 && runs > 0 && runs <= samples && safeties.detail.includes(handedOver),
         `kinds ${JSON.stringify(safeties.request.kinds)}; shots ${safeties.kinds.join(', ')}; ` +
         `detail "${safeties.detail}"`);
       const seqBeforeLast = await page.evaluate(() => window.snookerPage.planSeq);
