@@ -54,8 +54,9 @@ Players:
                    "pointsA", "pointsB", "meanBreakA", "meanBreakB", "highestBreak",
                    "centuries", "foulsA", "foulsB", "safetiesA", "safetiesB", "stalls",
                    "shots", "planMsP50", "planMsP99"} and more: the players and
-                   settings, "framesCapped" (frames stopped at the shot cap),
-                   "framesUndecided" (of those, level), "blackRespots",
+                   settings ("seedText": the seed as a string, exact where a JSON
+                   double would round it), "framesCapped" (frames stopped at the
+                   shot cap), "framesUndecided" (of those, level), "blackRespots",
                    "simulationFailures", "thinBreakOff" (--thin-break-off), and per
                    player (suffix A or B) highestBreak, centuries, penaltyPoints
                    (from the opponent's fouls), shots, stalls, planMsP50,
@@ -178,7 +179,7 @@ void PrintJson(const Parsed& p, const planner::MatchReport& r, std::ostream& out
     << ", \"shots\": " << r.shots << ", \"planMsP50\": " << Number(r.plan_ms_p50)
     << ", \"planMsP99\": " << Number(r.plan_ms_p99);
   j << ", \"playerA\": \"" << planner::ToString(a.kind) << "\", \"playerB\": \"" << planner::ToString(b.kind)
-    << "\", \"seed\": " << o.seed << ", \"budgetMs\": " << Number(p.budget_ms)
+    << "\", \"seed\": " << o.seed << ", \"seedText\": \"" << o.seed << "\", \"budgetMs\": " << Number(p.budget_ms)
     << ", \"maxSimulations\": " << o.max_simulations << ", \"samples\": " << o.monte_carlo_samples
     << ", \"threads\": " << o.threads << ", \"breakValue\": " << Number(o.break_value)
     << ", \"thinBreakOff\": " << (o.thin_break_off ? "true" : "false")

@@ -38,6 +38,19 @@ std::set<std::string> Keys(const Struct& s) {
 constexpr const char* kShortMatch =
     "match --frames 2 --seed 11 --json --max-simulations 60 --samples 8 --budget-ms 30000 --max-shots 8";
 
+// A seed above 2^53 is no exact double: a JSON reader that parses numbers as doubles
+// reads "seed" rounded (2^64 - 1 becomes 2^64), so "seedText" carries it exactly.
+TEST(CliMatchTest, TheSeedSurvivesAsTextWhereADoubleWouldRoundIt) {
+  const RunResult r = RunCli("match --frames 1 --seed 18446744073709551615 --json --max-simulations 30 --samples 4 "
+                             "--budget-ms 30000 --max-shots 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  Struct json;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &json).ok()) << r.out;
+  EXPECT_EQ(json.fields().at("seedText").string_value(), "18446744073709551615");
+  EXPECT_NE(r.out.find("\"seed\": 18446744073709551615,"), std::string::npos) << r.out;
+  EXPECT_EQ(json.fields().at("seed").number_value(), 18446744073709551616.0) << "a double rounds it";
+}
+
 TEST(CliMatchTest, JsonHasTheContractedNames) {
   const RunResult r = RunCli(kShortMatch);
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -48,7 +61,7 @@ TEST(CliMatchTest, JsonHasTheContractedNames) {
                                           "foulsB",     "safetiesA",  "safetiesB",  "stalls",    "shots",
                                           "planMsP50",  "planMsP99"};
   const std::set<std::string> more = {
-      "playerA",      "playerB",       "seed",           "budgetMs",          "maxSimulations", "samples", "threads", "breakValue",
+      "playerA",      "playerB",       "seed",  "seedText",  "budgetMs",          "maxSimulations", "samples", "threads", "breakValue",
       "noiseHeadingDeg", "noiseSpeed", "noiseSpin", "noiseAimDeg", "noiseCueSpeed", "noiseTipMm", "noiseElevationDeg", "noisePositionMm",   "maxShots",
       "framesCapped", "framesUndecided", "blackRespots", "simulationFailures", "thinBreakOff", "highestBreakA",
       "highestBreakB", "centuriesA",   "centuriesB",     "penaltyPointsA",    "penaltyPointsB",
@@ -69,6 +82,8 @@ TEST(CliMatchTest, JsonHasTheContractedNames) {
   EXPECT_EQ(f.at("samples").number_value(), 8);
   EXPECT_EQ(f.at("threads").number_value(), 2);
   EXPECT_EQ(f.at("breakValue").number_value(), 100);  // planner/match.h kFrameBreakValue
+  EXPECT_EQ(f.at("seed").number_value(), 11);
+  EXPECT_EQ(f.at("seedText").string_value(), "11");
   EXPECT_LE(f.at("framesWonA").number_value() + f.at("framesWonB").number_value(), 2);
   EXPECT_GT(f.at("shots").number_value(), 0);
   EXPECT_LE(f.at("shots").number_value(), 16);
