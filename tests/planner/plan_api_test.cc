@@ -442,6 +442,11 @@ TEST(PlanTest, ShotsComeRankedByExpectedPointsAndTheirProbabilitiesCountTheRuns)
         EXPECT_NEAR(runs, std::round(runs), 1e-9) << p;
       }
       EXPECT_TRUE(std::isfinite(s.expected_points()));
+      // The runs that hand the table over are among those that did not pot.
+      ASSERT_TRUE(s.has_handovers());
+      const double pots = s.kind() == v1::POT ? s.pot_probability() * s.monte_carlo_samples() : 0;
+      EXPECT_LE(s.handovers().runs() + std::lround(pots), s.monte_carlo_samples());
+      EXPECT_LE(s.handovers().snookered_runs(), s.handovers().runs());
       if (k > 0) {
         EXPECT_LE(s.expected_points(), resp.shots(k - 1).expected_points());
       }

@@ -209,12 +209,16 @@ TEST_F(PlanRpcTest, PlanStreamSendsProgressThenTheFinalAnswerAsPlanGivesIt) {
     ExpectWithinLimits(request, messages[i]);
     // The best verified so far, before any Monte Carlo: its nominal run's worth.
     EXPECT_EQ(messages[i].shots(0).monte_carlo_samples(), 0);
+    EXPECT_FALSE(messages[i].shots(0).has_handovers());
     EXPECT_TRUE(std::isfinite(messages[i].shots(0).expected_points()));
   }
   const v1::PlanResponse& last = messages.back();
   EXPECT_TRUE(last.final());
   EXPECT_EQ(ShotsOf(last), ShotsOf(unary));
-  for (const v1::PlannedShot& shot : last.shots()) EXPECT_GT(shot.monte_carlo_samples(), 0);
+  for (const v1::PlannedShot& shot : last.shots()) {
+    EXPECT_GT(shot.monte_carlo_samples(), 0);
+    EXPECT_TRUE(shot.has_handovers());
+  }
   EXPECT_EQ(last.simulations(), unary.simulations());
   WaitUntilIdle();
   EXPECT_GE(server_->counts().progress_messages, 1);
