@@ -56,30 +56,61 @@ TEST(PotTailFitTest, TooFewLinesNoPotOrNoSpreadLeaveTheMeanAlone) {
   EXPECT_NEAR(same.tail_corrected_score(16), same.mean_score(), 1e-9);
 }
 
-// A straight pot 1.6 m long, aimed true, under aim noise: the share of lines inside
-// the tabulated window is what drops, and the Gaussian fit of the lines gives that
-// share within the count's own sampling error.
+// A straight red 0.6 m from the baulk-left pocket and the cue ball 1 m behind it
+// (a pot 1.6 m long), struck true at 1.5 m/s with a level centre cue, under
+// `aim_deg` of aim noise; the Monte Carlo's inputs for it.
+struct StraightPot {
+  explicit StraightPot(double aim_deg)
+      : planner(Planner::Default()),
+        model(physics::DefaultTable()),
+        pocket(model.pocket(physics::PocketId::kBaulkLeft)),
+        table(Table(pocket)),
+        ctx(Context(planner, table, aim_deg)),
+        settings(planner.config().search_settings),
+        sim(model, planner.config().full),
+        cue(LevelStrikeFor({1.5, Direction(pocket.axis), 0, 0}, ctx.cue_params(), planner.config().full.ball,
+                           planner.config().full.cloth.g)),
+        setup{&table, 0, 1, pocket.id, BallOn::kRed} {}
+
+  MonteCarloTally Run(std::uint64_t seed, int count, bool measure_line = false) {
+    return RunSamples(setup, cue, ctx, settings, sim, StopControl{}, seed, count, measure_line);
+  }
+
+  const Planner& planner;
+  const physics::TableModel& model;
+  const physics::Pocket& pocket;
+  const TableState table;
+  const PotContext ctx;
+  const SearchSettings& settings;
+  ShotSimulator sim;
+  const physics::CueStrike cue;
+  const ShotSetup setup;
+
+ private:
+  static TableState Table(const physics::Pocket& p) {
+    TableState t;
+    const Vec2 red = p.mouth_centre - 0.6 * p.axis;
+    t.balls = {{BallKind::kCue, red - 1.0 * p.axis}, {BallKind::kRed, red}};
+    return t;
+  }
+  static PotContext Context(const Planner& planner, const TableState& t, double aim_deg) {
+    PlanRequest r;
+    r.table = t;
+    r.noise.aim = aim_deg * physics::kPi / 180;
+    return planner.ContextFor(r);
+  }
+};
+
+// The straight pot under aim noise: the share of lines inside the tabulated window
+// is what drops, and the Gaussian fit of the lines gives that share within the
+// count's own sampling error.
 class PotTailSamplesTest : public ::testing::TestWithParam<double> {};
 
 TEST_P(PotTailSamplesTest, TheFitAgreesWithTheCountAndTheCountWithThePots) {
-  const Planner& planner = Planner::Default();
-  const physics::TableModel& model = physics::DefaultTable();
-  const physics::Pocket& p = model.pocket(physics::PocketId::kBaulkLeft);
-  TableState t;
-  const Vec2 red = p.mouth_centre - 0.6 * p.axis;
-  t.balls = {{BallKind::kCue, red - 1.0 * p.axis}, {BallKind::kRed, red}};
-  PlanRequest r;
-  r.table = t;
-  r.noise.aim = GetParam() * physics::kPi / 180;
-  const PotContext ctx = planner.ContextFor(r);
-  ASSERT_NE(ctx.pockets, nullptr);
-  const SearchSettings& settings = planner.config().search_settings;
-  ShotSimulator sim(model, planner.config().full);
-  const physics::CueStrike cue = LevelStrikeFor({1.5, Direction(p.axis), 0, 0}, ctx.cue_params(),
-                                                planner.config().full.ball, planner.config().full.cloth.g);
-  const ShotSetup setup{&t, 0, 1, p.id, BallOn::kRed};
+  StraightPot pot(GetParam());
+  ASSERT_NE(pot.ctx.pockets, nullptr);
   const int n = 400;
-  const MonteCarloTally tally = RunSamples(setup, cue, ctx, settings, sim, StopControl{}, 5, n, true);
+  const MonteCarloTally tally = pot.Run(5, n, true);
   ASSERT_EQ(tally.samples, n);
   EXPECT_EQ(tally.line_samples, n) << "every sample met the red and measured its line";
   const double counted = static_cast<double>(tally.line_inside) / n;
@@ -88,32 +119,18 @@ TEST_P(PotTailSamplesTest, TheFitAgreesWithTheCountAndTheCountWithThePots) {
   EXPECT_NEAR(counted, tally.success_rate(), error);
   EXPECT_NEAR(fitted, counted, error);
   // Without measure_line nothing is tallied.
-  const MonteCarloTally plain = RunSamples(setup, cue, ctx, settings, sim, StopControl{}, 5, 8);
+  const MonteCarloTally plain = pot.Run(5, 8);
   EXPECT_EQ(plain.line_samples, 0);
 }
 
-// The same pot under 0.3 deg of aim noise misses often (about 60 % of runs). Every miss hands the table over
-// (the red stays on it), no pot does, and a handed-over run is worth to the striker
-// exactly minus what the opponent can expect from it (no foul, no snooker: the
-// striker's cue ball stays in the open). The red left near the pocket is what the
-// opponent is most likely to pot.
+// The straight pot under 0.3 deg of aim noise misses often (about 60 % of runs).
+// Every miss hands the table over (the red stays on it), no pot does, and a
+// handed-over run is worth to the striker exactly minus what the opponent can expect
+// from it (no foul, no snooker: the striker's cue ball stays in the open). The red
+// left near the pocket is what the opponent is most likely to pot.
 TEST(HandoverTallyTest, EveryMissOfAPotHandsTheOpponentWhatTheyCanExpect) {
-  const Planner& planner = Planner::Default();
-  const physics::TableModel& model = physics::DefaultTable();
-  const physics::Pocket& p = model.pocket(physics::PocketId::kBaulkLeft);
-  TableState t;
-  const Vec2 red = p.mouth_centre - 0.6 * p.axis;
-  t.balls = {{BallKind::kCue, red - 1.0 * p.axis}, {BallKind::kRed, red}};
-  PlanRequest r;
-  r.table = t;
-  r.noise.aim = 0.3 * physics::kPi / 180;
-  const PotContext ctx = planner.ContextFor(r);
-  ShotSimulator sim(model, planner.config().full);
-  const physics::CueStrike cue = LevelStrikeFor({1.5, Direction(p.axis), 0, 0}, ctx.cue_params(),
-                                                planner.config().full.ball, planner.config().full.cloth.g);
-  const ShotSetup setup{&t, 0, 1, p.id, BallOn::kRed};
-  const MonteCarloTally tally =
-      RunSamples(setup, cue, ctx, planner.config().search_settings, sim, StopControl{}, 11, 200);
+  StraightPot pot(0.3);
+  const MonteCarloTally tally = pot.Run(11, 200);
   ASSERT_EQ(tally.samples, 200);
   ASSERT_EQ(tally.fouls, 0);
   ASSERT_GT(tally.successes, 0);
@@ -127,9 +144,8 @@ TEST(HandoverTallyTest, EveryMissOfAPotHandsTheOpponentWhatTheyCanExpect) {
   EXPECT_GT(mean_pot, 0.5) << "a missed red 0.6 m from the pocket is left for them";
   EXPECT_LE(mean_pot, 1.0);
   // Blocks add up: two blocks' tallies, added, are their handovers together.
-  const SearchSettings& settings = planner.config().search_settings;
-  const MonteCarloTally a = RunSamples(setup, cue, ctx, settings, sim, StopControl{}, 12, 100);
-  const MonteCarloTally b = RunSamples(setup, cue, ctx, settings, sim, StopControl{}, 13, 100);
+  const MonteCarloTally a = pot.Run(12, 100);
+  const MonteCarloTally b = pot.Run(13, 100);
   MonteCarloTally both = a;
   both.Add(b);
   EXPECT_EQ(both.handovers, a.handovers + b.handovers);
