@@ -134,7 +134,7 @@ struct SampleWorth {
 /// expected points (OpponentOutlook: from the D when the cue ball went down).
 /// With the opponent's outlook when the table went to them.
 SampleWorth MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span<const physics::Vec2> finals,
-                       const PotContext& after_ctx, const SearchSettings& settings);
+                            const PotContext& after_ctx, const SearchSettings& settings);
 
 /// Runs `count` samples of block stream `seed` for the stroke `cue` played as
 /// `setup` says (its table as vision saw it), under ctx.execution's noise and
