@@ -44,6 +44,13 @@ constexpr const char* kTable = R"({"balls": [
   {"id": "black", "kind": "BLACK", "position": {"x": 0.889, "y": 3.245}},
   {"id": "red-2", "kind": "RED", "position": {"x": 0.4, "y": 1.5}}]})";
 
+// How many times `needle` occurs in `text`.
+int Occurrences(const std::string& text, const std::string& needle) {
+  int n = 0;
+  for (size_t at = 0; (at = text.find(needle, at)) != std::string::npos; ++at) ++n;
+  return n;
+}
+
 std::set<std::string> Keys(const Struct& s) {
   std::set<std::string> k;
   for (const auto& [name, value] : s.fields()) k.insert(name);
@@ -361,9 +368,7 @@ TEST(CliPlanTest, ASafetySaysWhatItLeavesTheOpponent) {
     // The text says so beside the opponent's position, for exactly those shots.
     const RunResult text = RunCli(command(table, "SAFETY"));
     ASSERT_EQ(text.exit_code, 0) << text.err;
-    int said = 0;
-    for (size_t at = 0; (at = text.out.find(", snookered (P(foul) ", at)) != std::string::npos; ++at) ++said;
-    EXPECT_EQ(said, snookered_here) << text.out;
+    EXPECT_EQ(Occurrences(text.out, ", snookered (P(foul) "), snookered_here) << text.out;
   }
   EXPECT_GT(snookered, 0);
   EXPECT_GT(open, 0);
@@ -425,9 +430,7 @@ TEST(CliPlanTest, TheRunsThatHandTheTableOverSayWhatTheyLeft) {
     }
     const RunResult text = RunCli(command(table, kinds));
     ASSERT_EQ(text.exit_code, 0) << text.err;
-    int lines = 0;
-    for (size_t at = 0; (at = text.out.find("    handed over in ", at)) != std::string::npos; ++at) ++lines;
-    EXPECT_EQ(lines, said) << text.out;
+    EXPECT_EQ(Occurrences(text.out, "    handed over in "), said) << text.out;
   }
   EXPECT_GT(exact, 0);
   EXPECT_GT(snookers, 0);
