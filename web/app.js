@@ -895,7 +895,8 @@ function showDetail(shot, planned) {
   if (shot.kind === 'POT') rows.push(['next ball', ballLabel(shot.nextBall, balls)]);
   else if (shot.kind !== 'FOUL') rows.push(['their best ball', ballLabel(shot.nextBall, balls)]);
   if (shot.opponent) rows.push(['for them', opponentWords(shot.opponent)]);
-  if (handoverWords(shot)) rows.push(['handed over', handoverWords(shot)]);
+  const handedOver = handoverWords(shot);
+  if (handedOver) rows.push(['handed over', handedOver]);
   if (shot.cueBallStart) {
     const s = vec(shot.cueBallStart);
     rows.unshift(['place cue ball', `(${s.x.toFixed(3)}, ${s.y.toFixed(3)}) m`]);
