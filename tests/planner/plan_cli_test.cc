@@ -380,7 +380,10 @@ TEST(CliPlanTest, ASafetySaysWhatItLeavesTheOpponent) {
 // the opponent. A safety all of whose runs hand over, none fouling, is worth minus
 // their mean expected points plus what the snookers among them make them expect to
 // give away: exactly minus the mean when none left them snookered, more otherwise.
-// A pot hands over only in runs that did not pot, and the text says how many.
+// Which of the two a safety meets depends on its last bits (a clang build and a GCC
+// build leave different runs snookered), so the test asks for at least one of them;
+// HandoverTallyTest holds the exact case on a fixed sample set. A pot hands over only
+// in runs that did not pot, and the text says how many.
 TEST(CliPlanTest, TheRunsThatHandTheTableOverSayWhatTheyLeft) {
   auto command = [](const std::string& table, const std::string& kinds) {
     return "plan --table builtin:" + table + " --kinds " + kinds +
@@ -432,8 +435,7 @@ TEST(CliPlanTest, TheRunsThatHandTheTableOverSayWhatTheyLeft) {
     ASSERT_EQ(text.exit_code, 0) << text.err;
     EXPECT_EQ(Occurrences(text.out, "    handed over in "), said) << text.out;
   }
-  EXPECT_GT(exact, 0);
-  EXPECT_GT(snookers, 0);
+  EXPECT_GT(exact + snookers, 0) << "no safety handed the table over in every run";
   EXPECT_GT(handed_over, 0);
 }
 
