@@ -73,8 +73,10 @@ class CushionHybrid {
       : p_(model) {
     const double R = model.radius;
     const double v_scale = CushionSpeedScale(in, R);
-    const double atol = opt.tolerance * v_scale;
-    settings_.tolerance = opt.tolerance;
+    // Looser tolerances are solved at kLoosestCushionTolerance (ball_cushion.h).
+    const double tolerance = std::min(opt.tolerance, kLoosestCushionTolerance);
+    const double atol = tolerance * v_scale;
+    settings_.tolerance = tolerance;
     settings_.max_steps = opt.max_steps;
     settings_.speed_scale = v_scale;
     settings_.slip_zero = std::max(kSlipZeroInTolerances * atol, 64 * kEps * v_scale);
@@ -88,7 +90,7 @@ class CushionHybrid {
     // A contact sticks only with this margin inside its cone, so that a contact
     // released at a cone exit (located to ~1e-3 of the tolerance) does not stick again
     // at once.
-    hold_margin_ = 2e-3 * opt.tolerance;
+    hold_margin_ = 2e-3 * tolerance;
     for (int c = 0; c < kContacts; ++c) {  // the slip maps, d u_c / d y
       slip_map_[c].setZero();
       for (int i = 0; i < kWork; ++i) slip_map_[c].col(i) = cushion::Slip(c, State::Unit(i), p_);
