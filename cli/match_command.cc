@@ -91,7 +91,11 @@ Match:
                          "scoreB", "planMs", "handoverPot" (when the stroke handed
                          the table over and the frame goes on, the incoming
                          player's best pot probability by the planner's fast
-                         estimate, as safetyOutlook measures it; else null)}; a
+                         estimate, as safetyOutlook measures it; else null),
+                         "planHandovers" (what the plan's Monte Carlo predicted:
+                         {"samples", "runs" that handed the table over,
+                         "snookeredRuns", "meanPotProbability" the opponent's best
+                         pot over those runs}; null for a stall)}; a
                          stall adds "stallReason" (why the plan gave no stroke),
                          "stallOn", "stallInHand" and "stallTable" (the table as
                          the striker saw it, in --table's format: `snooker plan
@@ -284,6 +288,14 @@ void PrintStroke(const planner::StrokeRecord& s, bool tables, std::ostream& out)
     << ", \"planMs\": " << Number(s.plan_ms) << ", \"handoverPot\": " << Number(s.handover_outlook)
     // A string: 64 bits do not fit a JSON reader's double.
     << ", \"planSeed\": \"" << s.plan_seed << "\"";
+  j << ", \"planHandovers\": ";
+  if (s.stall || s.plan_samples == 0) {
+    j << "null";
+  } else {
+    const planner::Handovers& h = s.plan_handovers;
+    j << "{\"samples\": " << s.plan_samples << ", \"runs\": " << h.runs << ", \"snookeredRuns\": " << h.snookered_runs
+      << ", \"meanPotProbability\": " << Number(h.mean_pot_probability) << "}";
+  }
   if (tables) j << ", \"on\": \"" << on << "\", \"inHand\": " << in_hand << ", \"table\": " << TableJson(s.table);
   if (s.stall) {
     // Why the plan gave no stroke, and its table in snooker plan's --table format

@@ -186,6 +186,8 @@ struct TurnChoice {
   double plan_ms = 0;
   double pot_probability = std::numeric_limits<double>::quiet_NaN();
   double plan_score = std::numeric_limits<double>::quiet_NaN();
+  int samples = 0;
+  Handovers handovers;
   std::string stall_reason;
   TableState seen;
   std::uint64_t plan_seed = 0;
@@ -265,6 +267,8 @@ TurnChoice MatchRunner::Choose(const FrameState& f, int frame, Rng& rng) const {
       c.route = p.route;
       if (p.kind == ShotKind::kPot) c.pot_probability = p.pot_probability;
       c.plan_score = p.score;
+      c.samples = p.monte_carlo_samples;
+      c.handovers = p.handovers;
       // A foul stroke names the colour it nominates as its object ball.
       c.nominated = NominationFor(f, p.first_ball >= 0 && p.kind != ShotKind::kFoul ? p.first_ball : p.object_ball);
       return c;
@@ -325,6 +329,8 @@ void MatchRunner::Play(int frame, FrameState& f, const TurnChoice& c, Rng& rng, 
     rec.score = f.score;
     rec.plan_ms = c.plan_ms;
     rec.handover_outlook = handover;
+    rec.plan_samples = c.samples;
+    rec.plan_handovers = c.handovers;
     rec.ball_on = on_before;
     rec.table = c.seen;
     rec.plan_seed = c.plan_seed;

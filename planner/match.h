@@ -91,6 +91,12 @@ struct StrokeRecord {
   /// what a miss leaves can be checked against what the opponent then did). NaN
   /// otherwise, or with no outlook set.
   double handover_outlook = std::numeric_limits<double>::quiet_NaN();
+  /// What the plan's Monte Carlo predicted for the stroke's handovers: its samples
+  /// (0 for a stall, or when the plan ran none) and, of those, the runs that handed
+  /// the table over and what they left (PlannedShot::handovers), to be set against
+  /// whether this stroke handed it over and `handover_outlook`.
+  int plan_samples = 0;
+  Handovers plan_handovers;
   /// A stall only: why the plan gave no stroke (its status and reason, or why its
   /// placement in the D could not be used).
   std::string stall_reason;

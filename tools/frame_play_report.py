@@ -11,8 +11,10 @@ vision noises 0.2 and 0.5 mm, and the noise scan against direct-pots
 0.25); the matches missing are left out, none is an error.
 COMMAND is the command that made the data, REVISION the commit measured; both are
 named in the document. With --handover it prints only the table of what player A's
-strokes that handed the table over left (handover_table), and what player B's stalls
-gave back (returns_line), over the stroke logs given.
+strokes that handed the table over left (handover_table), what player B's stalls
+gave back (returns_line) and, when the logs carry the plans' predictions, how often
+A's strokes handed the table over against them (prediction_table), over the stroke
+logs given.
 Standard library only.
 """
 import gzip
@@ -282,6 +284,47 @@ def handover_table(bins, b):
     return out
 
 
+PREDICTION_BINS = ((0.0, 0.05), (0.05, 0.5), (0.5, 0.95), (0.95, 1.01))
+
+
+def prediction_bins(frames, side="A"):
+    """Per PREDICTION_BINS bin of the chance that `side`'s stroke hands the table over
+    as its plan's Monte Carlo predicted it (planHandovers: runs over samples), stalls
+    and the frames' last strokes apart: [strokes, sum of the predicted chance, strokes
+    that handed it over, of those the ones with both outlooks, the sum of the plan's
+    mean best pot for the opponent over its runs that handed over, the sum of the
+    handoverPot measured on the table left]. Strokes without the field are skipped."""
+    bins = [[0, 0.0, 0, 0, 0.0, 0.0] for _ in PREDICTION_BINS]
+    for frame in frames:
+        for k, stroke in enumerate(frame[:-1]):
+            h = stroke.get("planHandovers")
+            if stroke["striker"] != side or h is None or not h["samples"]:
+                continue
+            rate = h["runs"] / h["samples"]
+            cell = next(bins[i] for i, (lo, hi) in enumerate(PREDICTION_BINS) if lo <= rate < hi)
+            cell[0] += 1
+            cell[1] += rate
+            if frame[k + 1]["striker"] != side:
+                cell[2] += 1
+                if h["runs"] and stroke.get("handoverPot") is not None:
+                    cell[3] += 1
+                    cell[4] += h["meanPotProbability"]
+                    cell[5] += stroke["handoverPot"]
+    return bins
+
+
+def prediction_table(bins, a):
+    """How often `a`'s strokes handed the table over against its plans' predictions."""
+    out = (f"| the plan's chance of handing over | `{a}`'s strokes | predicted, mean | handed over | "
+           "of those, with the plan's and the table's outlook | the opponent's best pot: planned | "
+           "on the table left |\n|---|---:|---:|---:|---:|---:|---:|\n")
+    for (lo, hi), (n, rate, handed, both, planned, measured) in zip(PREDICTION_BINS, bins):
+        if n:
+            out += (f"| {lo:.2f}-{min(hi, 1.0):.2f} | {n} | {rate / n:.3f} | {handed / n:.3f} | {both} | "
+                    f"{number(planned / both if both else None, 3)} | {number(measured / both if both else None, 3)} |\n")
+    return out
+
+
 def returns_line(frames, side="B"):
     """What `side`'s stalls gave back: the strokes it played without a shot of its own
     (for direct-pots, the straight shot at the nearest ball on when it has no direct
@@ -387,6 +430,12 @@ def decided_section(strokes, d):
                 "probability by the planner's fast estimate (what the plans score a miss or a safety by), against "
                 f"whether `{b}`'s next stroke was a pot, whether that dropped, and the points of its visit.\n\n")
         out += handover_table(handover_bins(frames), b)
+    if any(s.get("planHandovers") is not None for s in strokes):
+        out += (f"\nHow often `{a}`'s strokes handed the table over, against the chance its plans' Monte Carlo "
+                "gave (the runs that handed it over, of the samples), stalls and the frames' last strokes apart; "
+                "and, where both are known, the opponent's best pot as the plan's handing-over runs left it "
+                "against the same estimate on the table the stroke left.\n\n")
+        out += prediction_table(prediction_bins(frames), a)
     return out
 
 
@@ -747,6 +796,8 @@ def main(argv):
                 frames += frames_of([json.loads(line) for line in f if line.strip()])
         print(handover_table(handover_bins(frames), "B"), end="")
         print("\n" + returns_line(frames, "B"), end="")
+        if any(s.get("planHandovers") is not None for frame in frames for s in frame):
+            print("\n" + prediction_table(prediction_bins(frames), "A"), end="")
         return 0
     if len(argv) not in (4, 5):
         print(__doc__, file=sys.stderr)

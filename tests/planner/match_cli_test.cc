@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <ostream>
 #include <set>
@@ -139,7 +140,7 @@ TEST(CliMatchTest, TheStrokeLogHasALinePerStroke) {
   double points_a = 0, points_b = 0;
   const std::set<std::string> names = {"frame", "stroke", "striker", "turn", "kind", "route", "stall",
                                        "potProbability", "planScore", "potted", "foul", "points", "penalty",
-                                       "scoreA", "scoreB", "planMs", "handoverPot", "planSeed"};
+                                       "scoreA", "scoreB", "planMs", "handoverPot", "planSeed", "planHandovers"};
   std::set<std::string> stall_names = names;
   stall_names.insert({"stallReason", "stallOn", "stallInHand", "stallTable"});
   Struct previous;
@@ -165,6 +166,31 @@ TEST(CliMatchTest, TheStrokeLogHasALinePerStroke) {
       EXPECT_EQ(again.exit_code, 0) << again.err << "\n" << line;
     }
     EXPECT_TRUE(f.at("striker").string_value() == "A" || f.at("striker").string_value() == "B") << line;
+    // What the plan's Monte Carlo predicted it would hand over: none for a stall;
+    // else counts of its runs, the runs that pot not among them, and a break-off
+    // handing the table over in most.
+    const google::protobuf::Value& predicted = f.at("planHandovers");
+    EXPECT_EQ(predicted.kind_case() == google::protobuf::Value::kNullValue, stall) << line;
+    if (!stall) {
+      ASSERT_EQ(predicted.kind_case(), google::protobuf::Value::kStructValue) << line;
+      const auto& h = predicted.struct_value().fields();
+      const double samples = h.at("samples").number_value();
+      const double runs = h.at("runs").number_value();
+      EXPECT_EQ(samples, 8) << line;
+      EXPECT_GE(runs, 0) << line;
+      EXPECT_LE(runs, samples) << line;
+      EXPECT_GE(h.at("snookeredRuns").number_value(), 0) << line;
+      EXPECT_LE(h.at("snookeredRuns").number_value(), runs) << line;
+      const double opponent_pot = h.at("meanPotProbability").number_value();
+      EXPECT_GE(opponent_pot, 0) << line;
+      EXPECT_LE(opponent_pot, 1) << line;
+      if (pot) {
+        EXPECT_LE(runs + std::round(f.at("potProbability").number_value() * samples), samples) << line;
+      }
+      if (f.at("turn").string_value() == "break-off") {
+        EXPECT_GE(2 * runs, samples) << line;
+      }
+    }
     // A frame's last line holds its final score.
     if (lines > 0 && f.at("frame").number_value() != previous.fields().at("frame").number_value()) {
       points_a += previous.fields().at("scoreA").number_value();
