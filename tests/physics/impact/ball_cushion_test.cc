@@ -268,19 +268,7 @@ TEST(CushionEnergy, LooseTolerancesAreSolvedAtTheLoosestThatHolds) {
     EXPECT_EQ(r.out.v, loosest.out.v) << tolerance;
     EXPECT_EQ(r.out.w, loosest.out.w) << tolerance;
   }
-  // The loosest tolerance against the default on random impacts: energy within the
-  // fuzzer's allowance (20 tolerances), the outgoing state within a hundred.
-  RandomShots shots(31);
-  for (int i = 0; i < 2000; ++i) {
-    const BallMotion shot = shots.Next(i % 2 == 0 ? 2.5 : 10.0);
-    const CushionImpactResult loose = ResolveCushionImpact(shot, kBall, p, Adaptive(0.05));
-    const CushionImpactResult exact = ResolveCushionImpact(shot, kBall, p, Adaptive());
-    ASSERT_EQ(loose.status, ImpactStatus::kOk) << "shot " << i;
-    ASSERT_EQ(exact.status, ImpactStatus::kOk) << "shot " << i;
-    EXPECT_LE(Energy(loose.out), Energy(shot) * (1 + 20 * kLoosestCushionTolerance)) << "shot " << i;
-    const double scale = CushionSpeedScale(shot, kBall.radius);
-    EXPECT_LT((loose.out.v - exact.out.v).norm(), 100 * kLoosestCushionTolerance * scale) << "shot " << i;
-  }
+  // On random impacts: ZeroingASlipAtTheLoosestToleranceAddsNoEnergy.
 }
 
 // A slip within a few tens of tolerances of zero counts as zero and is zeroed by a
@@ -289,7 +277,8 @@ TEST(CushionEnergy, LooseTolerancesAreSolvedAtTheLoosestThatHolds) {
 // energy at tolerance 1e-3 with the threshold uncapped (32 tolerances). Over random
 // impacts at 1e-3 the energy rises by less than a tenth of the tolerance (measured:
 // by less than 5e-6 of itself over 10^5) and the outgoing state stays within ten
-// tolerances of a converged one at the 99th percentile (16.7 here uncapped).
+// tolerances of a converged one at the 99th percentile (16.7 here uncapped), and
+// within a hundred for every impact. A looser request (0.05) gives the same answer.
 TEST(CushionEnergy, ZeroingASlipAtTheLoosestToleranceAddsNoEnergy) {
   const CushionParams p = MathavanCushionParams(kBall);
   const ImpulseSolverOptions loosest = Adaptive(kLoosestCushionTolerance);
@@ -305,12 +294,17 @@ TEST(CushionEnergy, ZeroingASlipAtTheLoosestToleranceAddsNoEnergy) {
   for (int i = 0; i < 4000; ++i) {
     const BallMotion shot = shots.Next(i % 2 == 0 ? 2.5 : 10.0);
     const CushionImpactResult r = ResolveCushionImpact(shot, kBall, p, loosest);
+    const CushionImpactResult looser = ResolveCushionImpact(shot, kBall, p, Adaptive(0.05));
     const CushionImpactResult exact = ResolveCushionImpact(shot, kBall, p, Adaptive());
     ASSERT_EQ(r.status, ImpactStatus::kOk) << "shot " << i;
+    ASSERT_EQ(looser.status, ImpactStatus::kOk) << "shot " << i;
     ASSERT_EQ(exact.status, ImpactStatus::kOk) << "shot " << i;
+    EXPECT_EQ(looser.out.v, r.out.v) << "shot " << i;
+    EXPECT_EQ(looser.out.w, r.out.w) << "shot " << i;
     // Within a tenth of a tolerance (uncapped: up to eight tolerances).
     EXPECT_LE(Energy(r.out), Energy(shot) * (1 + 0.1 * kLoosestCushionTolerance)) << "shot " << i;
     const double scale = CushionSpeedScale(shot, kBall.radius);
+    EXPECT_LT((r.out.v - exact.out.v).norm(), 100 * kLoosestCushionTolerance * scale) << "shot " << i;
     errors.push_back(Distance(r.out, exact.out) / (kLoosestCushionTolerance * scale));
   }
   std::sort(errors.begin(), errors.end());
