@@ -173,6 +173,11 @@ ENDINGS = (
 POT_BINS = ((0.0, 0.5), (0.5, 0.7), (0.7, 0.8), (0.8, 0.9), (0.9, 0.95), (0.95, 1.01))
 
 
+def bin_of(bins, x):
+    """The index of the [low, high) bin of `bins` that holds x, or None."""
+    return next((i for i, (lo, hi) in enumerate(bins) if lo <= x < hi), None)
+
+
 def potted(stroke):
     """Whether a pot stroke dropped a ball on: it scored and was no foul."""
     return stroke["points"] > 0 and stroke["foul"] == "none"
@@ -206,12 +211,12 @@ def calibration_bins(frames):
             p = s["potProbability"]
             if s["kind"] != "POT" or s["stall"] or p is None:
                 continue
-            for i, (lo, hi) in enumerate(POT_BINS):
-                if lo <= p < hi:
-                    cell = bins[s["striker"]][i]
-                    cell[0] += 1
-                    cell[1] += potted(s)
-                    cell[2] += p
+            i = bin_of(POT_BINS, p)
+            if i is not None:
+                cell = bins[s["striker"]][i]
+                cell[0] += 1
+                cell[1] += potted(s)
+                cell[2] += p
     return bins
 
 
@@ -260,14 +265,14 @@ def handover_bins(frames, side="A"):
         key = "miss" if key.startswith("miss") else key
         nxt = next_strokes[0]
         attempt = not nxt["stall"] and nxt["kind"] == "POT"
-        for i, (lo, hi) in enumerate(HANDOVER_BINS):
-            if lo <= p < hi:
-                for cell in (bins[key][i], bins["any"][i]):
-                    cell[0] += 1
-                    cell[1] += p
-                    cell[2] += attempt
-                    cell[3] += attempt and potted(nxt)
-                    cell[4] += next_points
+        i = bin_of(HANDOVER_BINS, p)
+        if i is not None:
+            for cell in (bins[key][i], bins["any"][i]):
+                cell[0] += 1
+                cell[1] += p
+                cell[2] += attempt
+                cell[3] += attempt and potted(nxt)
+                cell[4] += next_points
     return bins
 
 
@@ -301,7 +306,7 @@ def prediction_bins(frames, side="A"):
             if stroke["striker"] != side or h is None or not h["samples"]:
                 continue
             rate = h["runs"] / h["samples"]
-            cell = next(bins[i] for i, (lo, hi) in enumerate(PREDICTION_BINS) if lo <= rate < hi)
+            cell = bins[bin_of(PREDICTION_BINS, rate)]
             cell[0] += 1
             cell[1] += rate
             if frame[k + 1]["striker"] != side:
