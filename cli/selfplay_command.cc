@@ -19,7 +19,7 @@ namespace {
 constexpr const char* kSelfplayHelpHead = R"(usage: snooker selfplay --frames N --seed S [--budget-ms N] [--json]
                         [--noise-heading-deg X] [--noise-speed X] [--noise-spin X]
                         [--noise-position-mm X] [--cue-clearance-m X] [--pot-only] [--one-ply] [--max-simulations N]
-                        [--samples N] [--threads N] [--break-value P] [--progress] [--records out.jsonl]
+                        [--uncertain-world] [--samples N] [--threads N] [--break-value P] [--progress] [--records out.jsonl]
 
 The planner plays snooker alone. Each frame starts from a seeded random mid-frame
 table (6 to 10 reds scattered where they touch nothing, the colours on their spots,
@@ -40,6 +40,9 @@ Noise (standard deviations; the same options as snooker plan):
 constexpr const char* kSelfplayHelpTail = R"(Planner:
   --pot-only             ignore the position left
   --one-ply              estimate the next shot only (no lookahead search)
+  --uncertain-world      play in a world whose squirt and throw differ from the
+                         model's on every stroke by the squirt and throw uncertainty
+                         (a real table's; give them with it, e.g. 0.15 and 0.10)
   --max-simulations N    per-plan cap on simulations (default: from the budget)
   --samples N            Monte Carlo samples per ranked shot (default 48)
   --threads N            planner threads (default 2)
@@ -58,7 +61,7 @@ constexpr const char* kSelfplayHelpTail = R"(Planner:
 int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
   std::set<std::string> valued = {"frames", "seed", "records"};
   valued.insert(std::begin(kPlayFlagNames), std::end(kPlayFlagNames));
-  Args args(argv, valued, {"json", "help", "pot-only", "one-ply", "progress"});
+  Args args(argv, valued, {"json", "help", "pot-only", "one-ply", "progress", "uncertain-world"});
   if (args.error().empty() && args.Switch("help")) {
     out << kSelfplayHelpHead << kPlayFlagsHelp << kSelfplayHelpTail;
     return kExitOk;
@@ -84,6 +87,7 @@ int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::os
   o.limits = play.limits;
   o.position_play = !args.Switch("pot-only");
   o.lookahead = !args.Switch("one-ply");
+  o.uncertain_world = args.Switch("uncertain-world");
   o.max_simulations = play.max_simulations;
   o.monte_carlo_samples = play.monte_carlo_samples;
   o.threads = play.threads;

@@ -117,7 +117,10 @@ SelfPlayReport RunSelfPlay(const Planner& planner, const SelfPlayOptions& o,
         break;
       }
       // The robot's cue, with its execution noise, striking in the world.
-      const physics::Shot played = SampleStroke(plan.cue, world.cue, world.ball, world.cloth.g, o.noise, false, rng).shot;
+      const PlayedStroke stroke =
+          SampleStroke(plan.cue, world.cue, world.ball, world.cloth.g, o.noise, o.uncertain_world, rng);
+      const physics::Shot& played = stroke.shot;
+      truth_sim.set_throw_scale(stroke.throw_scale);
       const ShotSetup setup{&truth, truth.cue_index(), plan.object_ball, plan.pocket, *on, plan.kind,
                             plan.route == PotRoute::kPlant ? plan.first_ball : -1};
       const ShotOutcome& out = truth_sim.Run(setup, played, {}, ShotSimulator::Mode::kFull, no_interrupt);

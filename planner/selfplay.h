@@ -50,6 +50,11 @@ struct SelfPlayOptions {
   /// The world the shots are played in (sim-to-real: a table unlike the planner's
   /// model); none: the planner's own model.
   std::optional<physics::Model> world;
+  /// The world's squirt and throw differ from the model's on every stroke, by the
+  /// noise's squirt and throw fractions (SampleStroke's model uncertainty), as a real
+  /// table's do; false: the world is the model. Set the fractions with it: 0 leaves
+  /// the world the model.
+  bool uncertain_world = false;
 };
 
 struct FrameRecord {

@@ -85,5 +85,39 @@ TEST(SelfPlayTest, AShortRunIsConsistent) {
   }
 }
 
+// A world with a real table's uncertainty: with the squirt and throw fractions at 0
+// it is the model itself, to the point (the noise's draws are the same); with them
+// set, the strokes play differently.
+TEST(SelfPlayTest, AnUncertainWorldIsTheModelWhenNothingIsUncertain) {
+  SelfPlayOptions o;
+  o.frames = 3;
+  o.seed = 5;
+  o.time_budget = 30;
+  o.max_simulations = 100;
+  o.monte_carlo_samples = 8;
+  o.max_shots_per_frame = 6;
+  const SelfPlayReport model = RunSelfPlay(Planner::Default(), o);
+  ASSERT_GT(model.shots, 3);
+  o.uncertain_world = true;
+  const SelfPlayReport same = RunSelfPlay(Planner::Default(), o);
+  ASSERT_EQ(same.records.size(), model.records.size());
+  for (size_t i = 0; i < model.records.size(); ++i) {
+    EXPECT_EQ(same.records[i].points, model.records[i].points);
+    EXPECT_EQ(same.records[i].attempts, model.records[i].attempts);
+    EXPECT_EQ(same.records[i].end, model.records[i].end);
+  }
+  // Known to 100 % (the most a request may say), the strokes play otherwise.
+  o.noise.squirt_fraction = o.noise.throw_fraction = 1;
+  const SelfPlayReport other = RunSelfPlay(Planner::Default(), o);
+  o.uncertain_world = false;
+  const SelfPlayReport believed = RunSelfPlay(Planner::Default(), o);
+  bool differs = false;
+  for (size_t i = 0; i < other.records.size(); ++i) {
+    differs = differs || other.records[i].points != believed.records[i].points ||
+              other.records[i].attempts != believed.records[i].attempts || other.records[i].end != believed.records[i].end;
+  }
+  EXPECT_TRUE(differs);
+}
+
 }  // namespace
 }  // namespace snooker::planner
