@@ -111,6 +111,7 @@ Candidate FromRoute(const RouteCandidate& r) {
   if (r.pocket) c.pocket = *r.pocket;
   c.estimate.probability = r.probability;
   c.estimate.sigma = r.sigma;
+  c.estimate.heading_gain = r.heading_gain;
   c.estimate.window = r.window;
   c.estimate.distance = r.distance;
   c.estimate.object_direction = r.object_direction;

@@ -29,13 +29,27 @@ double WindowProbability(double mean, double sigma, const PocketWindow& window) 
   return std::max(0.0, NormalCdf((window.hi - mean) / sigma) - NormalCdf((window.lo - mean) / sigma));
 }
 
+double HeadingGain(const Vec2& cue, const Vec2& object, double heading, double cut, double distance,
+                   double radius) {
+  const Vec2 u(std::cos(heading), std::sin(heading));
+  const double cos_c = std::max(std::cos(cut), 1e-3);
+  return std::abs(distance * (1 - u.dot(object - cue) / (2 * radius * cos_c)));
+}
+
+double SquirtSigma(double squirt, double heading_gain, const NoiseModel& noise) {
+  return noise.squirt_fraction * std::abs(squirt) * heading_gain;
+}
+
+double ThrowSigma(double throw_angle, double distance, const NoiseModel& noise) {
+  return noise.throw_fraction * std::abs(throw_angle) * distance;
+}
+
 double LateralSigma(const Vec2& cue, const Vec2& object, double heading, double cut,
                     double distance, double contact_speed, double cue_sigma, double object_sigma,
                     const NoiseModel& noise, const ThrowModel& throws, double radius) {
-  const Vec2 u(std::cos(heading), std::sin(heading));
   const double cos_c = std::max(std::cos(cut), 1e-3);
   const double k = distance / (2 * radius * cos_c);
-  const double heading_gain = distance * (1 - u.dot(object - cue) / (2 * radius * cos_c));
+  const double heading_gain = HeadingGain(cue, object, heading, cut, distance, radius);
   const ThrowSensitivity t = throws.At(cut, contact_speed);
   auto sq = [](double x) { return x * x; };
   const double throw_var = sq(t.per_sidespin * noise.sidespin) + sq(t.per_topspin * noise.topspin) +
@@ -94,6 +108,7 @@ std::optional<PotEstimate> EstimatePot(const Vec2& cue, const Vec2& object, phys
   const double contact = TypicalContactSpeed(e.distance, e.aim.cut);
   e.sigma = LateralSigma(cue, object, e.aim.heading, e.aim.cut, e.distance, contact, cue_sigma,
                          object_sigma, noise, throws, radius);
+  e.heading_gain = HeadingGain(cue, object, e.aim.heading, e.aim.cut, e.distance, radius);
   e.probability = WindowProbability(e.window.centre(), e.sigma, e.window);
   return e;
 }

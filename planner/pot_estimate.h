@@ -84,6 +84,22 @@ double NormalCdf(double x);
 /// Probability that a Gaussian offset (mean `mean`, sigma `sigma`, m) falls in the window.
 double WindowProbability(double mean, double sigma, const PocketWindow& window);
 
+/// How far the object ball's line moves sideways at the mouth per radian of the cue
+/// ball's heading (m/rad, its magnitude): the heading term of LateralSigma. Any error
+/// that turns the cue ball's heading acts through it, the squirt's among them.
+double HeadingGain(const physics::Vec2& cue, const physics::Vec2& object, double heading, double cut,
+                   double distance, double radius);
+
+/// The sideways spread at the mouth (m) that the model's squirt adds to a stroke
+/// whose squirt is `squirt` (rad): the squirt known to noise.squirt_fraction of
+/// itself, a heading error of that fraction of it, through `heading_gain` (m/rad).
+double SquirtSigma(double squirt, double heading_gain, const NoiseModel& noise);
+
+/// The sideways spread at the mouth (m) that the model's throw adds to a line thrown
+/// by `throw_angle` (rad) that runs `distance` (m) to the mouth: the throw known to
+/// noise.throw_fraction of itself.
+double ThrowSigma(double throw_angle, double distance, const NoiseModel& noise);
+
 /// Lateral standard deviation at the mouth (m) of the object ball's line for a pot
 /// from cue ball `cue` (position sigma `cue_sigma`) onto `object` (`object_sigma`)
 /// along `heading` with cut `cut`, the object ball travelling `distance` (m) to the
@@ -101,6 +117,9 @@ struct PotEstimate {
   double approach = 0;           ///< angle from the pocket's axis, rad
   PocketWindow window;           ///< at the assumed arrival speed
   double sigma = 0;              ///< lateral, m
+  /// HeadingGain of the pot (m/rad): for another route, its first ball's gain
+  /// through the route's levers (routes.h); 0 when the heading does not move it.
+  double heading_gain = 0;
   double probability = 0;
 };
 

@@ -265,6 +265,7 @@ std::optional<RouteCandidate> PlantFrom(const TableState& table, int cue, int fi
     const double cos_ab = std::max(std::cos(pl->cut_ab), 1e-3);
     const double kb = pl->lb / (2 * r * cos_ab);
     var = kb * kb * s_a * s_a + sig_b * sig_b * (kb * kb + 1 + 2 * kb * cos_ab);
+    cand.heading_gain = kb * HeadingGain(c, a, aim->heading, aim->cut, pl->la, r);
   }
   var += pl->lb * pl->lb * t_b * t_b;
   SetProbability(cand, pl->mean, std::sqrt(var), pl->window);
@@ -347,6 +348,7 @@ std::optional<RouteCandidate> DoubleFrom(const TableState& table, int cue, int o
                                       ctx.sigma_of(object), ctx.noise, *ctx.throws, r);
   const double bounce = ReboundSigma(*path, 0, ctx, options) * path->LengthAfter(0);
   SetProbability(cand, window.centre(), std::hypot(lateral, bounce), window);
+  cand.heading_gain = HeadingGain(c, o, aim->heading, aim->cut, path->length, r);
   SetCutAim(cand, c, o, *aim, path->heading, path->bracket, ctx.max_cut, r);
   cand.path = path;
   if (cand.probability < options.min_probability) return Refuse(why, RouteRefusal::kUnlikely);
@@ -417,6 +419,7 @@ std::optional<RouteCandidate> KickFrom(const TableState& table, int cue, int obj
     var += b * b;
   }
   SetProbability(cand, line->window.centre(), std::sqrt(var), line->window);
+  cand.heading_gain = HeadingGain(virtual_cue, o, path->final_direction, cut, line->distance, r);
   // The mirror's error, and the throw: a cut thicker by up to ThrowAllowance.
   const double throw_turn = ThrowAllowance(cut) * 2 * r * cos_c / path->length;
   cand.heading_bracket = {path->bracket.lo - throw_turn, path->bracket.hi + throw_turn};

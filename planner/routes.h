@@ -127,6 +127,10 @@ struct RouteCandidate {
   PocketWindow window;
   /// Lateral standard deviation at the mouth (pots) or at the ball (escape). m.
   double sigma = 0;
+  /// Pots: how far the potted ball's line moves at the mouth per radian of the cue
+  /// ball's heading (pot_estimate.h HeadingGain through the route's levers; 0 for a
+  /// set, whose line the heading hardly moves). m/rad.
+  double heading_gain = 0;
   /// Pots: the chance the route pots the ball (pot_estimate.h's currency). Escape:
   /// the chance the cue ball hits the ball first.
   double probability = 0;

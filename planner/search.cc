@@ -240,7 +240,7 @@ class Search {
       return Unplayable();
     }
     const bool pot = cand_.kind == ShotKind::kPot;
-    const double p = pot ? PotProbability(out, *aim.heading, aim.cut) : 1.0;
+    const double p = pot ? PotProbability(out, *aim.heading, aim.cut, stroke->squirt) : 1.0;
     if (!out.success) return Keep(u, pot ? -1 + 0.5 * p : kFailedSafety);
     // The table the shot leaves, by the rules, and the ball on then.
     final_positions_.clear();
@@ -279,6 +279,7 @@ class Search {
     physics::CueStrike cue;
     physics::Shot shot;
     Aim aim;
+    double squirt = 0;  ///< the strike's squirt, rad
   };
 
   // The stroke at the unit-cube point u: the cue's strength and tip offsets from
@@ -311,6 +312,7 @@ class Search {
           res = physics::Strike(k.cue, cue, ball, g);
           if (!Playable(res) || !AwayFromTouching(res.shot.heading)) return std::nullopt;
           k.shot = res.shot;
+          k.squirt = res.squirt;
           return k;
         }
         k.cue.elevation = *elevation;
@@ -322,6 +324,7 @@ class Search {
     const physics::StrikeResult res = physics::Strike(k.cue, cue, ball, g);
     if (!Playable(res) || !AwayFromTouching(res.shot.heading)) return std::nullopt;
     k.shot = res.shot;
+    k.squirt = res.squirt;
     return k;
   }
 
@@ -368,8 +371,12 @@ class Search {
   // softer is kinder to the table and to the robot (points per m/s above 3 m/s).
   double SpeedCost(double speed) const { return settings_.speed_cost * std::max(0.0, speed - 3.0); }
 
-  // The pot probability of this shot from its simulated object-ball line.
-  double PotProbability(const ShotOutcome& out, double heading, double cut) const {
+  // The pot probability of this shot from its simulated object-ball line. The
+  // model's uncertainty adds what the Monte Carlo samples: the stroke's squirt,
+  // known to the noise's squirt fraction, a heading error of that fraction of it
+  // (side costs what it costs); the throw of the potted ball's contact, known to the
+  // throw fraction, that fraction of it over the line to the mouth.
+  double PotProbability(const ShotOutcome& out, double heading, double cut, double squirt) const {
     if (!out.line.valid) return 0;
     const Vec2 cue = table_.balls[static_cast<size_t>(cue_)].position;
     const Vec2 object = table_.balls[static_cast<size_t>(cand_.object)].position;
@@ -378,16 +385,22 @@ class Search {
     if (cand_.route != PotRoute::kDirect) {
       // Another route's estimate (routes.h) carries its own spread at the mouth; the
       // simulated line says how well centred this aim is.
-      const double sigma = std::max(cand_.estimate.sigma, 1e-4);
+      const double sigma =
+          std::max(std::hypot(cand_.estimate.sigma, SquirtSigma(squirt, cand_.estimate.heading_gain, ctx_.noise),
+                              ThrowSigma(out.first_line.throw_angle, cand_.estimate.distance, ctx_.noise)),
+                   1e-4);
       const double centred = WindowProbability(w.centre(), sigma, w);
       return centred > 0 ? cand_.estimate.probability * WindowProbability(out.line.offset, sigma, w) / centred : 0;
     }
     const Vec2 u(std::cos(out.line.direction), std::sin(out.line.direction));
     const double distance =
         std::max(0.0, (ctx_.table->pocket(cand_.pocket).mouth_centre - object).dot(u));
-    const double sigma = LateralSigma(cue, object, heading, cut, distance, out.line.contact_speed,
-                                      ctx_.sigma_of(cue_), ctx_.sigma_of(cand_.object), ctx_.noise,
-                                      *ctx_.throws, ctx_.table->ball_radius());
+    const double r = ctx_.table->ball_radius();
+    const double sigma = std::hypot(
+        LateralSigma(cue, object, heading, cut, distance, out.line.contact_speed, ctx_.sigma_of(cue_),
+                     ctx_.sigma_of(cand_.object), ctx_.noise, *ctx_.throws, r),
+        SquirtSigma(squirt, HeadingGain(cue, object, heading, cut, distance, r), ctx_.noise),
+        ThrowSigma(out.first_line.throw_angle, distance, ctx_.noise));
     return WindowProbability(out.line.offset, sigma, w);
   }
 

@@ -25,7 +25,7 @@ ShotSimulator::ShotSimulator(const physics::TableModel& table, const physics::Si
   out_.potted.reserve(physics::Simulator::kMaxBalls);
 }
 
-void ShotSimulator::MeasureLine(const ShotSetup& setup, const physics::BallState& object) {
+void ShotSimulator::MeasureLine(const ShotSetup& setup, const physics::BallState& object, const Vec2* partner) {
   physics::BallState o = object;
   if (o.s == physics::MotionState::kSliding) {
     o = physics::Evolve(o, physics::TransitionTime(o, params_.ball, params_.cloth), params_.ball,
@@ -49,6 +49,11 @@ void ShotSimulator::MeasureLine(const ShotSetup& setup, const physics::BallState
   const Vec2 to_object = object.r - cue;
   const double cos_cut = std::clamp(to_object.norm() > 0 ? std::abs(to_object.normalized().dot(vo.normalized())) : 1.0, 0.2, 1.0);
   line.contact_speed = vo.norm() / (0.9 * cos_cut);
+  line.throw_angle = 0;
+  if (partner != nullptr) {
+    const Vec2 centres = object.r - *partner;
+    if (centres.norm() > 0) line.throw_angle = WrapAngle(line.direction - Direction(centres));
+  }
   if (!out_.first_line.valid) out_.first_line = line;
 }
 
@@ -119,7 +124,9 @@ SimStatus ShotSimulator::Loop(const ShotSetup& setup, SimStatus status, bool dec
         (ev.ball == setup.object || ev.other == setup.object) &&
         (ev.kind == EventKind::kBallBall || ev.kind == EventKind::kCushion)) {
       if (ev.kind == EventKind::kCushion) ++out_.object_cushions;
-      MeasureLine(setup, sim_.StateNow(setup.object));
+      const int other = ev.ball == setup.object ? ev.other : ev.ball;
+      const Vec2 partner = ev.kind == EventKind::kBallBall ? sim_.StateNow(other).r : Vec2::Zero();
+      MeasureLine(setup, sim_.StateNow(setup.object), ev.kind == EventKind::kBallBall ? &partner : nullptr);
     }
     if (!decide) continue;
     // A miss: a pot's object ball at rest after contact, or the cue ball at rest

@@ -64,6 +64,9 @@ struct ObjectLine {
   double distance = 0;        ///< from where it rolls to the mouth, m
   double arrival_speed = 0;   ///< at the mouth, m/s (0 if it stops short)
   double contact_speed = 0;   ///< estimated cue-ball speed at contact, m/s
+  /// From a ball-ball contact: the throw, the line's direction less the line of
+  /// centres at the contact (rad, counter-clockwise positive); 0 from a cushion.
+  double throw_angle = 0;
 };
 
 struct ShotOutcome {
@@ -118,7 +121,7 @@ class ShotSimulator {
   long runs() const { return runs_; }
 
  private:
-  void MeasureLine(const ShotSetup& setup, const physics::BallState& object);
+  void MeasureLine(const ShotSetup& setup, const physics::BallState& object, const physics::Vec2* partner);
   // The run's loop: steps until the end, or until the shot has failed in kDecide.
   physics::SimStatus Loop(const ShotSetup& setup, physics::SimStatus status, bool decide);
   void Judge(const ShotSetup& setup, physics::SimStatus status);

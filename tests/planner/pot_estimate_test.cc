@@ -77,6 +77,61 @@ TEST(PotEstimateTest, LateralSigmaMatchesSampledGeometry) {
   }
 }
 
+// The heading's lever: a straight pot with the cue ball d behind the object ball
+// and the mouth L beyond it turns the line at the mouth by L (d / 2R - 1) per
+// radian (the ghost-ball geometry), and LateralSigma's heading term is that gain.
+TEST(PotEstimateTest, HeadingGainIsTheGhostBallLever) {
+  const Vec2 cue(0.5, 0.5), object(0.5, 0.9), mouth(0.5, 2.0);
+  const double d = (object - cue).norm(), L = (mouth - object).norm();
+  EXPECT_NEAR(HeadingGain(cue, object, physics::kPi / 2, 0, L, kR), L * (d / (2 * kR) - 1), 1e-12);
+  // A 35 deg cut: only heading noise, no positions, no throw terms.
+  NoiseModel noise;
+  noise.position = noise.topspin = noise.sidespin = noise.speed_fraction = 0;
+  const Vec2 c2(1.2, 0.8), o2(0.7, 1.8), m2(0.03, 3.54);
+  const auto aim = AimAlong(c2, o2, Direction(m2 - o2), kR);
+  ASSERT_TRUE(aim);
+  const double gain = HeadingGain(c2, o2, aim->heading, aim->cut, (m2 - o2).norm(), kR);
+  EXPECT_NEAR(LateralSigma(c2, o2, aim->heading, aim->cut, (m2 - o2).norm(), 1.0, 0, 0, noise,
+                           ThrowModel::Default(), kR),
+              noise.heading * gain, 1e-12);
+  // Squirt and throw known to a fraction: that fraction of each, through its lever.
+  noise.squirt_fraction = 0.15;
+  noise.throw_fraction = 0.1;
+  EXPECT_NEAR(SquirtSigma(-0.02, gain, noise), 0.15 * 0.02 * gain, 1e-15);
+  EXPECT_NEAR(ThrowSigma(0.03, 1.2, noise), 0.1 * 0.03 * 1.2, 1e-15);
+  EXPECT_EQ(SquirtSigma(0.02, gain, ModelWorldNoise()), 0);
+  EXPECT_EQ(ThrowSigma(0.03, 1.2, ModelWorldNoise()), 0);
+}
+
+// The squirt's spread matches sampled exact geometry: a squirt known to 15 % is a
+// heading error of 15 % of it, through the same ghost-ball lever as the aim's
+// (within 3 %; the sampling error of 20000 draws is 0.5 %).
+TEST(PotEstimateTest, TheSquirtsSpreadMatchesSampledGeometry) {
+  NoiseModel noise;
+  noise.squirt_fraction = 0.15;
+  const double squirt = physics::DegToRad(1.2);  // about what 0.2 R of side gives
+  struct Pot { Vec2 cue, object, mouth; };
+  const std::vector<Pot> pots = {{Vec2(0.5, 0.5), Vec2(0.6, 1.6), Vec2(0.03, 3.54)},
+                                 {Vec2(1.2, 0.8), Vec2(0.7, 1.8), Vec2(0.03, 3.54)},
+                                 {Vec2(0.3, 2.9), Vec2(0.9, 3.0), Vec2(1.75, 3.54)}};
+  Rng rng(4);
+  for (const Pot& p : pots) {
+    const auto aim = AimAlong(p.cue, p.object, Direction(p.mouth - p.object), kR);
+    ASSERT_TRUE(aim);
+    const double nominal = GeometricOffset(p.cue, p.object, aim->heading, p.mouth);
+    double sum2 = 0;
+    const int n = 20000;
+    for (int k = 0; k < n; ++k) {
+      const double h = aim->heading + noise.squirt_fraction * squirt * rng.Gaussian();
+      const double e = GeometricOffset(p.cue, p.object, h, p.mouth) - nominal;
+      sum2 += e * e;
+    }
+    const double gain = HeadingGain(p.cue, p.object, aim->heading, aim->cut, (p.mouth - p.object).norm(), kR);
+    EXPECT_NEAR(SquirtSigma(squirt, gain, noise) / std::sqrt(sum2 / n), 1.0, 0.03)
+        << "cut " << physics::RadToDeg(aim->cut);
+  }
+}
+
 // Agreement with Monte Carlo: on seeded random two-ball positions (every pocket the
 // candidates keep, cuts up to 70 deg), the estimate for the plain rolling pot it
 // assumes (RollingPotShot) against 200 noisy full simulations of that shot. The

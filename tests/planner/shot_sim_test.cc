@@ -11,6 +11,7 @@
 #include "planner/geometry.h"
 #include "planner/random.h"
 #include "planner/selfplay.h"
+#include "planner/throw_model.h"
 
 namespace snooker::planner {
 namespace {
@@ -130,6 +131,36 @@ TEST(ShotSimTest, TheMeasuredLineIsWhereTheObjectBallGoes) {
   for (Ball& b : t.balls) b.position += 0.005 * side;
   const ShotOutcome& off = sim.Run(setup, {1.2, Direction(p.axis), 0, 0}, {}, ShotSimulator::Mode::kFull, {});
   EXPECT_NEAR(off.line.offset, 0.005, 1e-9);
+}
+
+// The throw measured on the line is the collision model's: a cue ball rolling into
+// a cut (and one with side that adds to the throw) turns the object ball off the
+// line of centres by what ThrowModel::Throw, the same impact solve from the same
+// state, gives.
+TEST(ShotSimTest, TheMeasuredThrowIsTheCollisionModelsThrow) {
+  const physics::SimParams params;
+  const double r = params.ball.radius;
+  const ThrowModel throws(params, ThrowModel::Options{});
+  struct Cut { double cut_deg, side; };
+  for (const Cut& c : {Cut{30, 0}, Cut{-45, 0}, Cut{20, -20}}) {
+    const double cut = physics::DegToRad(c.cut_deg), speed = 1.5, run = 0.1;
+    // The cue ball rolls +y from `cue`, meets the red after `run`, centres along n.
+    const Vec2 cue(0.9, 1.0), n(-std::sin(cut), std::cos(cut));
+    TableState t;
+    t.balls = {{BallKind::kCue, cue}, {BallKind::kRed, cue + Vec2(0, run) + 2 * r * n}};
+    const ShotSetup setup{&t, 0, 1, physics::PocketId::kTopLeft, BallOn::kRed};
+    ShotSimulator sim(physics::DefaultTable(), params);
+    const ShotOutcome& out =
+        sim.Run(setup, {speed, physics::kPi / 2, speed / r, c.side}, {}, ShotSimulator::Mode::kFull, {});
+    ASSERT_EQ(out.first_hit, 1);
+    ASSERT_TRUE(out.first_line.valid);
+    // Rolling, it loses mu_r g run of its squared speed before the contact; the
+    // side decays a little on the way (tolerance).
+    const double contact = std::sqrt(speed * speed - 2 * params.cloth.mu_r * params.cloth.g * run);
+    const double expected = throws.Throw(cut, contact, contact / r, c.side);
+    EXPECT_GT(std::abs(expected), physics::DegToRad(0.3)) << c.cut_deg;
+    EXPECT_NEAR(out.first_line.throw_angle, expected, 0.05 * std::abs(expected)) << c.cut_deg;
+  }
 }
 
 }  // namespace
