@@ -5,7 +5,8 @@ seeded tables (snooker plan --json, now and, when a binary of the level-cue plan
 is given, before) and self-play with the robot's cue.
 
 usage: cue_report.py TOOL SNOOKER DATA_DIR OUT_MD COMMAND COMMIT [BEFORE_SNOOKER]
-Environment: TABLES (default 120), SELFPLAY_FRAMES (default 0: keep the saved run).
+Environment: TABLES (default 120), SELFPLAY_FRAMES (default 0: keep the saved run),
+UNCERTAIN_FRAMES (default 0: keep the saved self-play in a world unlike the model).
 """
 import json
 import os
@@ -63,11 +64,49 @@ def usage_rows(name, rows):
     return out, big, len(every)
 
 
+# Self-play where the world and the planner's belief about it differ: (name, the world
+# uncertain, the squirt and throw uncertainty the planner is told).
+UNCERTAIN_WORLDS = [("exact-told-exact", False, 0.0, 0.0), ("exact-told-rough", False, 0.15, 0.10),
+                    ("rough-told-rough", True, 0.15, 0.10)]
+UNCERTAIN_SEEDS = [1, 3]
+
+
+def uncertain_args(seed, frames, world, squirt, throw):
+    args = ["selfplay", "--frames", str(frames), "--seed", str(seed), "--threads", "1", "--budget-ms", "30000",
+            "--max-simulations", "4000", "--squirt-uncertainty", str(squirt), "--throw-uncertainty", str(throw),
+            "--json"]
+    return args + (["--uncertain-world"] if world else [])
+
+
+def uncertain_rows(data, frames, snooker):
+    """Runs (frames > 0) or reads the self-play of UNCERTAIN_WORLDS, now and as saved
+    from before the search priced the model's uncertainty; returns the table's rows."""
+    rows = []
+    for name, world, squirt, throw in UNCERTAIN_WORLDS:
+        for when in ("before", "now"):
+            runs = []
+            for seed in UNCERTAIN_SEEDS:
+                path = os.path.join(data, f"cue-uncertain-{name}-seed-{seed}{'-before' if when == 'before' else ''}.json")
+                if when == "now" and frames > 0:
+                    open(path, "w").write(run([snooker] + uncertain_args(seed, frames, world, squirt, throw)))
+                runs.append(json.load(open(path)))
+            shots = sum(r["shots"] for r in runs)
+            pots = sum(round(r["potRate"] * r["shots"]) for r in runs)
+            breaks = " / ".join(f"{r['meanBreak']:.1f}" for r in runs)
+            mean = statistics.mean(r["meanBreak"] for r in runs)
+            rows.append(f"| {'a real table' if world else 'the model'} | "
+                        f"{'exact' if squirt == 0 and throw == 0 else f'{100 * squirt:.0f} % and {100 * throw:.0f} %'} | "
+                        f"{when} | {runs[0]['frames']} + {runs[1]['frames']} | {breaks} ({mean:.1f}) | "
+                        f"{100 * pots / shots:.1f} % of {shots} | {runs[0]['planMsP50']:.0f} / {runs[0]['planMsP99']:.0f} |")
+    return "\n".join(rows)
+
+
 def main():
     tool, snooker, data, out_md, command, commit = sys.argv[1:7]
     before = sys.argv[7] if len(sys.argv) > 7 else ""
     n = int(os.environ.get("TABLES", "120"))
     frames = int(os.environ.get("SELFPLAY_FRAMES", "0"))
+    uncertain = uncertain_rows(data, int(os.environ.get("UNCERTAIN_FRAMES", "0")), snooker)
     strike = run([tool, "strike"])
     cushion = run([tool, "cushion"])
     with tempfile.TemporaryDirectory() as tmp:
@@ -147,7 +186,8 @@ def main():
         sp_p50_r=sp_ref["planMsP50"], sp_p99_r=sp_ref["planMsP99"],
         sp_frames_e=sp_equal["frames"], sp_break_e=sp_equal["meanBreak"], sp_rate_e=100 * sp_equal["potRate"],
         sp_p50_e=sp_equal["planMsP50"], sp_p99_e=sp_equal["planMsP99"],
-        sp_p50_b=sp_before["planMsP50"], sp_p99_b=sp_before["planMsP99"], machine=machine())
+        sp_p50_b=sp_before["planMsP50"], sp_p99_b=sp_before["planMsP99"], uncertain=uncertain,
+        uncertain_command=" ".join(["snooker"] + uncertain_args("S", "N", True, 0.15, 0.10)), machine=machine())
     open(out_md, "w").write(doc)
 
 
