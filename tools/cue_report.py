@@ -165,7 +165,8 @@ def main():
     verdict = (f"In {len(better)} of these {len(straight_side)} the capped plan finds a likelier pot with nearly "
                f"the same position (at least 0.9 of it): there the side did not pay, and the search, at 2400 "
                f"simulations, missed the plainer shot in the wider box." if better else
-               "In none of these does the capped plan find a likelier pot with nearly the same position.")
+               "In none of these does the capped plan find a likelier pot with nearly the same position."
+               if straight_side else "No straight pot takes more than 0.1 R of side.")
     text = open(os.path.join(os.path.dirname(__file__), "cue_report_text.md")).read()
     doc = text.format(
         command=command, commit=commit, strike=strike.strip(), cushion=cushion.strip(), tables=n,
