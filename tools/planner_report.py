@@ -405,6 +405,13 @@ and 0.06 on average (cuts up to 70 deg, 200 samples). The estimate ranks the
 candidates and values positions; the final ranking and the potProbability returned are
 the Monte Carlo's.
 
+In the search the estimate is taken from each stroke's simulated line rather than the
+plain rolling pot (`planner/search.cc`), and it also prices what the Monte Carlo samples
+beyond the geometry: the squirt and the throw that the model knows only to a fraction
+(`SquirtSigma`, `ThrowSigma`; docs/cue.md, "A table the model knows only roughly"). It
+still judges the line, not the speed: a ball that only just drops is rated as one that
+drops firmly (docs/whole-frame-planner.md §10 measures pricing that too).
+
 ## Fidelity: what the search's cheaper settings cost and change
 
 The planner simulates at two tiers (`physics/sim/fidelity.h`): the search at the search
