@@ -124,9 +124,10 @@ SimStatus ShotSimulator::Loop(const ShotSetup& setup, SimStatus status, bool dec
         (ev.ball == setup.object || ev.other == setup.object) &&
         (ev.kind == EventKind::kBallBall || ev.kind == EventKind::kCushion)) {
       if (ev.kind == EventKind::kCushion) ++out_.object_cushions;
-      const int other = ev.ball == setup.object ? ev.other : ev.ball;
-      const Vec2 partner = ev.kind == EventKind::kBallBall ? sim_.StateNow(other).r : Vec2::Zero();
-      MeasureLine(setup, sim_.StateNow(setup.object), ev.kind == EventKind::kBallBall ? &partner : nullptr);
+      // A ball's contact: the other ball's centre, for the line's throw.
+      const bool ball = ev.kind == EventKind::kBallBall;
+      const Vec2 partner = ball ? sim_.StateNow(ev.ball == setup.object ? ev.other : ev.ball).r : Vec2::Zero();
+      MeasureLine(setup, sim_.StateNow(setup.object), ball ? &partner : nullptr);
     }
     if (!decide) continue;
     // A miss: a pot's object ball at rest after contact, or the cue ball at rest
