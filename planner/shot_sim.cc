@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "physics/motion/motion.h"
 #include "planner/geometry.h"
@@ -73,8 +74,11 @@ const ShotOutcome& ShotSimulator::Run(const ShotSetup& setup, const physics::Sho
       balls_[static_cast<size_t>(i)].r = r;
     }
   }
+  // A fresh outcome that keeps the potted list's buffer: no allocation per run.
+  std::vector<int> potted = std::move(out_.potted);
+  potted.clear();
   out_ = ShotOutcome{};
-  out_.potted.clear();
+  out_.potted = std::move(potted);
   out_.first_hit = setup.touching_on;
   ++runs_;
   // The full mode keeps events and paths for the answer; the others neither (the

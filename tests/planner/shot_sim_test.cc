@@ -92,6 +92,22 @@ TEST(ShotSimTest, AReusedSimulatorGivesWhatAFreshOneGives) {
   }
 }
 
+// A reused simulator keeps its buffers: every run, potting or not, writes into the
+// potted list reserved for every ball (a run allocates nothing once they have grown).
+TEST(ShotSimTest, AReusedSimulatorKeepsItsPottedList) {
+  const physics::Pocket& p = physics::DefaultTable().pocket(physics::PocketId::kBaulkLeft);
+  TableState t;
+  const Vec2 red = p.mouth_centre - 0.5 * p.axis;
+  t.balls = {{BallKind::kCue, red - 0.6 * p.axis}, {BallKind::kRed, red}};
+  const ShotSetup setup{&t, 0, 1, p.id, BallOn::kRed};
+  ShotSimulator sim(physics::DefaultTable(), physics::SimParams{});
+  for (int k = 0; k < 3; ++k) {
+    const ShotOutcome& out = sim.Run(setup, {1.2 + 0.1 * k, Direction(p.axis), 0, 0}, {}, ShotSimulator::Mode::kFull, {});
+    ASSERT_EQ(out.object_pocket, static_cast<int>(p.id));
+    EXPECT_GE(out.potted.capacity(), static_cast<size_t>(physics::Simulator::kMaxBalls)) << "run " << k;
+  }
+}
+
 TEST(ShotSimTest, AnEventCapIsAFailureNeverASuccess) {
   const physics::Pocket& p = physics::DefaultTable().pocket(physics::PocketId::kTopRight);
   TableState t;
