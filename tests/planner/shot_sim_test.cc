@@ -49,6 +49,15 @@ std::vector<Case> RandomCases(int n) {
   return cases;
 }
 
+// A straight pot into `p`: a red `red_back` (m) in front of the mouth on the pocket's
+// axis, the cue ball `cue_back` (m) behind it on the same line.
+TableState StraightPot(const physics::Pocket& p, double red_back, double cue_back) {
+  TableState t;
+  const Vec2 red = p.mouth_centre - red_back * p.axis;
+  t.balls = {{BallKind::kCue, red - cue_back * p.axis}, {BallKind::kRed, red}};
+  return t;
+}
+
 TEST(ShotSimTest, StoppingEarlyNeverChangesTheVerdict) {
   ShotSimulator decide(physics::DefaultTable(), physics::SimParams{});
   ShotSimulator full(physics::DefaultTable(), physics::SimParams{});
@@ -96,9 +105,7 @@ TEST(ShotSimTest, AReusedSimulatorGivesWhatAFreshOneGives) {
 // potted list reserved for every ball (a run allocates nothing once they have grown).
 TEST(ShotSimTest, AReusedSimulatorKeepsItsPottedList) {
   const physics::Pocket& p = physics::DefaultTable().pocket(physics::PocketId::kBaulkLeft);
-  TableState t;
-  const Vec2 red = p.mouth_centre - 0.5 * p.axis;
-  t.balls = {{BallKind::kCue, red - 0.6 * p.axis}, {BallKind::kRed, red}};
+  TableState t = StraightPot(p, 0.5, 0.6);
   const ShotSetup setup{&t, 0, 1, p.id, BallOn::kRed};
   ShotSimulator sim(physics::DefaultTable(), physics::SimParams{});
   for (int k = 0; k < 3; ++k) {
@@ -110,9 +117,7 @@ TEST(ShotSimTest, AReusedSimulatorKeepsItsPottedList) {
 
 TEST(ShotSimTest, AnEventCapIsAFailureNeverASuccess) {
   const physics::Pocket& p = physics::DefaultTable().pocket(physics::PocketId::kTopRight);
-  TableState t;
-  const Vec2 red = p.mouth_centre - 0.4 * p.axis;
-  t.balls = {{BallKind::kCue, red - 0.5 * p.axis}, {BallKind::kRed, red}};
+  TableState t = StraightPot(p, 0.4, 0.5);
   const ShotSetup setup{&t, 0, 1, p.id, BallOn::kRed};
   const physics::Shot shot{1.5, Direction(p.axis), -1.5 / 0.02625, 0};  // screw back: no in-off
   ShotSimulator normal(physics::DefaultTable(), physics::SimParams{});
@@ -131,9 +136,7 @@ TEST(ShotSimTest, AnEventCapIsAFailureNeverASuccess) {
 TEST(ShotSimTest, TheMeasuredLineIsWhereTheObjectBallGoes) {
   // A straight pot: the object ball's line passes the mouth centre.
   const physics::Pocket& p = physics::DefaultTable().pocket(physics::PocketId::kBaulkLeft);
-  TableState t;
-  const Vec2 red = p.mouth_centre - 0.5 * p.axis;
-  t.balls = {{BallKind::kCue, red - 0.6 * p.axis}, {BallKind::kRed, red}};
+  TableState t = StraightPot(p, 0.5, 0.6);
   const ShotSetup setup{&t, 0, 1, p.id, BallOn::kRed};
   ShotSimulator sim(physics::DefaultTable(), physics::SimParams{});
   const ShotOutcome& out = sim.Run(setup, {1.2, Direction(p.axis), 0, 0}, {}, ShotSimulator::Mode::kFull, {});
