@@ -108,7 +108,6 @@ std::optional<PotEstimate> EstimatePot(const Vec2& cue, const Vec2& object, phys
   const double contact = TypicalContactSpeed(e.distance, e.aim.cut);
   e.sigma = LateralSigma(cue, object, e.aim.heading, e.aim.cut, e.distance, contact, cue_sigma,
                          object_sigma, noise, throws, radius);
-  e.heading_gain = HeadingGain(cue, object, e.aim.heading, e.aim.cut, e.distance, radius);
   e.probability = WindowProbability(e.window.centre(), e.sigma, e.window);
   return e;
 }

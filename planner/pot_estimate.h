@@ -117,8 +117,9 @@ struct PotEstimate {
   double approach = 0;           ///< angle from the pocket's axis, rad
   PocketWindow window;           ///< at the assumed arrival speed
   double sigma = 0;              ///< lateral, m
-  /// HeadingGain of the pot (m/rad): for another route, its first ball's gain
-  /// through the route's levers (routes.h); 0 when the heading does not move it.
+  /// Another route's HeadingGain (m/rad): its first ball's gain through the
+  /// route's levers (routes.h), set from the route's candidate. A direct pot leaves
+  /// it 0: the search takes its gain from the stroke's own simulated line.
   double heading_gain = 0;
   double probability = 0;
 };
