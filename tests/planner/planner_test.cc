@@ -265,12 +265,6 @@ TEST(PlannerTest, PotOnlyAndColoursOn) {
   }
 }
 
-// The break value prices what a pot keeps alive: the leave's expected points are
-// the weighted next pot probabilities times (the ball's value + the break value).
-// Potting the black with reds left, the next ball is a red whatever the break value
-// (every red is worth 1, so the ranking of next shots cannot change), and with the
-// position ignored the search is the same: the same shot, whose leave is then worth
-// exactly position_value points more for each point of break value.
 // A real table's squirt is known to 15 % of itself (the default noise): a stroke
 // with side pays for it in its pot's chance. The search must price it as the
 // Monte Carlo does, or it ranks strokes with side that the Monte Carlo then finds
@@ -298,6 +292,12 @@ TEST(PlannerTest, TheSearchPricesTheSquirtsUncertaintyAsTheMonteCarloDoes) {
   }
 }
 
+// The break value prices what a pot keeps alive: the leave's expected points are
+// the weighted next pot probabilities times (the ball's value + the break value).
+// Potting the black with reds left, the next ball is a red whatever the break value
+// (every red is worth 1, so the ranking of next shots cannot change), and with the
+// position ignored the search is the same: the same shot, whose leave is then worth
+// exactly position_value points more for each point of break value.
 TEST(PlannerTest, TheBreakValuePricesTheLeaveByWhatItKeepsAlive) {
   const physics::Pocket& p = Table().pocket(PocketId::kTopRight);
   const Vec2 black = p.mouth_centre - 0.4 * p.axis;
