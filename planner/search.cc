@@ -383,14 +383,20 @@ class Search {
     const PocketWindow w =
         ctx_.pockets->Window(cand_.pocket, out.line.direction, out.line.arrival_speed);
     if (cand_.route != PotRoute::kDirect) {
-      // Another route's estimate (routes.h) carries its own spread at the mouth; the
-      // simulated line says how well centred this aim is.
+      // Another route's estimate (routes.h) is its chance with the line centred in
+      // the window it planned for (at kTypicalArrivalSpeed), with its own spread at
+      // the mouth. This stroke's chance scales it by how its simulated line falls in
+      // the window at the speed it arrives (a fast ball's is narrower), with the
+      // spread the squirt and the throw add to the route's.
+      const PocketWindow& planned = cand_.estimate.window;
+      const double route_sigma = std::max(cand_.estimate.sigma, 1e-4);
       const double sigma =
-          std::max(std::hypot(cand_.estimate.sigma, SquirtSigma(squirt, cand_.estimate.heading_gain, ctx_.noise),
-                              ThrowSigma(out.first_line.throw_angle, cand_.estimate.distance, ctx_.noise)),
-                   1e-4);
-      const double centred = WindowProbability(w.centre(), sigma, w);
-      return centred > 0 ? cand_.estimate.probability * WindowProbability(out.line.offset, sigma, w) / centred : 0;
+          std::hypot(route_sigma, SquirtSigma(squirt, cand_.estimate.heading_gain, ctx_.noise),
+                     ThrowSigma(out.first_line.throw_angle, cand_.estimate.distance, ctx_.noise));
+      const double centred = WindowProbability(planned.centre(), route_sigma, planned);
+      return centred > 0
+                 ? std::min(1.0, cand_.estimate.probability * WindowProbability(out.line.offset, sigma, w) / centred)
+                 : 0;
     }
     const Vec2 u(std::cos(out.line.direction), std::sin(out.line.direction));
     const double distance =
