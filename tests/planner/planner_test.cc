@@ -16,6 +16,7 @@
 
 #include "planner/position.h"
 #include "planner/selfplay.h"
+#include "tests/planner/demo_plans.h"
 
 namespace snooker::planner {
 namespace {
@@ -273,23 +274,13 @@ TEST(PlannerTest, PotOnlyAndColoursOn) {
 // samples each: a binomial error of at most 0.035). Without the squirt's term the
 // search rated its answer 0.74 and the Monte Carlo 0.36-0.41.
 TEST(PlannerTest, TheSearchPricesTheSquirtsUncertaintyAsTheMonteCarloDoes) {
-  const Vec2 black = Table().spot(physics::Colour::kBlack);
-  TableState t;
-  t.balls = {{BallKind::kCue, black + Vec2(0.45, -0.30)}, {BallKind::kBlack, black}};
-  for (int i : {0, 4, 9}) t.balls.push_back({BallKind::kRed, Table().reds()[static_cast<size_t>(i)]});
-  PlanRequest r = Request(t, 4000);
-  r.monte_carlo_samples = 200;
-  r.max_shots = 1;
+  const PlanRequest r = Request(testing_tables::DemoTable());
   ASSERT_GT(r.noise.squirt_fraction, 0);
-  for (const std::uint64_t seed : {1, 2, 3}) {
-    r.seed = seed;
-    const PlanAnswer a = Planner::Default().Plan(r);
-    ASSERT_EQ(a.status, PlanStatus::kOk) << a.reason;
-    const PlannedShot& s = a.shots.front();
+  testing_tables::BestShotsOnThreeSeeds(r, [](const PlannedShot& s, std::uint64_t seed) {
     ASSERT_EQ(s.kind, ShotKind::kPot);
     EXPECT_NEAR(s.pot_estimate, s.pot_probability, 0.12) << "seed " << seed;
     EXPECT_GT(s.pot_probability, 0.6) << "seed " << seed;
-  }
+  });
 }
 
 // The break value prices what a pot keeps alive: the leave's expected points are

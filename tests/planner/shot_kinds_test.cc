@@ -15,6 +15,7 @@
 #include "planner/planner.h"
 #include "planner/placement.h"
 #include "planner/shot_sim.h"
+#include "tests/planner/demo_plans.h"
 
 namespace snooker::planner {
 namespace {
@@ -138,23 +139,16 @@ TEST(ShotKindsTest, ADoublesSearchEstimateTakesTheWindowItArrivesAt) {
   t.balls = {{BallKind::kCue, Vec2(1.0, 1.25)}, {BallKind::kRed, Vec2(1.45, 1.50)},
              {BallKind::kBlack, Table().spot(physics::Colour::kBlack)}};
   PlanRequest r = OnlyRoute(t, PotRoute::kDouble);
-  r.max_simulations = 4000;
-  r.monte_carlo_samples = 200;
-  r.max_shots = 1;
   for (const double min_speed : {0.3, 4.0}) {
     r.limits.min_speed = min_speed;
-    for (const std::uint64_t seed : {1, 2, 3}) {
-      r.seed = seed;
-      const PlanAnswer a = Planner::Default().Plan(r);
-      ASSERT_EQ(a.status, PlanStatus::kOk) << a.reason;
-      const PlannedShot& s = a.shots.front();
+    testing_tables::BestShotsOnThreeSeeds(r, [&](const PlannedShot& s, std::uint64_t seed) {
       ExpectPotAsLabelled(r, s, PotRoute::kDouble);
       EXPECT_GE(s.shot.speed, min_speed);
       const std::string what = "min speed " + std::to_string(min_speed) + ", seed " + std::to_string(seed);
       EXPECT_LT(s.pot_estimate, s.pot_probability + 0.07) << what;
       EXPECT_GT(s.pot_probability, 0.6) << what;
       EXPECT_NEAR(s.pot_estimate, s.pot_probability, 0.2) << what;
-    }
+    });
   }
 }
 
@@ -165,24 +159,14 @@ TEST(ShotKindsTest, ADoublesSearchEstimateTakesTheWindowItArrivesAt) {
 // squirt, it answered a 5 m/s double with side, rated 0.78, that the Monte Carlo
 // found 0.47-0.56.
 TEST(ShotKindsTest, ARoutesSearchEstimateAgreesWithItsMonteCarloOnTheDemoTable) {
-  const Vec2 black = Table().spot(physics::Colour::kBlack);
-  TableState t;
-  t.balls = {{BallKind::kCue, black + Vec2(0.45, -0.30)}, {BallKind::kBlack, black}};
-  for (int i : {0, 4, 9}) t.balls.push_back({BallKind::kRed, Table().reds()[static_cast<size_t>(i)]});
+  const TableState t = testing_tables::DemoTable();
   for (const PotRoute route : {PotRoute::kDouble, PotRoute::kKick}) {
-    PlanRequest r = OnlyRoute(t, route);
-    r.max_simulations = 4000;
-    r.monte_carlo_samples = 200;
-    r.max_shots = 1;
+    const PlanRequest r = OnlyRoute(t, route);
     ASSERT_GT(r.noise.squirt_fraction, 0);
-    for (const std::uint64_t seed : {1, 2, 3}) {
-      r.seed = seed;
-      const PlanAnswer a = Planner::Default().Plan(r);
-      ASSERT_EQ(a.status, PlanStatus::kOk) << a.reason;
-      const PlannedShot& s = a.shots.front();
+    testing_tables::BestShotsOnThreeSeeds(r, [&](const PlannedShot& s, std::uint64_t seed) {
       ExpectPotAsLabelled(r, s, route);
       EXPECT_NEAR(s.pot_estimate, s.pot_probability, 0.12) << ToString(route) << ", seed " << seed;
-    }
+    });
   }
 }
 
