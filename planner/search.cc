@@ -107,6 +107,12 @@ class Search {
     after_ctx_ = ctx;
     after_ctx_.position_sigma.clear();
     final_positions_.reserve(table.balls.size());
+    // Another route's own spread at the mouth, and its chance centred in the window it
+    // planned for: constants of the candidate that PotProbability scales by.
+    if (cand.route != PotRoute::kDirect) {
+      route_sigma_ = std::max(cand.estimate.sigma, 1e-4);
+      route_centred_ = WindowProbability(cand.estimate.window.centre(), route_sigma_, cand.estimate.window);
+    }
     // A cue ball touching a ball plays away from it (no push): the directions in
     // which the cue ball may not set off.
     const Vec2 c = table.balls[static_cast<size_t>(cue_)].position;
@@ -388,15 +394,12 @@ class Search {
       // the mouth. This stroke's chance scales it by how its simulated line falls in
       // the window at the speed it arrives (a fast ball's is narrower), with the
       // spread the squirt and the throw add to the route's.
-      const PocketWindow& planned = cand_.estimate.window;
-      const double route_sigma = std::max(cand_.estimate.sigma, 1e-4);
       const double sigma =
-          std::hypot(route_sigma, SquirtSigma(squirt, cand_.estimate.heading_gain, ctx_.noise),
+          std::hypot(route_sigma_, SquirtSigma(squirt, cand_.estimate.heading_gain, ctx_.noise),
                      ThrowSigma(out.first_line.throw_angle, cand_.estimate.distance, ctx_.noise));
-      const double centred = WindowProbability(planned.centre(), route_sigma, planned);
-      return centred > 0
-                 ? std::min(1.0, cand_.estimate.probability * WindowProbability(out.line.offset, sigma, w) / centred)
-                 : 0;
+      return route_centred_ > 0 ? std::min(1.0, cand_.estimate.probability *
+                                                    WindowProbability(out.line.offset, sigma, w) / route_centred_)
+                                : 0;
     }
     const Vec2 u(std::cos(out.line.direction), std::sin(out.line.direction));
     const double distance =
@@ -432,6 +435,7 @@ class Search {
   double height_lo_ = 0, height_hi_ = 0;  // the tip's range, fraction of R
   int cue_ = -1;
   double v_lo_ = 0, v_hi_ = 0;
+  double route_sigma_ = 0, route_centred_ = 0;  // another route's (PotProbability)
   nlopt::opt* opt_ = nullptr;
   std::exception_ptr pending_;
   bool interrupted_ = false, failed_ = false;
