@@ -176,7 +176,10 @@ double Pottability(const TableState& table, int ball, const physics::TableModel&
   for (int k = 0; k < physics::kPocketCount; ++k) {
     if (const auto aim = AimAt(o, static_cast<physics::PocketId>(k), model, options)) aims[n++] = *aim;
   }
-  std::stable_sort(aims, aims + n, [](const Aim& a, const Aim& b) { return a.ratio > b.ratio; });
+  // Ties in pocket order (as added): a stable order with no temporary buffer.
+  std::sort(aims, aims + n, [](const Aim& a, const Aim& b) {
+    return a.ratio != b.ratio ? a.ratio > b.ratio : a.pocket < b.pocket;
+  });
   double best = 0, second = 0;  // ratios
   for (int i = 0; i < n && aims[i].ratio > second; ++i) {
     const auto pot = Judge(table, ball, aims[i], model, options);

@@ -257,7 +257,9 @@ Vec2 DPoint(int k, const physics::TableModel& model, const OutlookOptions& optio
 Outlook OutlookInHand(const TableState& table, BallOn on, const PotContext& table_ctx,
                       const OutlookOptions& options) {
   const physics::TableModel& model = *table_ctx.table;
-  TableState placed = table;
+  TableState placed;  // one allocation: the table and the placed cue ball
+  placed.balls.reserve(table.balls.size() + 1);
+  placed.balls = table.balls;
   placed.balls.push_back({BallKind::kCue, Vec2::Zero()});
   const int cue = static_cast<int>(placed.balls.size()) - 1;
   // The placed ball's vision sigma, when the context gives one per ball.

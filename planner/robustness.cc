@@ -141,13 +141,13 @@ SampleWorth HandedOver(double score, const Outlook& o) {
 }  // namespace
 
 SampleWorth MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span<const Vec2> finals,
-                            const PotContext& after_ctx, const SearchSettings& settings) {
+                            const PotContext& after_ctx, const SearchSettings& settings, LeaveScratch* scratch) {
   const TableState& table = *setup.table;
   if (out.success && setup.kind == ShotKind::kPot) {
-    return SampleWorth{ScoreLeave(table, setup.on, setup.object, finals, out.potted, 1.0, after_ctx, settings).score};
+    return SampleWorth{ScoreLeave(table, setup.on, setup.object, finals, out.potted, 1.0, after_ctx, settings, scratch).score};
   }
   if (out.foul == Foul::kNone) {
-    const Leave leave = ScoreSafety(table, setup.on, out.first_hit, finals, out.potted, after_ctx, settings);
+    const Leave leave = ScoreSafety(table, setup.on, out.first_hit, finals, out.potted, after_ctx, settings, scratch);
     return leave.opponent ? HandedOver(leave.score, *leave.opponent) : SampleWorth{leave.score};
   }
   const int named = setup.object >= 0 ? setup.object : out.first_hit;
@@ -155,7 +155,10 @@ SampleWorth MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std:
       named >= 0 ? std::optional<BallKind>(table.balls[static_cast<size_t>(named)].kind) : std::nullopt;
   const int penalty = FoulPenalty(table, setup.on, nominated, out.first_hit, out.potted);
   // The opponent plays the table left, from the D when the cue ball went down.
-  const TableState after = ApplyShot(table, setup.on, finals, out.potted, true, *after_ctx.table);
+  LeaveScratch own;
+  LeaveScratch& buf = scratch != nullptr ? *scratch : own;
+  ApplyShotInto(table, setup.on, finals, out.potted, true, *after_ctx.table, &buf.after, nullptr);
+  const TableState& after = buf.after;
   if (const auto opponent_on = OpeningBallOn(after)) {
     const Outlook o = OpponentOutlook(after, *opponent_on, after_ctx, settings);
     return HandedOver(-(penalty + (o.expected_points - o.expected_penalty)), o);
@@ -176,6 +179,7 @@ MonteCarloTally RunSamples(const ShotSetup& setup, const physics::CueStrike& cue
   PotContext after_ctx = ctx;
   after_ctx.position_sigma.clear();
   std::vector<Vec2> truth, finals;
+  LeaveScratch scratch;
   for (int k = 0; k < count; ++k) {
     if (stop.Due()) {
       tally.interrupted = true;
@@ -195,7 +199,7 @@ MonteCarloTally RunSamples(const ShotSetup& setup, const physics::CueStrike& cue
     ++tally.samples;
     finals.clear();
     for (const physics::BallState& b : sim.final_balls()) finals.push_back(b.r);
-    const SampleWorth worth = MonteCarloScore(setup, out, finals, after_ctx, settings);
+    const SampleWorth worth = MonteCarloScore(setup, out, finals, after_ctx, settings, &scratch);
     tally.score_sum += worth.score;
     if (out.success) tally.success_score_sum += worth.score;
     if (worth.handed_over) {

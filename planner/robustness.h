@@ -132,9 +132,11 @@ struct SampleWorth {
 /// (a ball on dropping after all continues the visit; otherwise the opponent's
 /// expected points, negated); a foul, minus the penalty and the opponent's
 /// expected points (OpponentOutlook: from the D when the cue ball went down).
-/// With the opponent's outlook when the table went to them.
+/// With the opponent's outlook when the table went to them. `scratch`: the
+/// caller's buffers for the table left (LeaveScratch), or none.
 SampleWorth MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span<const physics::Vec2> finals,
-                            const PotContext& after_ctx, const SearchSettings& settings);
+                            const PotContext& after_ctx, const SearchSettings& settings,
+                            LeaveScratch* scratch = nullptr);
 
 /// Runs `count` samples of block stream `seed` for the stroke `cue` played as
 /// `setup` says (its table as vision saw it), under ctx.execution's noise and

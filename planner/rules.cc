@@ -1,6 +1,7 @@
 #include "planner/rules.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -260,41 +261,50 @@ std::optional<physics::Vec2> RespotPosition(BallKind colour, std::span<const phy
 TableState ApplyShot(const TableState& before, BallOn on, std::span<const physics::Vec2> final_positions,
                      std::span<const int> potted, bool foul, const physics::TableModel& table,
                      std::vector<int>* origin) {
-  const size_t n = before.balls.size();
-  std::vector<bool> down(n, false);
-  for (const int i : potted) {
-    if (i >= 0 && static_cast<size_t>(i) < n) down[static_cast<size_t>(i)] = true;
-  }
   TableState after;
-  std::vector<int> from;
-  std::vector<std::pair<BallKind, int>> respot;
-  const bool reds_before = before.reds() > 0;
-  for (size_t i = 0; i < n; ++i) {
-    const BallKind k = before.balls[i].kind;
-    if (!down[i]) {
-      after.balls.push_back({k, final_positions[i]});
-      from.push_back(static_cast<int>(i));
-      continue;
-    }
-    if (!IsColour(k)) continue;  // reds stay down; a potted cue ball is in hand
-    // A colour stays down only when it was the ball on in the final sequence and
-    // the shot was fair; the colour after the last red (kAnyColour) comes back.
-    const bool stays_down = !foul && !reds_before && on != BallOn::kAnyColour && IsLegalTarget(on, k);
-    if (!stays_down) respot.emplace_back(k, static_cast<int>(i));
-  }
-  std::sort(respot.begin(), respot.end(),
-            [](const auto& a, const auto& b) { return Value(a.first) > Value(b.first); });
-  for (const auto& [k, i] : respot) {
-    std::vector<physics::Vec2> others;
-    others.reserve(after.balls.size());
-    for (const Ball& b : after.balls) others.push_back(b.position);
-    if (const auto p = RespotPosition(k, others, table)) {
-      after.balls.push_back({k, *p});
-      from.push_back(i);
-    }
-  }
-  if (origin != nullptr) *origin = std::move(from);
+  ApplyShotInto(before, on, final_positions, potted, foul, table, &after, origin);
   return after;
+}
+
+void ApplyShotInto(const TableState& before, BallOn on, std::span<const physics::Vec2> final_positions,
+                   std::span<const int> potted, bool foul, const physics::TableModel& table, TableState* after,
+                   std::vector<int>* origin) {
+  const size_t n = before.balls.size();
+  auto down = [&](size_t i) { return std::find(potted.begin(), potted.end(), static_cast<int>(i)) != potted.end(); };
+  after->balls.clear();
+  if (origin != nullptr) origin->clear();
+  auto add = [&](BallKind k, const physics::Vec2& p, size_t from) {
+    after->balls.push_back({k, p});
+    if (origin != nullptr) origin->push_back(static_cast<int>(from));
+  };
+  for (size_t i = 0; i < n; ++i) {
+    if (!down(i)) add(before.balls[i].kind, final_positions[i], i);
+  }
+  // Potted colours come back highest value first, unless one stays down: the ball
+  // on in the final sequence, potted fairly. The colour after the last red
+  // (kAnyColour) comes back; reds stay down; a potted cue ball is in hand.
+  const bool reds_before = before.reds() > 0;
+  constexpr BallKind kByValue[] = {BallKind::kBlack, BallKind::kPink,  BallKind::kBlue,
+                                   BallKind::kBrown, BallKind::kGreen, BallKind::kYellow};
+  std::array<physics::Vec2, physics::limits::kMaxBalls> buffer;
+  std::vector<physics::Vec2> spill;  // tables past the limit only (not validated ones)
+  for (const BallKind k : kByValue) {
+    const bool stays_down = !foul && !reds_before && on != BallOn::kAnyColour && IsLegalTarget(on, k);
+    if (stays_down) continue;
+    for (size_t i = 0; i < n; ++i) {
+      if (before.balls[i].kind != k || !down(i)) continue;
+      const size_t m = after->balls.size();
+      std::span<physics::Vec2> others;
+      if (m <= buffer.size()) {
+        others = std::span<physics::Vec2>(buffer.data(), m);
+      } else {
+        spill.resize(m);
+        others = spill;
+      }
+      for (size_t j = 0; j < m; ++j) others[j] = after->balls[j].position;
+      if (const auto p = RespotPosition(k, others, table)) add(k, *p, i);
+    }
+  }
 }
 
 }  // namespace snooker::planner

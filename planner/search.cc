@@ -107,6 +107,8 @@ class Search {
     after_ctx_ = ctx;
     after_ctx_.position_sigma.clear();
     final_positions_.reserve(table.balls.size());
+    scratch_.after.balls.reserve(table.balls.size());
+    scratch_.origin.reserve(table.balls.size());
     // Another route's own spread at the mouth, and its chance centred in the window it
     // planned for: constants of the candidate that PotProbability scales by.
     if (cand.route != PotRoute::kDirect) {
@@ -252,9 +254,9 @@ class Search {
     final_positions_.clear();
     for (const physics::BallState& b : sim_.final_balls()) final_positions_.push_back(b.r);
     const Leave leave = pot ? ScoreLeave(table_, on_, cand_.object, final_positions_, out.potted, p, after_ctx_,
-                                         settings_)
+                                         settings_, &scratch_)
                             : ScoreSafety(table_, on_, out.first_hit, final_positions_, out.potted, after_ctx_,
-                                          settings_);
+                                          settings_, &scratch_);
     const double score = leave.score - SpeedCost(shot.speed);
     std::optional<ShotCandidate>& best_of_class =
         result_.by_spin[static_cast<size_t>(SpinClassOf(shot, ctx_.table->ball_radius()))];
@@ -445,6 +447,7 @@ class Search {
   SearchResult result_;
   PotContext after_ctx_;
   std::vector<Vec2> final_positions_;
+  LeaveScratch scratch_;  // the table each evaluation leaves
 };
 
 }  // namespace
@@ -550,11 +553,22 @@ double ShotScore(double pot_probability, int value, const PositionValue& positio
   return pot_probability * (value + (position_play ? position.expected_points : 0.0));
 }
 
+namespace {
+// The table a fair shot leaves, by the rules, built in `buf`.
+const LeaveScratch& TableLeft(const TableState& table, BallOn on, std::span<const Vec2> finals,
+                              std::span<const int> potted, const PotContext& after_ctx, LeaveScratch& buf) {
+  ApplyShotInto(table, on, finals, potted, false, *after_ctx.table, &buf.after, &buf.origin);
+  return buf;
+}
+}  // namespace
+
 Leave ScoreLeave(const TableState& table, BallOn on, int object, std::span<const Vec2> finals,
                  std::span<const int> potted, double pot_probability, const PotContext& after_ctx,
-                 const SearchSettings& settings) {
-  std::vector<int> origin;
-  const TableState after = ApplyShot(table, on, finals, potted, false, *after_ctx.table, &origin);
+                 const SearchSettings& settings, LeaveScratch* scratch) {
+  LeaveScratch own;
+  const LeaveScratch& buf = TableLeft(table, on, finals, potted, after_ctx, scratch != nullptr ? *scratch : own);
+  const TableState& after = buf.after;
+  const std::vector<int>& origin = buf.origin;
   const BallKind object_kind = table.balls[static_cast<size_t>(object)].kind;
   Leave leave;
   if (const auto next_on = NextBallOn(on, object_kind, after)) {
@@ -580,9 +594,12 @@ Outlook OpponentOutlook(const TableState& after, BallOn on, const PotContext& af
 }
 
 Leave ScoreSafety(const TableState& table, BallOn on, int first_hit, std::span<const Vec2> finals,
-                  std::span<const int> potted, const PotContext& after_ctx, const SearchSettings& settings) {
-  std::vector<int> origin;
-  const TableState after = ApplyShot(table, on, finals, potted, false, *after_ctx.table, &origin);
+                  std::span<const int> potted, const PotContext& after_ctx, const SearchSettings& settings,
+                  LeaveScratch* scratch) {
+  LeaveScratch own;
+  const LeaveScratch& buf = TableLeft(table, on, finals, potted, after_ctx, scratch != nullptr ? *scratch : own);
+  const TableState& after = buf.after;
+  const std::vector<int>& origin = buf.origin;
   Leave leave;
   const std::optional<BallKind> nominated =
       first_hit >= 0 ? std::optional<BallKind>(table.balls[static_cast<size_t>(first_hit)].kind) : std::nullopt;

@@ -208,6 +208,15 @@ struct Leave {
   int next_ball = -1;
 };
 
+/// The buffers ScoreSafety and ScoreLeave build the table left in: a caller that
+/// scores many shots (a search, a Monte Carlo) keeps one, and once grown to the
+/// table's size the scoring allocates nothing for it. Without one each call makes
+/// its own.
+struct LeaveScratch {
+  TableState after;
+  std::vector<int> origin;
+};
+
 /// Scores what a legal safety, escape or break-off leaves, for the striker, in
 /// ShotScore's points: when a ball on dropped after all, the points and the
 /// striker's position (the visit goes on); otherwise minus the opponent's expected
@@ -216,7 +225,8 @@ struct Leave {
 /// is the first ball the cue ball hit. Leave::next_ball is then the opponent's best
 /// ball.
 Leave ScoreSafety(const TableState& table, BallOn on, int first_hit, std::span<const physics::Vec2> finals,
-                  std::span<const int> potted, const PotContext& after_ctx, const SearchSettings& settings);
+                  std::span<const int> potted, const PotContext& after_ctx, const SearchSettings& settings,
+                  LeaveScratch* scratch = nullptr);
 
 /// The outlook (outlook.h) of the table `after` for the opponent, to play with `on`
 /// (the cue ball in hand when `after` has none).
@@ -229,8 +239,9 @@ Outlook OpponentOutlook(const TableState& after, BallOn on, const PotContext& af
 /// that position (EvaluatePosition with `after_ctx`, whose per-ball vision sigmas
 /// no longer apply: the balls have moved) and ShotScore. `finals` are where the
 /// simulation left every ball of `table`, `potted` the balls that dropped.
+/// `scratch`: the caller's buffers for the table left (LeaveScratch), or none.
 Leave ScoreLeave(const TableState& table, BallOn on, int object, std::span<const physics::Vec2> finals,
                  std::span<const int> potted, double pot_probability, const PotContext& after_ctx,
-                 const SearchSettings& settings);
+                 const SearchSettings& settings, LeaveScratch* scratch = nullptr);
 
 }  // namespace snooker::planner

@@ -1,0 +1,156 @@
+// The planner's hot path allocates nothing once its buffers have grown: a search's
+// and a Monte Carlo's every evaluation is a simulation and the scoring of the table
+// it leaves. This executable counts the global operator new (its own, so that no
+// other test pays for the count), and asserts that a reused simulator and a reused
+// LeaveScratch make no allocation on a repeated evaluation.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <new>
+#include <vector>
+
+#include "physics/table/table.h"
+#include "planner/layout.h"
+#include "planner/planner.h"
+#include "planner/robustness.h"
+#include "planner/search.h"
+#include "planner/shot_sim.h"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+// GCC pairs the operator new it sees with the free in these deletes and warns; they
+// are this file's own pair.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+#endif
+void* operator new(std::size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace snooker::planner {
+namespace {
+
+using physics::PocketId;
+using physics::Vec2;
+
+// A red near the top-right pocket, the cue ball behind it, the colours on their
+// spots (the pink and black knocked about by a follow-through), more reds about.
+TableState Table() {
+  const physics::TableModel& model = physics::DefaultTable();
+  const physics::Pocket& p = model.pocket(PocketId::kTopRight);
+  TableState t;
+  const Vec2 red = p.mouth_centre - 0.4 * p.axis;
+  t.balls = {{BallKind::kCue, red - 0.5 * p.axis}, {BallKind::kRed, red}};
+  for (const physics::Colour c : {physics::Colour::kYellow, physics::Colour::kGreen, physics::Colour::kBrown,
+                                  physics::Colour::kBlue, physics::Colour::kPink, physics::Colour::kBlack}) {
+    t.balls.push_back({KindOf(c), model.spot(c)});
+  }
+  for (int i : {0, 5, 10}) t.balls.push_back({BallKind::kRed, model.reds()[static_cast<size_t>(i)]});
+  return t;
+}
+
+struct Scene {
+  TableState table = Table();
+  PotContext ctx = Planner::Default().ContextFor(PlanRequest{});
+  LayoutSummary layout;
+  SearchSettings settings;
+  Scene() {
+    LayoutOptions o;
+    o.pockets = ctx.pockets;
+    layout = SummarizeLayout(table, *ctx.table, o);
+    ctx.layout = &layout;
+  }
+};
+
+// Allocations made by f(), run once to grow the buffers and then counted.
+template <class F>
+long AllocationsOfASecondRun(F f) {
+  f();
+  const long before = g_allocations.load();
+  f();
+  return g_allocations.load() - before;
+}
+
+TEST(AllocationTest, TheCounterSeesAnAllocation) {
+  const long before = g_allocations.load();
+  auto* v = new std::vector<int>(100);
+  EXPECT_GE(g_allocations.load() - before, 2);
+  delete v;
+}
+
+TEST(AllocationTest, AReusedSimulatorAndScratchScoreAPotWithoutAllocating) {
+  Scene s;
+  const physics::Pocket& p = s.ctx.table->pocket(PocketId::kTopRight);
+  const ShotSetup setup{&s.table, 0, 1, p.id, BallOn::kRed};
+  ShotSimulator sim(*s.ctx.table, physics::SimParams{});
+  LeaveScratch scratch;
+  std::vector<Vec2> finals;
+  finals.reserve(s.table.balls.size());
+  const physics::Shot shot{1.5, std::atan2(p.axis.y(), p.axis.x()), -1.5 / 0.02625, 0};  // screw: no in-off
+  double score = 0;
+  const long n = AllocationsOfASecondRun([&] {
+    const ShotOutcome& out = sim.Run(setup, shot, {}, ShotSimulator::Mode::kDecide, {});
+    ASSERT_TRUE(out.success);
+    finals.clear();
+    for (const physics::BallState& b : sim.final_balls()) finals.push_back(b.r);
+    score = ScoreLeave(s.table, BallOn::kRed, 1, finals, out.potted, 1.0, s.ctx, s.settings, &scratch)
+                .score;
+  });
+  EXPECT_EQ(n, 0);
+  EXPECT_GT(score, 1.0);  // the red's point and a colour to follow
+}
+
+TEST(AllocationTest, ScoringALeaveThatRespotsAColourDoesNotAllocateWithAScratch) {
+  Scene s;
+  // The pink dropped with the red: it comes back to its spot (the rules' re-spot).
+  std::vector<Vec2> finals;
+  for (const Ball& b : s.table.balls) finals.push_back(b.position);
+  const int pink = 6;
+  ASSERT_EQ(s.table.balls[pink].kind, BallKind::kPink);
+  const std::vector<int> potted = {1, pink};
+  LeaveScratch scratch;
+  const long n = AllocationsOfASecondRun(
+      [&] { ScoreLeave(s.table, BallOn::kRed, 1, finals, potted, 0.9, s.ctx, s.settings, &scratch); });
+  EXPECT_EQ(n, 0);
+  ASSERT_EQ(scratch.after.balls.size(), s.table.balls.size() - 1);  // the red down, the pink back
+  EXPECT_EQ(scratch.after.balls.back().kind, BallKind::kPink);
+}
+
+// A safety's table goes to the opponent: their outlook (a snooker check, their
+// pots) is scored on the scratch's table without allocating either.
+TEST(AllocationTest, ScoringASafetyAndAMonteCarloSampleDoesNotAllocateWithAScratch) {
+  Scene s;
+  const physics::Pocket& p = s.ctx.table->pocket(PocketId::kTopRight);
+  std::vector<Vec2> finals;
+  for (const Ball& b : s.table.balls) finals.push_back(b.position);
+  finals[0] = Vec2(0.9, 0.5);  // the cue ball sent to baulk
+  LeaveScratch scratch;
+  Leave safety;
+  const long n = AllocationsOfASecondRun(
+      [&] { safety = ScoreSafety(s.table, BallOn::kRed, 1, finals, {}, s.ctx, s.settings, &scratch); });
+  EXPECT_EQ(n, 0);
+  ASSERT_TRUE(safety.opponent.has_value());
+  EXPECT_LE(safety.score, 0.0);  // what the opponent can expect, negated
+  // The same table as a Monte Carlo sample of a safety that played it.
+  ShotSetup setup{&s.table, 0, 1, p.id, BallOn::kRed};
+  setup.kind = ShotKind::kSafety;
+  ShotOutcome out;
+  out.first_hit = 1;
+  out.success = true;
+  double score = 1;
+  const long m = AllocationsOfASecondRun(
+      [&] { score = MonteCarloScore(setup, out, finals, s.ctx, s.settings, &scratch).score; });
+  EXPECT_EQ(m, 0);
+  EXPECT_DOUBLE_EQ(score, safety.score);
+}
+
+}  // namespace
+}  // namespace snooker::planner
