@@ -262,6 +262,7 @@ TableState ApplyShot(const TableState& before, BallOn on, std::span<const physic
                      std::span<const int> potted, bool foul, const physics::TableModel& table,
                      std::vector<int>* origin) {
   TableState after;
+  after.balls.reserve(before.balls.size());
   ApplyShotInto(before, on, final_positions, potted, foul, table, &after, origin);
   return after;
 }

@@ -149,7 +149,8 @@ TableState ApplyShot(const TableState& before, BallOn on, std::span<const physic
 
 /// ApplyShot into `after` and `origin` (each cleared first, its buffer kept): once
 /// they have grown to the table's size, no allocation, for the search's and the
-/// Monte Carlo's every evaluation. `origin` may be null.
+/// Monte Carlo's every evaluation. `origin` may be null; `after` must not be
+/// `before`.
 void ApplyShotInto(const TableState& before, BallOn on, std::span<const physics::Vec2> final_positions,
                    std::span<const int> potted, bool foul, const physics::TableModel& table, TableState* after,
                    std::vector<int>* origin);
