@@ -41,8 +41,8 @@ namespace {
 using physics::PocketId;
 using physics::Vec2;
 
-// A red near the top-right pocket, the cue ball behind it, the colours on their
-// spots (the pink and black knocked about by a follow-through), more reds about.
+// A red in line with the top-right pocket and the cue ball behind it, the colours on
+// their spots and three reds of the pack.
 TableState Table() {
   const physics::TableModel& model = physics::DefaultTable();
   const physics::Pocket& p = model.pocket(PocketId::kTopRight);
