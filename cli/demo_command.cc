@@ -12,6 +12,7 @@
 #include "cli/args.h"
 #include "cli/client.h"
 #include "cli/commands.h"
+#include "cli/load_tables.h"
 #include "cli/svg.h"
 #include "server/api.h"
 #include "server/server.h"
@@ -22,19 +23,9 @@ namespace {
 
 v1::SimulateRequest DemoShot() {
   v1::SimulateRequest r;
-  auto add = [&](const std::string& id, v1::BallKind kind, double x, double y) {
-    v1::Ball* b = r.mutable_table()->add_balls();
-    b->set_id(id);
-    b->set_kind(kind);
-    b->mutable_position()->set_x(x);
-    b->mutable_position()->set_y(y);
-  };
+  BuiltinTable("black", r.mutable_table());  // the cue ball, the black, three reds
   const physics::TableModel& table = physics::DefaultTable();
   const physics::Vec2 black = table.spot(physics::Colour::kBlack);
-  add("cue", v1::CUE, black.x() + 0.45, black.y() - 0.30);
-  add("black", v1::BLACK, black.x(), black.y());
-  const auto reds = table.reds();
-  for (int i : {0, 4, 9}) add("red-" + std::to_string(i + 1), v1::RED, reds[i].x(), reds[i].y());
   // Cut the black (about 13 deg) into the top-left pocket: the ghost-ball line to the
   // mouth, turned 0.22 deg to allow for the throw that ball-ball friction gives the
   // black (found by simulating: the pot drops for turns of -0.32 to -0.12 deg).

@@ -9,7 +9,9 @@
 #include "physics/core/params.h"
 #include "physics/core/types.h"
 #include "physics/table/table.h"
+#include "planner/builtin_tables.h"
 #include "server/convert.h"
+#include "server/plan_convert.h"
 
 namespace snooker::cli {
 
@@ -123,43 +125,14 @@ v1::Shot ShotAtABall(const v1::TableState& table, LoadRandom& random) {
 }
 
 bool BuiltinTable(const std::string& name, v1::TableState* t) {
-  const physics::TableModel& table = physics::DefaultTable();
   t->Clear();
-  const std::pair<physics::Colour, std::pair<const char*, v1::BallKind>> colours[] = {
-      {physics::Colour::kYellow, {"yellow", v1::YELLOW}}, {physics::Colour::kGreen, {"green", v1::GREEN}},
-      {physics::Colour::kBrown, {"brown", v1::BROWN}},    {physics::Colour::kBlue, {"blue", v1::BLUE}},
-      {physics::Colour::kPink, {"pink", v1::PINK}},       {physics::Colour::kBlack, {"black", v1::BLACK}}};
-  if (name == "black") {  // snooker demo's table
-    const physics::Vec2 black = table.spot(physics::Colour::kBlack);
-    Add(t, "cue", v1::CUE, black + physics::Vec2(0.45, -0.30));
-    Add(t, "black", v1::BLACK, black);
-    const auto reds = table.reds();
-    for (int i : {0, 4, 9}) Add(t, "red-" + std::to_string(i + 1), v1::RED, reds[static_cast<std::size_t>(i)]);
-    return true;
-  }
-  if (name == "red") {  // the table of the `snooker plan` tests
-    Add(t, "cue", v1::CUE, {1.1819, 2.9729});
-    Add(t, "red-1", v1::RED, {1.4648, 3.2558});
-    Add(t, "black", v1::BLACK, {0.889, 3.245});
-    Add(t, "red-2", v1::RED, {0.4, 1.5});
-    return true;
-  }
-  if (name == "colours") {
-    const physics::Vec2 brown = table.spot(physics::Colour::kBrown);
-    Add(t, "cue", v1::CUE, brown + physics::Vec2(0.12, 0.35));
-    for (const auto& [colour, named] : colours) Add(t, named.first, named.second, table.spot(colour));
-    return true;
-  }
-  if (name == "break-off") {
-    const auto reds = table.reds();
-    for (std::size_t i = 0; i < reds.size(); ++i) Add(t, "red-" + std::to_string(i + 1), v1::RED, reds[i]);
-    for (const auto& [colour, named] : colours) Add(t, named.first, named.second, table.spot(colour));
-    return true;
-  }
-  return false;
+  const auto balls = planner::BuiltinTable(name);
+  if (!balls) return false;
+  for (const planner::NamedBall& b : *balls) Add(t, b.id, server::ToProto(b.ball.kind), b.ball.position);
+  return true;
 }
 
-const char* BuiltinTableNames() { return "black, red, colours, break-off"; }
+const char* BuiltinTableNames() { return planner::BuiltinTableNames(); }
 
 bool ReadTables(const std::string& dir, std::vector<v1::TableState>* tables, std::string* error) {
   namespace fs = std::filesystem;

@@ -37,13 +37,9 @@ std::vector<v1::TableState> VariedTables(std::uint64_t seed, int count, double o
 /// spin (sidespin within half of it).
 v1::Shot ShotAtABall(const v1::TableState& table, LoadRandom& random);
 
-/// Named built-in table states for `snooker plan --table builtin:NAME` (and the
-/// README's demonstration): "black" (the black on its spot with three reds near
-/// it, the cue ball below and right of it), "red" (a red near the top-right pocket,
-/// the black, a red in baulk), "colours" (the reds gone, the six colours on their
-/// spots, the cue ball near the brown), "break-off" (the frame's opening: the 15
-/// reds racked, the colours on their spots and no cue ball, which is in hand).
-/// False for another name.
+/// The built-in table `name` (planner/builtin_tables.h: "black", "red", "colours",
+/// "break-off") as the API's table state, with its balls' ids, for `snooker plan
+/// --table builtin:NAME` and the README's demonstration. False for another name.
 bool BuiltinTable(const std::string& name, v1::TableState* table);
 /// The names BuiltinTable knows, comma-separated.
 const char* BuiltinTableNames();

@@ -12,7 +12,7 @@ const KINDS = ['CUE', 'RED', 'YELLOW', 'GREEN', 'BROWN', 'BLUE', 'PINK', 'BLACK'
 const COLOUR_IDS = { YELLOW: 'yellow', GREEN: 'green', BROWN: 'brown', BLUE: 'blue', PINK: 'pink', BLACK: 'black' };
 const PLACED_CUE_ID = 'cue';  // the planner's name for the cue ball placed from hand
 
-// The built-in tables of `snooker plan --table builtin:NAME` (cli/load_tables.cc,
+// The built-in tables of `snooker plan --table builtin:NAME` (planner/builtin_tables.cc,
 // BuiltinTable), with the default table's spots and opening reds
 // (physics/table/table.cc): "black" has the cue ball at the black spot + (0.45, -0.30)
 // and reds 1, 5 and 10 of the triangle, "colours" the cue ball at the brown spot +

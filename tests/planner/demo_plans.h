@@ -1,27 +1,20 @@
-// Test helpers: the demo's table (`snooker plan --table builtin:black`,
-// cli/load_tables.cc) as the planner takes it, and plans whose search estimate is
-// checked against their own Monte Carlo.
+// Test helpers: the demo's table (`snooker plan --table builtin:black`) as the
+// planner takes it, and plans whose search estimate is checked against their own
+// Monte Carlo.
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <cstdint>
 
-#include "physics/table/table.h"
+#include "planner/builtin_tables.h"
 #include "planner/planner.h"
 #include "planner/rules.h"
 
 namespace snooker::planner::testing_tables {
 
 /// The cue ball, the black on its spot and three reds of the pack, in that order.
-inline TableState DemoTable() {
-  const physics::TableModel& table = physics::DefaultTable();
-  const physics::Vec2 black = table.spot(physics::Colour::kBlack);
-  TableState t;
-  t.balls = {{BallKind::kCue, black + physics::Vec2(0.45, -0.30)}, {BallKind::kBlack, black}};
-  for (int i : {0, 4, 9}) t.balls.push_back({BallKind::kRed, table.reds()[static_cast<size_t>(i)]});
-  return t;
-}
+inline TableState DemoTable() { return TableOf(*BuiltinTable("black")); }
 
 /// Calls check(shot, seed) with the best shot of `request` planned on seeds 1, 2 and
 /// 3, capped at 4000 simulations (so that each plan is a function of its seed), the

@@ -1,0 +1,67 @@
+#include "planner/builtin_tables.h"
+
+#include <array>
+#include <cstddef>
+#include <utility>
+
+#include "physics/table/table.h"
+
+namespace snooker::planner {
+
+namespace {
+
+constexpr std::array<physics::Colour, 6> kColours = {physics::Colour::kYellow, physics::Colour::kGreen,
+                                                     physics::Colour::kBrown,  physics::Colour::kBlue,
+                                                     physics::Colour::kPink,   physics::Colour::kBlack};
+
+void Add(std::vector<NamedBall>& balls, std::string id, BallKind kind, const physics::Vec2& at) {
+  balls.push_back({std::move(id), Ball{kind, at}});
+}
+
+// The colours on their spots, named by colour.
+void AddColours(std::vector<NamedBall>& balls, const physics::TableModel& table) {
+  for (const physics::Colour c : kColours) Add(balls, ToString(KindOf(c)), KindOf(c), table.spot(c));
+}
+
+// Red i of the rack (0-based) as "red-<i+1>".
+void AddRed(std::vector<NamedBall>& balls, const physics::TableModel& table, std::size_t i) {
+  Add(balls, "red-" + std::to_string(i + 1), BallKind::kRed, table.reds()[i]);
+}
+
+}  // namespace
+
+std::optional<std::vector<NamedBall>> BuiltinTable(std::string_view name) {
+  const physics::TableModel& table = physics::DefaultTable();
+  std::vector<NamedBall> balls;
+  if (name == "black") {
+    const physics::Vec2 black = table.spot(physics::Colour::kBlack);
+    Add(balls, "cue", BallKind::kCue, black + physics::Vec2(0.45, -0.30));
+    Add(balls, "black", BallKind::kBlack, black);
+    for (const std::size_t i : {0u, 4u, 9u}) AddRed(balls, table, i);
+  } else if (name == "red") {
+    Add(balls, "cue", BallKind::kCue, {1.1819, 2.9729});
+    Add(balls, "red-1", BallKind::kRed, {1.4648, 3.2558});
+    Add(balls, "black", BallKind::kBlack, {0.889, 3.245});
+    Add(balls, "red-2", BallKind::kRed, {0.4, 1.5});
+  } else if (name == "colours") {
+    Add(balls, "cue", BallKind::kCue, table.spot(physics::Colour::kBrown) + physics::Vec2(0.12, 0.35));
+    AddColours(balls, table);
+  } else if (name == "break-off") {
+    for (std::size_t i = 0; i < table.reds().size(); ++i) AddRed(balls, table, i);
+    AddColours(balls, table);
+  } else {
+    return std::nullopt;
+  }
+  return balls;
+}
+
+const char* BuiltinTableNames() { return "black, red, colours, break-off"; }
+
+TableState TableOf(const std::vector<NamedBall>& balls) {
+  TableState t;
+  t.balls.reserve(balls.size());
+  for (const NamedBall& b : balls) t.balls.push_back(b.ball);
+  return t;
+}
+
+}  // namespace snooker::planner
