@@ -1,6 +1,5 @@
 #include "planner/builtin_tables.h"
 
-#include <array>
 #include <cstddef>
 #include <utility>
 
@@ -10,17 +9,16 @@ namespace snooker::planner {
 
 namespace {
 
-constexpr std::array<physics::Colour, 6> kColours = {physics::Colour::kYellow, physics::Colour::kGreen,
-                                                     physics::Colour::kBrown,  physics::Colour::kBlue,
-                                                     physics::Colour::kPink,   physics::Colour::kBlack};
-
 void Add(std::vector<NamedBall>& balls, std::string id, BallKind kind, const physics::Vec2& at) {
   balls.push_back({std::move(id), Ball{kind, at}});
 }
 
 // The colours on their spots, named by colour.
 void AddColours(std::vector<NamedBall>& balls, const physics::TableModel& table) {
-  for (const physics::Colour c : kColours) Add(balls, ToString(KindOf(c)), KindOf(c), table.spot(c));
+  for (int c = 0; c < physics::kColourCount; ++c) {
+    const physics::Colour colour = static_cast<physics::Colour>(c);
+    Add(balls, ToString(KindOf(colour)), KindOf(colour), table.spot(colour));
+  }
 }
 
 // Red i of the rack (0-based) as "red-<i+1>".
