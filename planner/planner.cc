@@ -54,6 +54,7 @@ struct Worker {
       : search(table, c.search), full(table, c.full) {}
   ShotSimulator search;
   ShotSimulator full;
+  SampleScratch samples;
   std::int64_t evaluations = 0;
 };
 
@@ -811,10 +812,11 @@ void PlanRun::RankByMonteCarlo() {
     // shot's samples do not depend on the other shots ranked with it.
     const std::uint64_t key = (static_cast<std::uint64_t>(ps.kind) * 64 + static_cast<std::uint64_t>(ps.object_ball + 1)) * 8 +
                               static_cast<std::uint64_t>(ps.pocket);
+    Worker& w = *workers_[static_cast<size_t>(worker)];
     tallies[static_cast<size_t>(task)] =
-        RunSamples(SetupFor(ps), ps.cue, ctx_, settings_, workers_[static_cast<size_t>(worker)]->full,
-                   schedule_.monte_carlo, DeriveSeed(request_.seed, key, static_cast<std::uint64_t>(b)), kBlock,
-                   tail_fit && ps.kind == ShotKind::kPot && ps.route == PotRoute::kDirect);
+        RunSamples(SetupFor(ps), ps.cue, ctx_, settings_, w.full, schedule_.monte_carlo,
+                   DeriveSeed(request_.seed, key, static_cast<std::uint64_t>(b)), kBlock,
+                   tail_fit && ps.kind == ShotKind::kPot && ps.route == PotRoute::kDirect, &w.samples);
   });
   for (int s = 0; s < n; ++s) {
     MonteCarloTally t;

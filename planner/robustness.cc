@@ -172,14 +172,20 @@ constexpr double kFarOutside = 5;  // |z| of a line with no window, in half-widt
 
 MonteCarloTally RunSamples(const ShotSetup& setup, const physics::CueStrike& cue, const PotContext& ctx,
                            const SearchSettings& settings, ShotSimulator& sim, const StopControl& stop,
-                           std::uint64_t seed, int count, bool measure_line) {
+                           std::uint64_t seed, int count, bool measure_line, SampleScratch* scratch) {
   MonteCarloTally tally;
   Rng rng(seed);
   const physics::Interrupt interrupt = stop.AsInterrupt();
-  PotContext after_ctx = ctx;
-  after_ctx.position_sigma.clear();
-  std::vector<Vec2> truth, finals;
-  LeaveScratch scratch;
+  SampleScratch own;
+  SampleScratch& buf = scratch != nullptr ? *scratch : own;
+  // The next shot is seen afresh by vision: every ball with the default sigma (the
+  // balls' indices change once some drop). Assigning into a kept context reuses
+  // its capacity.
+  buf.after_ctx = ctx;
+  buf.after_ctx.position_sigma.clear();
+  const PotContext& after_ctx = buf.after_ctx;
+  std::vector<Vec2>& truth = buf.truth;
+  std::vector<Vec2>& finals = buf.finals;
   for (int k = 0; k < count; ++k) {
     if (stop.Due()) {
       tally.interrupted = true;
@@ -199,7 +205,7 @@ MonteCarloTally RunSamples(const ShotSetup& setup, const physics::CueStrike& cue
     ++tally.samples;
     finals.clear();
     for (const physics::BallState& b : sim.final_balls()) finals.push_back(b.r);
-    const SampleWorth worth = MonteCarloScore(setup, out, finals, after_ctx, settings, &scratch);
+    const SampleWorth worth = MonteCarloScore(setup, out, finals, after_ctx, settings, &buf.leave);
     tally.score_sum += worth.score;
     if (out.success) tally.success_score_sum += worth.score;
     if (worth.handed_over) {

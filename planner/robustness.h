@@ -138,13 +138,25 @@ SampleWorth MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std:
                             const PotContext& after_ctx, const SearchSettings& settings,
                             LeaveScratch* scratch = nullptr);
 
+/// What RunSamples fills on every sample: the positions sampled and the final
+/// ones, the context that scores the table left and the table itself. A caller
+/// that keeps one from block to block (a worker) makes every block after its first
+/// run without allocating.
+struct SampleScratch {
+  PotContext after_ctx;
+  std::vector<physics::Vec2> truth;
+  std::vector<physics::Vec2> finals;
+  LeaveScratch leave;
+};
+
 /// Runs `count` samples of block stream `seed` for the stroke `cue` played as
 /// `setup` says (its table as vision saw it), under ctx.execution's noise and
 /// ctx.cue_params(). `sim` should run at full fidelity. With `measure_line` (a
 /// direct pot; ctx.pockets set) it also tallies the object ball's lines at the
-/// named pocket.
+/// named pocket. `scratch`: the caller's buffers, or none (then its own).
 MonteCarloTally RunSamples(const ShotSetup& setup, const physics::CueStrike& cue, const PotContext& ctx,
                            const SearchSettings& settings, ShotSimulator& sim, const StopControl& stop,
-                           std::uint64_t seed, int count, bool measure_line = false);
+                           std::uint64_t seed, int count, bool measure_line = false,
+                           SampleScratch* scratch = nullptr);
 
 }  // namespace snooker::planner

@@ -152,5 +152,36 @@ TEST(AllocationTest, ScoringASafetyAndAMonteCarloSampleDoesNotAllocateWithAScrat
   EXPECT_DOUBLE_EQ(score, safety.score);
 }
 
+// The Monte Carlo's blocks: a worker keeps a SampleScratch, so that a block after
+// its first (another stream, the same stroke) runs its samples, and scores the
+// tables they leave, without allocating; also when vision gives every ball its own
+// sigma, which the scoring of the table left sets aside.
+TEST(AllocationTest, AMonteCarloBlockWithAKeptScratchDoesNotAllocate) {
+  Scene s;
+  s.ctx.position_sigma.assign(s.table.balls.size(), 0.3e-3);
+  const physics::Pocket& p = s.ctx.table->pocket(PocketId::kTopRight);
+  const ShotSetup setup{&s.table, 0, 1, p.id, BallOn::kRed};
+  const Planner& planner = Planner::Default();
+  ShotSimulator sim(*s.ctx.table, planner.config().full);
+  const physics::Shot screw{1.5, std::atan2(p.axis.y(), p.axis.x()), -1.5 / 0.02625, 0};  // no in-off
+  const physics::CueStrike cue =
+      LevelStrikeFor(screw, s.ctx.cue_params(), planner.config().full.ball, planner.config().full.cloth.g);
+  SampleScratch scratch;
+  std::uint64_t seed = 1;
+  MonteCarloTally tally;
+  const long n = AllocationsOfASecondRun([&] {
+    tally = RunSamples(setup, cue, s.ctx, s.settings, sim, StopControl{}, seed++, 8, true, &scratch);
+  });
+  EXPECT_EQ(n, 0);
+  EXPECT_EQ(tally.samples, 8);
+  EXPECT_GE(tally.successes, 7);  // a straight 0.4 m pot under the request's default noise
+  EXPECT_EQ(tally.line_samples, 8);
+  // Without a kept scratch the same block allocates its buffers every time, which
+  // is what the count above would see.
+  const long own = AllocationsOfASecondRun(
+      [&] { RunSamples(setup, cue, s.ctx, s.settings, sim, StopControl{}, seed++, 8, true); });
+  EXPECT_GT(own, 0);
+}
+
 }  // namespace
 }  // namespace snooker::planner
