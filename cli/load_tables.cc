@@ -10,6 +10,7 @@
 #include "physics/core/types.h"
 #include "physics/table/table.h"
 #include "planner/builtin_tables.h"
+#include "planner/rules.h"
 #include "server/convert.h"
 #include "server/plan_convert.h"
 
@@ -68,9 +69,6 @@ std::vector<v1::TableState> VariedTables(std::uint64_t seed, int count, double o
   const physics::TableModel& table = physics::DefaultTable();
   LoadRandom random(seed);
   std::vector<v1::TableState> tables;
-  const std::pair<const char*, v1::BallKind> colours[] = {
-      {"yellow", v1::YELLOW}, {"green", v1::GREEN}, {"brown", v1::BROWN},
-      {"blue", v1::BLUE},     {"pink", v1::PINK},   {"black", v1::BLACK}};
   while (static_cast<int>(tables.size()) < count) {
     v1::TableState t;
     physics::Vec2 p;
@@ -80,8 +78,11 @@ std::vector<v1::TableState> VariedTables(std::uint64_t seed, int count, double o
     for (int i = 0; i < reds && FreeSpot(t, random, &p); ++i) {
       Add(&t, "red-" + std::to_string(i + 1), v1::RED, p);
     }
-    for (const auto& [id, kind] : colours) {
-      if ((random.Below(10) < 7 || t.balls_size() == 1) && FreeSpot(t, random, &p)) Add(&t, id, kind, p);
+    for (int c = 0; c < physics::kColourCount; ++c) {
+      const planner::BallKind kind = planner::KindOf(static_cast<physics::Colour>(c));
+      if ((random.Below(10) < 7 || t.balls_size() == 1) && FreeSpot(t, random, &p)) {
+        Add(&t, planner::ToString(kind), server::ToProto(kind), p);
+      }
     }
     if (t.balls_size() < 2) continue;  // no object ball: draw again
     if (overlap_mm > 0 && tables.size() % 4 == 3) {
