@@ -255,9 +255,9 @@ Vec2 DPoint(int k, const physics::TableModel& model, const OutlookOptions& optio
 }
 
 Outlook OutlookInHand(const TableState& table, BallOn on, const PotContext& table_ctx,
-                      const OutlookOptions& options) {
+                      const OutlookOptions& options, TableState& placed) {
   const physics::TableModel& model = *table_ctx.table;
-  TableState placed;  // one allocation: the table and the placed cue ball
+  // The table and the placed cue ball, in the buffer's capacity when it has grown.
   placed.balls.reserve(table.balls.size() + 1);
   placed.balls = table.balls;
   placed.balls.push_back({BallKind::kCue, Vec2::Zero()});
@@ -306,9 +306,11 @@ SnookerCheck CheckSnooker(const TableState& table, int cue, BallOn on, const Pot
 }
 
 Outlook EvaluateOutlook(const TableState& table, BallOn on, const PotContext& ctx,
-                        const OutlookOptions& options) {
+                        const OutlookOptions& options, TableState* placed) {
   const int cue = table.cue_index();
-  return cue >= 0 ? OutlookWithCue(table, cue, on, ctx, options) : OutlookInHand(table, on, ctx, options);
+  if (cue >= 0) return OutlookWithCue(table, cue, on, ctx, options);
+  TableState own;
+  return OutlookInHand(table, on, ctx, options, placed != nullptr ? *placed : own);
 }
 
 }  // namespace snooker::planner

@@ -183,7 +183,10 @@ struct Outlook {
 /// The outlook of `table` for the player to play with `on` on. With no cue ball on
 /// the table the player has it in hand (the grid in the D, above); indices in the
 /// answer are those of `table` either way (the placed cue ball is not among them).
+/// `placed`: the caller's buffer for the table with the cue ball placed in hand
+/// (kept from call to call, it makes an outlook in hand allocate nothing once it
+/// has grown, when ctx has no per-ball vision sigma), or none.
 Outlook EvaluateOutlook(const TableState& table, BallOn on, const PotContext& ctx,
-                        const OutlookOptions& options);
+                        const OutlookOptions& options, TableState* placed = nullptr);
 
 }  // namespace snooker::planner

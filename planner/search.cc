@@ -587,17 +587,18 @@ Leave ScoreLeave(const TableState& table, BallOn on, int object, std::span<const
 }
 
 Outlook OpponentOutlook(const TableState& after, BallOn on, const PotContext& after_ctx,
-                        const SearchSettings& settings) {
+                        const SearchSettings& settings, TableState* placed) {
   OutlookOptions options;
   options.position = settings.position;
-  return EvaluateOutlook(after, on, after_ctx, options);
+  return EvaluateOutlook(after, on, after_ctx, options, placed);
 }
 
 Leave ScoreSafety(const TableState& table, BallOn on, int first_hit, std::span<const Vec2> finals,
                   std::span<const int> potted, const PotContext& after_ctx, const SearchSettings& settings,
                   LeaveScratch* scratch) {
   LeaveScratch own;
-  const LeaveScratch& buf = TableLeft(table, on, finals, potted, after_ctx, scratch != nullptr ? *scratch : own);
+  LeaveScratch& work = scratch != nullptr ? *scratch : own;
+  const LeaveScratch& buf = TableLeft(table, on, finals, potted, after_ctx, work);
   const TableState& after = buf.after;
   const std::vector<int>& origin = buf.origin;
   Leave leave;
@@ -613,7 +614,7 @@ Leave ScoreSafety(const TableState& table, BallOn on, int first_hit, std::span<c
   } else if (const auto opponent_on = OpeningBallOn(after)) {
     // The opponent plays the table left: what they can expect, in the same points,
     // less what a snooker makes them give away.
-    const Outlook outlook = OpponentOutlook(after, *opponent_on, after_ctx, settings);
+    const Outlook outlook = OpponentOutlook(after, *opponent_on, after_ctx, settings, &work.placed);
     leave.position.value = outlook.position_value;
     leave.position.expected_points = outlook.expected_points;
     leave.position.next_ball = outlook.pot_ball;

@@ -215,6 +215,8 @@ struct Leave {
 struct LeaveScratch {
   TableState after;
   std::vector<int> origin;
+  /// `after` with the cue ball placed in hand, for the opponent's outlook.
+  TableState placed;
 };
 
 /// Scores what a legal safety, escape or break-off leaves, for the striker, in
@@ -229,9 +231,10 @@ Leave ScoreSafety(const TableState& table, BallOn on, int first_hit, std::span<c
                   LeaveScratch* scratch = nullptr);
 
 /// The outlook (outlook.h) of the table `after` for the opponent, to play with `on`
-/// (the cue ball in hand when `after` has none).
+/// (the cue ball in hand when `after` has none; `placed`: the buffer for the table
+/// with it placed, or none).
 Outlook OpponentOutlook(const TableState& after, BallOn on, const PotContext& after_ctx,
-                        const SearchSettings& settings);
+                        const SearchSettings& settings, TableState* placed = nullptr);
 
 /// Scores what a succeeding shot of `object` with `on` leaves, the one sequence the
 /// search, the verification and the Monte Carlo share: the table after the rules

@@ -152,6 +152,32 @@ TEST(AllocationTest, ScoringASafetyAndAMonteCarloSampleDoesNotAllocateWithAScrat
   EXPECT_DOUBLE_EQ(score, safety.score);
 }
 
+// An in-off: the opponent has the cue ball in hand, and their outlook places it on
+// the D's grid in the scratch's own table, without allocating once it has grown.
+TEST(AllocationTest, ScoringAnInOffSampleDoesNotAllocateWithAScratch) {
+  Scene s;
+  const physics::Pocket& p = s.ctx.table->pocket(PocketId::kTopRight);
+  const ShotSetup setup{&s.table, 0, 1, p.id, BallOn::kRed};
+  std::vector<Vec2> finals;
+  for (const Ball& b : s.table.balls) finals.push_back(b.position);
+  ShotOutcome out;
+  out.first_hit = 1;
+  out.foul = Foul::kCuePotted;
+  out.potted = {0};
+  LeaveScratch scratch;
+  SampleWorth worth;
+  const long n = AllocationsOfASecondRun(
+      [&] { worth = MonteCarloScore(setup, out, finals, s.ctx, s.settings, &scratch); });
+  EXPECT_EQ(n, 0);
+  ASSERT_TRUE(worth.handed_over);
+  EXPECT_LE(worth.score, -4.0);  // the penalty at least, and the table handed over
+  // The in-hand table was placed in the scratch: every ball left and the cue ball.
+  EXPECT_EQ(scratch.placed.balls.size(), s.table.balls.size());
+  EXPECT_EQ(scratch.placed.balls.back().kind, BallKind::kCue);
+  // Without a scratch the same sample scores the same.
+  EXPECT_DOUBLE_EQ(MonteCarloScore(setup, out, finals, s.ctx, s.settings).score, worth.score);
+}
+
 // The Monte Carlo's blocks: a worker keeps a SampleScratch, so that a block after
 // its first (another stream, the same stroke) runs its samples, and scores the
 // tables they leave, without allocating; also when vision gives every ball its own
