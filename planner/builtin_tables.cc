@@ -26,34 +26,57 @@ void AddRed(std::vector<NamedBall>& balls, const physics::TableModel& table, std
   Add(balls, "red-" + std::to_string(i + 1), BallKind::kRed, table.reds()[i]);
 }
 
+void Black(std::vector<NamedBall>& balls, const physics::TableModel& table) {
+  const physics::Vec2 black = table.spot(physics::Colour::kBlack);
+  Add(balls, "cue", BallKind::kCue, black + physics::Vec2(0.45, -0.30));
+  Add(balls, "black", BallKind::kBlack, black);
+  for (const std::size_t i : {0u, 4u, 9u}) AddRed(balls, table, i);
+}
+
+void Red(std::vector<NamedBall>& balls, const physics::TableModel&) {
+  Add(balls, "cue", BallKind::kCue, {1.1819, 2.9729});
+  Add(balls, "red-1", BallKind::kRed, {1.4648, 3.2558});
+  Add(balls, "black", BallKind::kBlack, {0.889, 3.245});
+  Add(balls, "red-2", BallKind::kRed, {0.4, 1.5});
+}
+
+void Colours(std::vector<NamedBall>& balls, const physics::TableModel& table) {
+  Add(balls, "cue", BallKind::kCue, table.spot(physics::Colour::kBrown) + physics::Vec2(0.12, 0.35));
+  AddColours(balls, table);
+}
+
+void BreakOff(std::vector<NamedBall>& balls, const physics::TableModel& table) {
+  for (std::size_t i = 0; i < table.reds().size(); ++i) AddRed(balls, table, i);
+  AddColours(balls, table);
+}
+
+// Every built-in table by name, in the order the names are listed.
+struct Builder {
+  std::string_view name;
+  void (*build)(std::vector<NamedBall>&, const physics::TableModel&);
+};
+constexpr Builder kTables[] = {{"black", Black}, {"red", Red}, {"colours", Colours}, {"break-off", BreakOff}};
+
 }  // namespace
 
 std::optional<std::vector<NamedBall>> BuiltinTable(std::string_view name) {
-  const physics::TableModel& table = physics::DefaultTable();
-  std::vector<NamedBall> balls;
-  if (name == "black") {
-    const physics::Vec2 black = table.spot(physics::Colour::kBlack);
-    Add(balls, "cue", BallKind::kCue, black + physics::Vec2(0.45, -0.30));
-    Add(balls, "black", BallKind::kBlack, black);
-    for (const std::size_t i : {0u, 4u, 9u}) AddRed(balls, table, i);
-  } else if (name == "red") {
-    Add(balls, "cue", BallKind::kCue, {1.1819, 2.9729});
-    Add(balls, "red-1", BallKind::kRed, {1.4648, 3.2558});
-    Add(balls, "black", BallKind::kBlack, {0.889, 3.245});
-    Add(balls, "red-2", BallKind::kRed, {0.4, 1.5});
-  } else if (name == "colours") {
-    Add(balls, "cue", BallKind::kCue, table.spot(physics::Colour::kBrown) + physics::Vec2(0.12, 0.35));
-    AddColours(balls, table);
-  } else if (name == "break-off") {
-    for (std::size_t i = 0; i < table.reds().size(); ++i) AddRed(balls, table, i);
-    AddColours(balls, table);
-  } else {
-    return std::nullopt;
+  for (const Builder& b : kTables) {
+    if (b.name != name) continue;
+    std::vector<NamedBall> balls;
+    b.build(balls, physics::DefaultTable());
+    return balls;
   }
-  return balls;
+  return std::nullopt;
 }
 
-const char* BuiltinTableNames() { return "black, red, colours, break-off"; }
+const char* BuiltinTableNames() {
+  static const std::string names = [] {
+    std::string s;
+    for (const Builder& b : kTables) s += (s.empty() ? "" : ", ") + std::string(b.name);
+    return s;
+  }();
+  return names.c_str();
+}
 
 TableState TableOf(const std::vector<NamedBall>& balls) {
   TableState t;
