@@ -27,7 +27,7 @@ constexpr const char* kMatchHelpHead = R"(usage: snooker match --frames N --seed
                      [--noise-spin X] [--noise-position-mm X] [--cue-clearance-m X]
                      [--max-simulations N] [--samples N] [--threads N]
                      [--max-shots N] [--progress] [--strokes out.jsonl [--stroke-tables]]
-                     [--thin-break-off] [--break-value P] [--json]
+                     [--thin-break-off] [--break-value P] [--position-spread K] [--json]
 
 Two players play whole frames of snooker by the rules: the standard start (15 reds,
 the colours on their spots, the cue ball in hand for the break-off; player A breaks
@@ -75,6 +75,10 @@ constexpr const char* kMatchHelpTail = R"(Planner:
                          value, points, for default and one-ply (0 to 147; default
                          100: a miss also hands the opponent the table); direct-pots
                          keeps the planner's own 30
+  --position-spread K    default and one-ply value a pot's position over the cue
+                         ball's end spread, K standard deviations of what the
+                         speed's noise gives it (0 to 4; default 0: at the nominal
+                         end); direct-pots keeps the nominal end
 Match:
   --max-shots N          strokes after which a frame is stopped (1 to 200, default 200)
   --progress             print each frame's score on stderr as it ends
@@ -112,7 +116,8 @@ Match:
                          `--break-value B --no-lookahead` (B the match's break
                          value), direct-pots `--kinds POT --routes DIRECT
                          --no-lookahead`, and `--thin-break-off` if the match had
-                         it (docs/operations.md)
+                         it, `--position-spread K` for default and one-ply if it
+                         had one (docs/operations.md)
   --help                 this text
 )";
 
@@ -153,6 +158,7 @@ std::string Parse(Args& args, Parsed* p) {
   o.monte_carlo_samples = play.monte_carlo_samples;
   o.threads = play.threads;
   o.break_value = play.break_value.value_or(planner::kFrameBreakValue);
+  o.position_spread = play.position_spread.value_or(0.0);
   o.max_shots_per_frame = static_cast<int>(*shots);
   o.thin_break_off = args.Switch("thin-break-off");
   if (args.Switch("stroke-tables") && !args.Has("strokes")) return "--stroke-tables needs --strokes out.jsonl";
@@ -186,6 +192,7 @@ void PrintJson(const Parsed& p, const planner::MatchReport& r, std::ostream& out
     << "\", \"seed\": " << o.seed << ", \"seedText\": \"" << o.seed << "\", \"budgetMs\": " << Number(p.budget_ms)
     << ", \"maxSimulations\": " << o.max_simulations << ", \"samples\": " << o.monte_carlo_samples
     << ", \"threads\": " << o.threads << ", \"breakValue\": " << Number(o.break_value)
+    << ", \"positionSpread\": " << Number(o.position_spread)
     << ", \"thinBreakOff\": " << (o.thin_break_off ? "true" : "false")
     << ", \"noiseHeadingDeg\": " << Number(physics::RadToDeg(o.noise.heading))
     << ", \"noiseSpeed\": " << Number(o.noise.speed_fraction) << ", \"noiseSpin\": " << Number(o.noise.topspin)

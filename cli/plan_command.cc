@@ -46,7 +46,7 @@ constexpr const char* kPlanHelp = R"(usage: snooker plan --table T.json|builtin:
                     [--max-topspin X] [--max-sidespin X] [--cue-clearance-m X] [--pot-only]
                     [--max-simulations N] [--samples N] [--cue-in-hand] [--break-value P]
                     [--kinds K,...] [--routes R,...] [--no-lookahead]
-                    [--thin-break-off]
+                    [--thin-break-off] [--position-spread K]
                     [--server HOST:PORT [--tls-ca CA.pem] [--tls-cert C --tls-key K]
                     [--tls-server-name N] [--deadline-ms MS]]
 
@@ -134,6 +134,9 @@ Planner:
                          --no-lookahead plays as snooker match's direct-pots
   --thin-break-off       on the break-off's table, also search the thin break on an
                          end red beside the soft break into the pack
+  --position-spread K    value a pot's position over the cue ball's end spread, K
+                         standard deviations of what the speed's noise gives it (0
+                         to 4; default 0: at the nominal end)
   --max-simulations N    cap on simulations (default: from the budget)
   --samples N            Monte Carlo samples per ranked shot (default 48)
   --help                 this text
@@ -332,6 +335,7 @@ void SetRequestFields(Args& args, v1::PlanRequest* req) {
   int32("max-simulations", [&](std::int32_t n) { req->set_max_simulations(n); });
   int32("samples", [&](std::int32_t n) { req->set_monte_carlo_samples(n); });
   number("break-value", [&](double x) { req->set_break_value(x); });
+  number("position-spread", [&](double x) { req->set_position_spread(x); });
   v1::NoiseModel* noise = req->mutable_noise();
   number("noise-heading-deg", [&](double x) { noise->set_heading_sigma_deg(x); });
   number("noise-speed", [&](double x) { noise->set_speed_sigma_fraction(x); });
@@ -369,7 +373,8 @@ std::optional<int> ParsePlanFlags(const std::vector<std::string>& argv, std::ost
                                   "throw-uncertainty", "max-elevation-deg",
                                   "noise-position-mm", "min-speed", "max-speed", "max-topspin",
                                   "max-sidespin", "cue-clearance-m", "max-simulations", "samples",
-                                  "vision-tolerance-mm", "model", "break-value", "kinds", "routes"};
+                                  "vision-tolerance-mm", "model", "break-value", "kinds", "routes",
+                                  "position-spread"};
   for (const std::string& flag : ClientFlags()) valued.insert(flag);
   Args args(argv, valued,
             {"json", "help", "pot-only", "stream", "cue-in-hand", "no-lookahead", "thin-break-off"});

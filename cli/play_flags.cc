@@ -29,6 +29,8 @@ std::string ReadPlayFlags(Args& args, const PlayFlags& defaults, PlayFlags* out)
   const auto threads = args.Integer("threads", defaults.threads, lim::kThreads.lo, lim::kThreads.hi);
   const std::optional<double> break_value =
       args.Has("break-value") ? args.Number("break-value", std::nullopt) : defaults.break_value;
+  const std::optional<double> position_spread =
+      args.Has("position-spread") ? args.Number("position-spread", std::nullopt) : defaults.position_spread;
   if (!args.error().empty()) return args.error();
   auto range = [](const char* flag, double x, double lo, double hi) -> std::string {
     if (x >= lo && x <= hi) return "";
@@ -49,7 +51,10 @@ std::string ReadPlayFlags(Args& args, const PlayFlags& defaults, PlayFlags* out)
         range("squirt-uncertainty", *squirt, 0, lim::kModelUncertainty.hi),
         range("throw-uncertainty", *throws, 0, lim::kModelUncertainty.hi),
         range("max-elevation-deg", *max_elevation, 0, physics::RadToDeg(lim::kMaxElevation.hi)),
-        break_value ? range("break-value", *break_value, lim::kBreakValue.lo, lim::kBreakValue.hi) : ""}) {
+        break_value ? range("break-value", *break_value, lim::kBreakValue.lo, lim::kBreakValue.hi) : "",
+        position_spread
+            ? range("position-spread", *position_spread, lim::kPositionSpread.lo, lim::kPositionSpread.hi)
+            : ""}) {
     if (!e.empty()) return e;
   }
   *out = defaults;
@@ -70,6 +75,7 @@ std::string ReadPlayFlags(Args& args, const PlayFlags& defaults, PlayFlags* out)
   out->monte_carlo_samples = static_cast<int>(*samples);
   out->threads = static_cast<int>(*threads);
   out->break_value = break_value;
+  out->position_spread = position_spread;
   for (const char* flag : {"model", "world"}) {
     if (!args.Has(flag)) continue;
     physics::Model m;

@@ -22,6 +22,8 @@ struct PlayFlags {
   int threads = 2;
   /// --break-value P: the planner's break value, points (none: the command's own).
   std::optional<double> break_value;
+  /// --position-spread K: the search's position spread (none: the planner's own, 0).
+  std::optional<double> position_spread;
   /// --model FILE: the planner's physical model (none: the default).
   std::optional<physics::Model> model;
   /// --world FILE: the table the shots are played on (none: the planner's model).
@@ -33,7 +35,7 @@ inline constexpr const char* kPlayFlagNames[] = {
     "budget-ms",     "noise-heading-deg", "noise-speed",     "noise-spin",         "noise-position-mm",
     "noise-aim-deg", "noise-cue-speed",   "noise-tip-mm",    "noise-elevation-deg", "squirt-uncertainty",
     "throw-uncertainty", "cue-clearance-m", "max-elevation-deg", "max-simulations", "samples", "threads",
-    "model",         "world",             "break-value"};
+    "model",         "world",             "break-value",     "position-spread"};
 
 /// The help lines of the noise and robot flags, after each command's "Noise" line.
 inline constexpr const char* kPlayFlagsHelp = R"(  --noise-aim-deg X       the cue's aim, degrees (default 0.02)

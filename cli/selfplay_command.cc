@@ -19,7 +19,8 @@ namespace {
 constexpr const char* kSelfplayHelpHead = R"(usage: snooker selfplay --frames N --seed S [--budget-ms N] [--json]
                         [--noise-heading-deg X] [--noise-speed X] [--noise-spin X]
                         [--noise-position-mm X] [--cue-clearance-m X] [--pot-only] [--one-ply] [--max-simulations N]
-                        [--uncertain-world] [--samples N] [--threads N] [--break-value P] [--progress] [--records out.jsonl]
+                        [--uncertain-world] [--samples N] [--threads N] [--break-value P] [--position-spread K]
+                        [--progress] [--records out.jsonl]
 
 The planner plays snooker alone. Each frame starts from a seeded random mid-frame
 table (6 to 10 reds scattered where they touch nothing, the colours on their spots,
@@ -49,6 +50,9 @@ constexpr const char* kSelfplayHelpTail = R"(Planner:
   --break-value P        what keeping the table is worth beyond the potted ball's
                          value, points (0 to 147; default 30, the planner's own: alone
                          at the table only the break's own points are to come)
+  --position-spread K    value a pot's position over the cue ball's end spread, K
+                         standard deviations of what the speed's noise gives it (0
+                         to 4; default 0: at the nominal end)
   --progress             print each frame's break on stderr as it ends
   --records out.jsonl    write one JSON line per frame: {"frame", "reds", "points",
                          "attempts", "pots", "end"} (end: "miss", "foul: ...",
@@ -92,6 +96,7 @@ int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::os
   o.monte_carlo_samples = play.monte_carlo_samples;
   o.threads = play.threads;
   o.break_value = play.break_value;
+  o.position_spread = play.position_spread;
   o.world = play.world;
   std::optional<planner::Planner> own;
   if (play.model) own.emplace(planner::PlannerConfig{}.WithModel(*play.model));

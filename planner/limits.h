@@ -80,5 +80,9 @@ inline constexpr IntRange kMonteCarloSamples{0, 100'000};
 /// value, points (PositionOptions::continuation). 147, a maximum break, is more
 /// than any table can still give.
 inline constexpr Range kBreakValue{0, 147};
+/// The position's spread in the search, standard deviations of the cue ball's end
+/// from the speed's noise (SearchSettings::position_spread). Beyond a few the
+/// quadrature's points leave the cue ball's reach.
+inline constexpr Range kPositionSpread{0, 4};
 
 }  // namespace snooker::planner::limits

@@ -171,7 +171,7 @@ void FillTurnRequest(const MatchOptions& o, PlayerKind player, bool cue_in_hand,
   req->threads = o.threads;
   req->max_simulations = o.max_simulations;
   req->monte_carlo_samples = o.monte_carlo_samples;
-  ConfigureRequest(player, req, o.break_value);
+  ConfigureRequest(player, req, o.break_value, o.position_spread);
   req->thin_break_off = o.thin_break_off;
 }
 
@@ -448,11 +448,12 @@ std::optional<PlayerKind> ParsePlayerKind(std::string_view name) {
   return std::nullopt;
 }
 
-void ConfigureRequest(PlayerKind kind, PlanRequest* request, double break_value) {
+void ConfigureRequest(PlayerKind kind, PlanRequest* request, double break_value, double position_spread) {
   request->kinds = ShotKinds{};
   request->routes = PotRoutes{};
   request->lookahead = true;
   request->break_value = break_value;
+  request->position_spread = position_spread > 0 ? std::optional<double>(position_spread) : std::nullopt;
   switch (kind) {
     case PlayerKind::kDefault: break;
     case PlayerKind::kDirectPots:
@@ -460,6 +461,7 @@ void ConfigureRequest(PlayerKind kind, PlanRequest* request, double break_value)
       request->routes = PotRoutes::Of(PotRoute::kDirect);
       request->lookahead = false;
       request->break_value = std::nullopt;
+      request->position_spread = std::nullopt;
       break;
     case PlayerKind::kOnePly: request->lookahead = false; break;
   }
@@ -495,6 +497,7 @@ std::string MatchOptionsError(const MatchOptions& o) {
   settings.max_simulations = o.max_simulations;
   settings.monte_carlo_samples = o.monte_carlo_samples;
   settings.break_value = o.break_value;
+  settings.position_spread = o.position_spread;
   if (const std::vector<FieldError> e = ValidateSettings(settings); !e.empty()) add(Describe(e));
   if (o.world) {
     if (const std::string e = physics::ValidateModel(*o.world); !e.empty()) add("world: " + e);

@@ -51,9 +51,11 @@ std::optional<PlayerKind> ParsePlayerKind(std::string_view name);
 /// table) does not count. docs/whole-frame-planner.md measures both.
 inline constexpr double kFrameBreakValue = 100.0;
 /// Sets the request fields the player chooses (kinds, routes, lookahead, the break
-/// value): `default` and `one-ply` plan with `break_value`; `direct-pots` with the
-/// planner's own, as it played before whole frames were (the frame targets' mark).
-void ConfigureRequest(PlayerKind kind, PlanRequest* request, double break_value = kFrameBreakValue);
+/// value, the position's spread): `default` and `one-ply` plan with `break_value`
+/// and `position_spread` (0: unset); `direct-pots` with the planner's own, as it
+/// played before whole frames were (the frame targets' mark).
+void ConfigureRequest(PlayerKind kind, PlanRequest* request, double break_value = kFrameBreakValue,
+                      double position_spread = 0);
 
 /// The kinds of turn whose planning times a match reports apart.
 enum class TurnType : std::uint8_t { kOnTable, kInHand, kBreakOff };
@@ -130,6 +132,9 @@ struct MatchOptions {
   int monte_carlo_samples = 48;
   /// The break value of `default` and `one-ply` (ConfigureRequest), points.
   double break_value = kFrameBreakValue;
+  /// The position's spread of `default` and `one-ply` (PlanRequest::position_spread;
+  /// 0: the planner's own, the nominal end).
+  double position_spread = 0;
   /// Every player's break-offs also search the thin break (PlanRequest::thin_break_off).
   bool thin_break_off = false;
   /// Strokes after which a frame is stopped (1 to kFrameShotCap).

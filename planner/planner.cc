@@ -278,6 +278,7 @@ bool PlanRun::Prepare() {
   settings_.limits = request_.limits;
   settings_.position_play = request_.position_play;
   if (request_.break_value) settings_.position.continuation = *request_.break_value;
+  if (request_.position_spread) settings_.position_spread = *request_.position_spread;
   schedule_ = MakeSchedule(config_, request_, start_);
   tables_.push_back(table_);
   if (!AddBreakOff()) {

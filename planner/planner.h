@@ -96,6 +96,11 @@ struct PlanRequest {
   /// frame against an opponent about 100 wins more frames, since a miss also hands
   /// the opponent the table (docs/whole-frame-planner.md).
   std::optional<double> break_value;
+  /// The search values a pot's position over the cue ball's end spread, this many
+  /// standard deviations of what the speed's noise gives it
+  /// (SearchSettings::position_spread); nullopt: the configured one (0, the
+  /// nominal end only).
+  std::optional<double> position_spread;
   /// At the break-off, also search the thin break beside the soft one; nullopt: the
   /// configured choice (PlannerConfig::thin_break_off, off).
   std::optional<bool> thin_break_off;

@@ -254,7 +254,7 @@ class Search {
     final_positions_.clear();
     for (const physics::BallState& b : sim_.final_balls()) final_positions_.push_back(b.r);
     const Leave leave = pot ? ScoreLeave(table_, on_, cand_.object, final_positions_, out.potted, p, after_ctx_,
-                                         settings_, &scratch_)
+                                         settings_, &scratch_, CueSpread(out))
                             : ScoreSafety(table_, on_, out.first_hit, final_positions_, out.potted, after_ctx_,
                                           settings_, &scratch_);
     const double score = leave.score - SpeedCost(shot.speed);
@@ -378,6 +378,16 @@ class Search {
   // A small cost of speed beyond what a shot needs: of two shots that score alike the
   // softer is kinder to the table and to the robot (points per m/s above 3 m/s).
   double SpeedCost(double speed) const { return settings_.speed_cost * std::max(0.0, speed - 3.0); }
+
+  // One standard deviation of the cue ball's end along its last move
+  // (SearchSettings::position_spread): the speed's noise, the cue's and the
+  // ball's own, scales a path after contact by twice its fraction.
+  Vec2 CueSpread(const ShotOutcome& out) const {
+    if (!(settings_.position_spread > 0)) return Vec2::Zero();
+    const NoiseModel& n = ctx_.execution;
+    const double sigma = std::hypot(n.cue_speed_fraction, n.speed_fraction);
+    return settings_.position_spread * 2 * sigma * out.cue_travel * out.cue_last_direction;
+  }
 
   // The pot probability of this shot from its simulated object-ball line. The
   // model's uncertainty adds what the Monte Carlo samples: the stroke's squirt,
@@ -555,24 +565,53 @@ double ShotScore(double pot_probability, int value, const PositionValue& positio
 
 namespace {
 // The table a fair shot leaves, by the rules, built in `buf`.
-const LeaveScratch& TableLeft(const TableState& table, BallOn on, std::span<const Vec2> finals,
-                              std::span<const int> potted, const PotContext& after_ctx, LeaveScratch& buf) {
+LeaveScratch& TableLeft(const TableState& table, BallOn on, std::span<const Vec2> finals,
+                        std::span<const int> potted, const PotContext& after_ctx, LeaveScratch& buf) {
   ApplyShotInto(table, on, finals, potted, false, *after_ctx.table, &buf.after, &buf.origin);
   return buf;
+}
+
+// The position at the cue ball's nominal end (`at_end`) averaged with two more
+// along its spread (ScoreLeave); `after` is restored before it returns. The next
+// ball keeps the nominal end's: the one the stroke plays for.
+PositionValue MeanOverSpread(TableState& after, int cue, BallOn next_on, const Vec2& spread,
+                             const PositionValue& at_end, const PotContext& after_ctx,
+                             const PositionOptions& options) {
+  constexpr double kCentreWeight = 2.0 / 3, kSideWeight = 1.0 / 6;
+  const physics::TableModel& model = *after_ctx.table;
+  const double d = model.cushion_contact_distance();
+  Vec2& ball = after.balls[static_cast<size_t>(cue)].position;
+  const Vec2 end = ball;
+  PositionValue mean = at_end;
+  mean.value *= kCentreWeight;
+  mean.expected_points *= kCentreWeight;
+  for (const double s : {-std::sqrt(3.0), std::sqrt(3.0)}) {
+    const Vec2 p = end + s * spread;
+    ball = Vec2(std::clamp(p.x(), d, model.spec().width - d), std::clamp(p.y(), d, model.spec().length - d));
+    const PositionValue v = EvaluatePosition(after, next_on, after_ctx, options);
+    mean.value += kSideWeight * v.value;
+    mean.expected_points += kSideWeight * v.expected_points;
+  }
+  ball = end;
+  return mean;
 }
 }  // namespace
 
 Leave ScoreLeave(const TableState& table, BallOn on, int object, std::span<const Vec2> finals,
                  std::span<const int> potted, double pot_probability, const PotContext& after_ctx,
-                 const SearchSettings& settings, LeaveScratch* scratch) {
+                 const SearchSettings& settings, LeaveScratch* scratch, const Vec2& cue_spread) {
   LeaveScratch own;
-  const LeaveScratch& buf = TableLeft(table, on, finals, potted, after_ctx, scratch != nullptr ? *scratch : own);
-  const TableState& after = buf.after;
+  LeaveScratch& buf = TableLeft(table, on, finals, potted, after_ctx, scratch != nullptr ? *scratch : own);
+  TableState& after = buf.after;
   const std::vector<int>& origin = buf.origin;
   const BallKind object_kind = table.balls[static_cast<size_t>(object)].kind;
   Leave leave;
   if (const auto next_on = NextBallOn(on, object_kind, after)) {
     leave.position = EvaluatePosition(after, *next_on, after_ctx, settings.position);
+    const int cue = after.cue_index();
+    if (cue >= 0 && settings.position_play && cue_spread.squaredNorm() > 0) {
+      leave.position = MeanOverSpread(after, cue, *next_on, cue_spread, leave.position, after_ctx, settings.position);
+    }
   }
   if (leave.position.next_ball >= 0) leave.next_ball = origin[static_cast<size_t>(leave.position.next_ball)];
   leave.score = ShotScore(pot_probability, Value(object_kind), leave.position, settings.position_play);

@@ -116,6 +116,13 @@ struct SearchSettings {
   /// score alike the softer one (a power shot spreads the cue ball's position more
   /// than the Monte Carlo's few samples show).
   double speed_cost = 0.3;
+  /// The search values a pot's position as its mean over the cue ball's end spread
+  /// rather than at the nominal end: k standard deviations of that spread, where
+  /// one is what the speed's noise gives a path after contact (2 x its fraction x
+  /// the path: a rolling path scales as the square of the speed), along the last
+  /// direction the cue ball moved. 0: the nominal end only (PlanRequest::
+  /// position_spread; docs/whole-frame-planner.md, section 10, measures it).
+  double position_spread = 0;
   PositionOptions position;
 };
 
@@ -243,8 +250,14 @@ Outlook OpponentOutlook(const TableState& after, BallOn on, const PotContext& af
 /// no longer apply: the balls have moved) and ShotScore. `finals` are where the
 /// simulation left every ball of `table`, `potted` the balls that dropped.
 /// `scratch`: the caller's buffers for the table left (LeaveScratch), or none.
+/// `cue_spread`, when not zero, is one standard deviation of the cue ball's end,
+/// m, as a vector along the direction it spreads: the position is then the mean
+/// over that line by three-point Gauss-Hermite quadrature (the end and +-sqrt(3)
+/// of the spread, weights 2/3, 1/6 and 1/6; points past a cushion's contact line
+/// are held on it).
 Leave ScoreLeave(const TableState& table, BallOn on, int object, std::span<const physics::Vec2> finals,
                  std::span<const int> potted, double pot_probability, const PotContext& after_ctx,
-                 const SearchSettings& settings, LeaveScratch* scratch = nullptr);
+                 const SearchSettings& settings, LeaveScratch* scratch = nullptr,
+                 const physics::Vec2& cue_spread = physics::Vec2::Zero());
 
 }  // namespace snooker::planner

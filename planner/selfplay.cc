@@ -104,6 +104,7 @@ SelfPlayReport RunSelfPlay(const Planner& planner, const SelfPlayOptions& o,
       req.max_simulations = o.max_simulations;
       req.monte_carlo_samples = o.monte_carlo_samples;
       req.break_value = o.break_value;
+      req.position_spread = o.position_spread;
       const PlanAnswer answer = planner.Plan(req);
       report.plan_ms.push_back(answer.elapsed * 1e3);
       if (answer.shots.empty()) {

@@ -43,6 +43,9 @@ struct SelfPlayOptions {
   /// The break value (PlanRequest::break_value), points; nullopt: the planner's
   /// own (30), which scores the most in a break alone at the table.
   std::optional<double> break_value;
+  /// The search's position spread (PlanRequest::position_spread); nullopt: the
+  /// planner's own (0, the nominal end).
+  std::optional<double> position_spread;
   int min_reds = 6;
   int max_reds = 10;
   /// Cap on shots in one frame (a cleared 10-red table takes 26).

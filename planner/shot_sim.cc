@@ -108,6 +108,24 @@ SimStatus ShotSimulator::Loop(const ShotSetup& setup, SimStatus status, bool dec
     out_.stopped_early = true;
     return true;
   };
+  // The cue ball's path from its first contact: a chord from each of its events to
+  // the next.
+  bool tracking = false;
+  Vec2 mark = Vec2::Zero();
+  auto track = [&](const Vec2& p) {
+    if (tracking) {
+      const Vec2 chord = p - mark;
+      const double length = chord.norm();
+      if (length > 1e-6) {
+        out_.cue_travel += length;
+        out_.cue_last_direction = chord / length;
+      }
+    }
+    tracking = true;
+    mark = p;
+  };
+  // Touching a ball on, the cue ball's contact is where it starts.
+  if (out_.first_hit >= 0) track(sim_.StateNow(setup.cue).r);
   while (status == SimStatus::kRunning) {
     status = sim_.Step();
     if (status != SimStatus::kRunning) break;
@@ -123,6 +141,7 @@ SimStatus ShotSimulator::Loop(const ShotSetup& setup, SimStatus status, bool dec
       out_.potted.push_back(ev.ball);
       if (decide && (ev.ball == setup.cue || !legal(ev.ball)) && stop()) break;
     }
+    if (cue_involved && out_.first_hit >= 0 && sim_.pocket_of(setup.cue) < 0) track(sim_.StateNow(setup.cue).r);
     // The object ball's line from its latest contact (the cue ball's, for a direct pot).
     if (setup.object >= 0 && out_.first_hit >= 0 && sim_.pocket_of(setup.object) < 0 &&
         (ev.ball == setup.object || ev.other == setup.object) &&
@@ -141,6 +160,9 @@ SimStatus ShotSimulator::Loop(const ShotSetup& setup, SimStatus status, bool dec
       break;
     }
     if (out_.first_hit < 0 && sim_.Decided(setup.cue) && stop()) break;
+  }
+  if (tracking && status == SimStatus::kAtRest && sim_.pocket_of(setup.cue) < 0) {
+    track(sim_.final_balls()[static_cast<size_t>(setup.cue)].r);
   }
   return status;
 }

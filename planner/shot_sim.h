@@ -89,6 +89,12 @@ struct ShotOutcome {
   /// before it dropped (a kick, a double).
   int cue_cushions_first = 0;
   int object_cushions = 0;
+  /// The cue ball's path from its first contact to rest, m: the chords between its
+  /// events (a bound from below on a curved path), and the direction of its last
+  /// chord (zero when it did not move after the contact or went down). The
+  /// search's position spread (SearchSettings::position_spread) is scaled by it.
+  double cue_travel = 0;
+  physics::Vec2 cue_last_direction = physics::Vec2::Zero();
 };
 
 class ShotSimulator {

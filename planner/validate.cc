@@ -163,6 +163,9 @@ std::vector<FieldError> ValidateSettings(const PlanRequest& r) {
   CheckCount(&errors, "max_simulations", r.max_simulations, lim::kMaxSimulations);
   CheckCount(&errors, "monte_carlo_samples", r.monte_carlo_samples, lim::kMonteCarloSamples);
   if (r.break_value) CheckRange(&errors, "break_value", *r.break_value, lim::kBreakValue, Unit::kPoints);
+  if (r.position_spread) {
+    CheckRange(&errors, "position_spread", *r.position_spread, lim::kPositionSpread, Unit::kNone);
+  }
   return errors;
 }
 

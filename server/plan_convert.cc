@@ -47,6 +47,7 @@ constexpr ApiField kApiFields[] = {
     {"max_simulations", "max_simulations", 1, ""},
     {"monte_carlo_samples", "monte_carlo_samples", 1, ""},
     {"break_value", "break_value", 1, "points"},
+    {"position_spread", "position_spread", 1, ""},
     {"table.balls", "table.balls", 1, ""},
     {"ball_on", "ball_on", 1, ""},
 };
@@ -321,6 +322,7 @@ planner::PlanRequest PlanRequestFrom(const v1::PlanRequest& r, std::optional<dou
   if (r.has_max_simulations()) p.max_simulations = r.max_simulations();
   if (r.has_monte_carlo_samples()) p.monte_carlo_samples = r.monte_carlo_samples();
   if (r.has_break_value()) p.break_value = r.break_value();
+  if (r.has_position_spread()) p.position_spread = r.position_spread();
   p.kinds = SetFromApi<planner::ShotKind, planner::kShotKindCount>(r.kinds());
   p.routes = SetFromApi<planner::PotRoute, planner::kPotRouteCount>(r.routes());
   if (r.has_lookahead()) p.lookahead = r.lookahead();

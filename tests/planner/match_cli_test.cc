@@ -62,7 +62,7 @@ TEST(CliMatchTest, JsonHasTheContractedNames) {
                                           "foulsB",     "safetiesA",  "safetiesB",  "stalls",    "shots",
                                           "planMsP50",  "planMsP99"};
   const std::set<std::string> more = {
-      "playerA",      "playerB",       "seed",  "seedText",  "budgetMs",          "maxSimulations", "samples", "threads", "breakValue",
+      "playerA",      "playerB",       "seed",  "seedText",  "budgetMs",          "maxSimulations", "samples", "threads", "breakValue", "positionSpread",
       "noiseHeadingDeg", "noiseSpeed", "noiseSpin", "noiseAimDeg", "noiseCueSpeed", "noiseTipMm", "noiseElevationDeg", "noisePositionMm",   "maxShots",
       "framesCapped", "framesUndecided", "blackRespots", "simulationFailures", "thinBreakOff", "highestBreakA",
       "highestBreakB", "centuriesA",   "centuriesB",     "penaltyPointsA",    "penaltyPointsB",
@@ -83,6 +83,7 @@ TEST(CliMatchTest, JsonHasTheContractedNames) {
   EXPECT_EQ(f.at("samples").number_value(), 8);
   EXPECT_EQ(f.at("threads").number_value(), 2);
   EXPECT_EQ(f.at("breakValue").number_value(), 100);  // planner/match.h kFrameBreakValue
+  EXPECT_EQ(f.at("positionSpread").number_value(), 0);  // the planner's own: the nominal end
   EXPECT_EQ(f.at("seed").number_value(), 11);
   EXPECT_EQ(f.at("seedText").string_value(), "11");
   EXPECT_LE(f.at("framesWonA").number_value() + f.at("framesWonB").number_value(), 2);
@@ -284,7 +285,10 @@ TEST_P(CliMatchReplayTest, AStrokeTableReplaysTheTurnThroughSnookerPlan) {
 INSTANTIATE_TEST_SUITE_P(Players, CliMatchReplayTest,
                          testing::Values(ReplayCase{"DefaultAgainstDirectPots", "", kDefaultFlags, kDirectPotsFlags, 13},
                                          ReplayCase{"OnePlyAgainstDefault", "--player-a one-ply --player-b default",
-                                                    kOnePlyFlags, kDefaultFlags, 11}),
+                                                    kOnePlyFlags, kDefaultFlags, 11},
+                                         // The match's --position-spread is the default's, not direct-pots'.
+                                         ReplayCase{"DefaultWithAPositionSpread", "--position-spread 2",
+                                                    " --break-value 100 --position-spread 2", kDirectPotsFlags, 13}),
                          [](const testing::TestParamInfo<ReplayCase>& p) { return std::string(p.param.name); });
 
 // A seed is any uint64, as the API's: the largest plays, and the JSON gives it whole.
@@ -342,6 +346,8 @@ INSTANTIATE_TEST_SUITE_P(
                     BadFlag{"match --frames 1 --seed 1 --max-shots 201", "--max-shots 201 is out of range"},
                     BadFlag{"match --frames 1 --seed 1 --break-value 148", "--break-value 148 is out of range [0, 147]"},
                     BadFlag{"match --frames 1 --seed 1 --break-value lots", "--break-value 'lots'"},
+                    BadFlag{"match --frames 1 --seed 1 --position-spread 4.5",
+                            "--position-spread 4.5 is out of range [0, 4]"},
                     BadFlag{"match --frames 1 --seed 1 --stroke-tables", "--stroke-tables needs --strokes"},
                     BadFlag{"match --frames 1 --seed 1 --colour pink", "unknown option --colour"},
                     BadFlag{"match --frames 1 --seed 18446744073709551616",

@@ -43,13 +43,16 @@ TEST(MatchTest, EachPlayerAsksThePlannerForItsOwnShots) {
   EXPECT_EQ(r.routes, PotRoutes{});
   EXPECT_FALSE(r.lookahead);
   EXPECT_EQ(r.break_value, kFrameBreakValue);
-  ConfigureRequest(PlayerKind::kDefault, &r, 55);
+  EXPECT_FALSE(r.position_spread.has_value());  // 0: the planner's own
+  ConfigureRequest(PlayerKind::kDefault, &r, 55, 2);
   EXPECT_TRUE(r.kinds.Has(ShotKind::kSafety));
   EXPECT_TRUE(r.routes.Has(PotRoute::kPlant));
   EXPECT_TRUE(r.lookahead);
   EXPECT_EQ(r.break_value, 55);
-  ConfigureRequest(PlayerKind::kDirectPots, &r, 55);
+  EXPECT_EQ(r.position_spread, 2);
+  ConfigureRequest(PlayerKind::kDirectPots, &r, 55, 2);
   EXPECT_FALSE(r.break_value.has_value());
+  EXPECT_FALSE(r.position_spread.has_value());
 }
 
 TEST(MatchTest, BadOptionsAreNamed) {
@@ -59,8 +62,10 @@ TEST(MatchTest, BadOptionsAreNamed) {
   o.max_shots_per_frame = 201;
   o.time_budget = -1;
   o.break_value = 200;
+  o.position_spread = 5;
   const std::string e = MatchOptionsError(o);
   EXPECT_NE(e.find("break_value = 200 (must be in [0, 147] points)"), std::string::npos) << e;
+  EXPECT_NE(e.find("position_spread = 5 (must be in [0, 4])"), std::string::npos) << e;
   EXPECT_NE(e.find("frames = 0"), std::string::npos) << e;
   EXPECT_NE(e.find("max_shots_per_frame = 201"), std::string::npos) << e;
   EXPECT_NE(e.find("time_budget"), std::string::npos) << e;
@@ -339,6 +344,30 @@ TEST(MatchTest, TheThinBreakOffIsInTheReplayedRequest) {
   o.thin_break_off = false;
   const PlanAnswer soft = Planner::Default().Plan(ReplayRequest(o, s));
   EXPECT_LT(soft.searched, again.searched);
+}
+
+// The position's spread is the default player's (and one-ply's) setting, not
+// direct-pots': each logged turn's replay carries it or not, and plans again to the
+// logged stroke.
+TEST(MatchTest, ThePositionSpreadIsInTheReplayedRequest) {
+  MatchOptions o = ShortMatch();
+  o.frames = 1;
+  o.position_spread = 2;
+  std::vector<StrokeRecord> log;
+  o.on_stroke = [&log](const StrokeRecord& s) { log.push_back(s); };
+  (void)RunMatch(Planner::Default(), o);
+  int defaults = 0;
+  for (const StrokeRecord& s : log) {
+    if (s.stall) continue;
+    const PlanRequest req = ReplayRequest(o, s);
+    const bool by_default = o.players[static_cast<size_t>(s.striker)] == PlayerKind::kDefault;
+    EXPECT_EQ(req.position_spread, by_default ? std::optional<double>(2) : std::nullopt);
+    if (!by_default || defaults++ >= 3) continue;
+    const PlanAnswer again = Planner::Default().Plan(req);
+    ASSERT_FALSE(again.shots.empty()) << again.reason;
+    EXPECT_EQ(again.shots.front().score, s.plan_score);
+  }
+  EXPECT_GT(defaults, 0);
 }
 
 TEST(MatchTest, AMatchIsAFunctionOfItsSeed) {

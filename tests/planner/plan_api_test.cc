@@ -127,6 +127,23 @@ TEST(ValidatePlanRequestTest, TheBreakValueIsInPoints) {
   EXPECT_EQ(ValidatePlanRequest(r, physics::DefaultTable())[0].value, "-1");
 }
 
+TEST(ValidatePlanRequestTest, ThePositionSpreadIsInStandardDeviations) {
+  v1::PlanRequest r = ObviousPot();
+  for (const double ok : {0.0, 2.0, 4.0}) {
+    r.set_position_spread(ok);
+    EXPECT_TRUE(ValidatePlanRequest(r, physics::DefaultTable()).empty()) << ok;
+  }
+  for (const double bad : {-0.5, 4.5, static_cast<double>(NAN), static_cast<double>(INFINITY)}) {
+    r.set_position_spread(bad);
+    const std::vector<FieldError> errors = ValidatePlanRequest(r, physics::DefaultTable());
+    ASSERT_EQ(errors.size(), 1u) << bad;
+    EXPECT_EQ(errors[0].field, "position_spread");
+    EXPECT_EQ(errors[0].rule, "must be in [0, 4]");
+  }
+  r.set_position_spread(4.5);
+  EXPECT_EQ(ValidatePlanRequest(r, physics::DefaultTable())[0].value, "4.5");
+}
+
 // kinds and routes take the API's values, *_UNSPECIFIED excepted: a bad entry is
 // named by its index, with its name or, when it names no value, its number.
 TEST(ValidatePlanRequestTest, KindsAndRoutesNameEachBadEntry) {
@@ -230,6 +247,9 @@ TEST(PlanRequestFromTest, ConvertsUnitsAtTheEdge) {
   EXPECT_FALSE(d.break_value.has_value());
   r.set_break_value(100);
   EXPECT_EQ(PlanRequestFrom(r).break_value, 100);
+  EXPECT_FALSE(d.position_spread.has_value());
+  r.set_position_spread(2);
+  EXPECT_EQ(PlanRequestFrom(r).position_spread, 2);
   const planner::PlanRequest in_hand = PlanRequestFrom(ObviousPotInHand());
   EXPECT_TRUE(in_hand.cue_in_hand);
   EXPECT_EQ(in_hand.table.balls.size(), 2u);
@@ -771,6 +791,7 @@ TEST(PlanProtoTest, CommentsQuoteThePlannersRanges) {
       {"monte_carlo_samples", RangeText(static_cast<double>(lim::kMonteCarloSamples.lo),
                                         static_cast<double>(lim::kMonteCarloSamples.hi))},
       {"break_value", RangeText(lim::kBreakValue.lo, lim::kBreakValue.hi)},
+      {"position_spread", RangeText(lim::kPositionSpread.lo, lim::kPositionSpread.hi)},
   };
   for (const auto& q : quoted) {
     const std::string comment = CommentAbove(proto, q.field);

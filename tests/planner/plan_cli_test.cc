@@ -474,6 +474,7 @@ INSTANTIATE_TEST_SUITE_P(
                     BadInput{"plan --table TABLE --max-simulations -1", "max_simulations = -1"},
                     BadInput{"plan --table TABLE --samples 100001", "monte_carlo_samples = 100001"},
                     BadInput{"plan --table TABLE --break-value 148", "break_value = 148 (must be in [0, 147] points)"},
+                    BadInput{"plan --table TABLE --position-spread -1", "position_spread = -1 (must be in [0, 4])"},
                     BadInput{"plan --table TABLE --kinds POT,PUSH",
                              "--kinds 'POT,PUSH': 'PUSH' is not one of POT, SAFETY, ESCAPE, BREAK_OFF, FOUL"},
                     BadInput{"plan --table TABLE --routes DIRECT,", "--routes 'DIRECT,': '' is not one of DIRECT"},
@@ -497,6 +498,7 @@ INSTANTIATE_TEST_SUITE_P(
                     BadInput{"selfplay --frames 0 --seed 1", "--frames 0 is out of range"},
                     BadInput{"selfplay --frames 1 --seed 1 --noise-position-mm -1", "--noise-position-mm -1"},
                     BadInput{"selfplay --frames 1 --seed 1 --break-value -1", "--break-value -1 is out of range"},
+                    BadInput{"selfplay --frames 1 --seed 1 --position-spread 9", "--position-spread 9 is out of range"},
                     BadInput{"selfplay --frames 1 --seed 18446744073709551616",
                              "--seed '18446744073709551616' is not a whole number in [0, 18446744073709551615]"}),
     [](const testing::TestParamInfo<BadInput>& param) {

@@ -324,6 +324,33 @@ TEST(PlannerTest, TheBreakValuePricesTheLeaveByWhatItKeepsAlive) {
               PositionOptions{}.continuation * a.position_value, 1e-9);
 }
 
+// The position's spread changes only what the search prefers: 0 plays as unset, and
+// on the demo's table 2 still answers pots the Monte Carlo rates likely, found by a
+// different search (another count of NLopt evaluations: another optimum's path).
+TEST(PlannerTest, APositionSpreadOfZeroIsTheNominalEnd) {
+  PlanRequest r = Request(testing_tables::DemoTable());
+  r.max_shots = 3;
+  r.max_simulations = 4000;
+  const PlanAnswer unset = Planner::Default().Plan(r);
+  r.position_spread = 0;
+  const PlanAnswer zero = Planner::Default().Plan(r);
+  ASSERT_EQ(unset.status, PlanStatus::kOk) << unset.reason;
+  ASSERT_EQ(zero.shots.size(), unset.shots.size());
+  for (size_t i = 0; i < zero.shots.size(); ++i) {
+    EXPECT_EQ(zero.shots[i].score, unset.shots[i].score) << i;
+    EXPECT_EQ(zero.shots[i].shot.speed, unset.shots[i].shot.speed) << i;
+  }
+  EXPECT_EQ(zero.evaluations, unset.evaluations);
+  r.position_spread = 2;
+  const PlanAnswer spread = Planner::Default().Plan(r);
+  ASSERT_EQ(spread.status, PlanStatus::kOk) << spread.reason;
+  EXPECT_NE(spread.evaluations, unset.evaluations);
+  for (const PlannedShot& s : spread.shots) {
+    ASSERT_EQ(s.kind, ShotKind::kPot);
+    EXPECT_GT(s.pot_probability, 0.5);
+  }
+}
+
 // Why a shot's label (kind, first ball, object ball and pocket) differs from what its
 // own events show, or "" when they agree: the cue ball's first contact must be the
 // first ball (the object ball but for a plant), a pot's object ball must drop in the

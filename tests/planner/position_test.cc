@@ -3,7 +3,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
 #include "planner/planner.h"
+#include "planner/search.h"
 
 namespace snooker::planner {
 namespace {
@@ -79,6 +85,63 @@ TEST(PositionTest, NothingOnIsWorthNothing) {
   const PositionValue v = EvaluatePosition(t, BallOn::kRed, Context(), {});
   EXPECT_EQ(v.value, 0);
   EXPECT_EQ(v.next_ball, -1);
+}
+
+// The search's position over the cue ball's end spread (ScoreLeave with a spread):
+// three-point Gauss-Hermite along it, the end weighted 2/3 and the points sqrt(3)
+// spreads either side 1/6 each, every point valued as EvaluatePosition values the
+// table the rules leave (the red gone, the black to play); points beyond a
+// cushion's contact line held on it.
+TEST(PositionSpreadTest, ThePositionIsTheQuadratureMeanAlongTheSpread) {
+  const physics::TableModel& model = physics::DefaultTable();
+  const PotContext ctx = Context();
+  SearchSettings settings;
+  const Vec2 black = model.spot(physics::Colour::kBlack);
+  TableState table;
+  table.balls = {{BallKind::kCue, Vec2(0.6, 2.0)}, {BallKind::kRed, Vec2(1.2, 2.9)}, {BallKind::kBlack, black}};
+  const std::vector<int> potted = {1};
+  const double d = model.cushion_contact_distance();
+  struct Case {
+    Vec2 end;
+    Vec2 spread;
+  } cases[] = {
+      {black + Vec2(0.10, -0.35), Vec2(0.0, 0.12)},   // along the black's line: nearer and farther
+      {black + Vec2(-0.5, -0.30), Vec2(-0.20, 0.0)},  // towards the left cushion: one point held on it
+  };
+  for (const Case& c : cases) {
+    const std::vector<Vec2> finals = {c.end, model.pocket(PocketId::kTopRight).mouth_centre, black};
+    const Leave nominal = ScoreLeave(table, BallOn::kRed, 1, finals, potted, 0.9, ctx, settings);
+    LeaveScratch scratch;
+    const Leave spread = ScoreLeave(table, BallOn::kRed, 1, finals, potted, 0.9, ctx, settings, &scratch, c.spread);
+    double value = 0, points = 0;
+    const std::pair<double, double> nodes[] = {{0.0, 2.0 / 3}, {-std::sqrt(3.0), 1.0 / 6}, {std::sqrt(3.0), 1.0 / 6}};
+    for (const auto& [s, w] : nodes) {
+      const Vec2 p = c.end + s * c.spread;
+      TableState after;
+      after.balls = {{BallKind::kCue, Vec2(std::clamp(p.x(), d, model.spec().width - d),
+                                           std::clamp(p.y(), d, model.spec().length - d))},
+                     {BallKind::kBlack, black}};
+      const PositionValue v = EvaluatePosition(after, BallOn::kAnyColour, ctx, settings.position);
+      value += w * v.value;
+      points += w * v.expected_points;
+    }
+    EXPECT_NEAR(spread.position.value, value, 1e-12);
+    EXPECT_NEAR(spread.position.expected_points, points, 1e-9);
+    // The nominal end's own value is what the spread leaves out.
+    EXPECT_GT(std::abs(spread.position.expected_points - nominal.position.expected_points), 0.05);
+    EXPECT_NEAR(spread.score - nominal.score,
+                0.9 * (spread.position.expected_points - nominal.position.expected_points), 1e-9);
+    EXPECT_EQ(spread.next_ball, nominal.next_ball);  // the ball the stroke plays for
+    // The table is handed back as it was: the cue ball at its end.
+    EXPECT_EQ(scratch.after.balls[static_cast<size_t>(scratch.after.cue_index())].position, c.end);
+  }
+  // No spread, or pot-only play: the nominal end alone.
+  const std::vector<Vec2> finals = {black + Vec2(0.1, -0.35), Vec2(1.2, 3.5), black};
+  const Vec2 spread(0.0, 0.12);
+  EXPECT_EQ(ScoreLeave(table, BallOn::kRed, 1, finals, potted, 0.9, ctx, settings, nullptr, Vec2::Zero()).score,
+            ScoreLeave(table, BallOn::kRed, 1, finals, potted, 0.9, ctx, settings).score);
+  settings.position_play = false;
+  EXPECT_EQ(ScoreLeave(table, BallOn::kRed, 1, finals, potted, 0.9, ctx, settings, nullptr, spread).score, 0.9);
 }
 
 }  // namespace

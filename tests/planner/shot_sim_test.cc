@@ -182,5 +182,39 @@ TEST(ShotSimTest, TheMeasuredThrowIsTheCollisionModelsThrow) {
   }
 }
 
+// The cue ball's path after its first contact (ShotOutcome::cue_travel and
+// cue_last_direction): a full-ball contact down the table's long axis, played with
+// follow, with screw, and as a miss. On a straight path the chords add up to the
+// distance from the contact to the end.
+TEST(ShotSimTest, TheCueBallsPathAfterContactIsMeasured) {
+  const physics::TableModel& model = physics::DefaultTable();
+  const double radius = physics::BallParams{}.radius;
+  TableState t;
+  t.balls = {{BallKind::kCue, Vec2(0.889, 1.0)}, {BallKind::kRed, Vec2(0.889, 1.5)}};
+  const ShotSetup setup{&t, 0, 1, physics::PocketId::kTopLeft, BallOn::kRed};
+  ShotSimulator sim(model, physics::SimParams{});
+  const Vec2 contact = t.balls[1].position - Vec2(0, 2 * radius);
+  const double up = physics::kPi / 2;
+  // Follow: the cue ball rolls on after the red, straight.
+  const ShotOutcome follow = sim.Run(setup, {1.5, up, 1.5 / radius, 0}, {}, ShotSimulator::Mode::kToRest, {});
+  ASSERT_EQ(follow.first_hit, 1);
+  const Vec2 end = sim.final_balls()[0].r;
+  EXPECT_GT(end.y(), contact.y() + 0.1);
+  EXPECT_NEAR(follow.cue_travel, (end - contact).norm(), 1e-6);
+  EXPECT_NEAR(follow.cue_last_direction.y(), 1.0, 1e-6);
+  // Screw: it comes back, its last move down the table.
+  const ShotOutcome screw = sim.Run(setup, {2.0, up, -3.0 / radius, 0}, {}, ShotSimulator::Mode::kToRest, {});
+  ASSERT_EQ(screw.first_hit, 1);
+  const Vec2 back = sim.final_balls()[0].r;
+  EXPECT_LT(back.y(), contact.y() - 0.1);
+  EXPECT_NEAR(screw.cue_travel, (back - contact).norm(), 1e-6);
+  EXPECT_NEAR(screw.cue_last_direction.y(), -1.0, 1e-6);
+  // A stroke that meets no ball has no path after a contact.
+  const ShotOutcome miss = sim.Run(setup, {1.0, 0.0, 0, 0}, {}, ShotSimulator::Mode::kToRest, {});
+  EXPECT_EQ(miss.first_hit, -1);
+  EXPECT_EQ(miss.cue_travel, 0.0);
+  EXPECT_EQ(miss.cue_last_direction, Vec2::Zero());
+}
+
 }  // namespace
 }  // namespace snooker::planner

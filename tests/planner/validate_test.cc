@@ -81,6 +81,8 @@ const RangeCase kRanges[] = {
      [](PlanRequest* r, double x) { r->time_budget = x; }},
     {"BreakValue", "break_value", limits::kBreakValue, Unit::kPoints,
      [](PlanRequest* r, double x) { r->break_value = x; }},
+    {"PositionSpread", "position_spread", limits::kPositionSpread, Unit::kNone,
+     [](PlanRequest* r, double x) { r->position_spread = x; }},
 };
 
 void PrintTo(const RangeCase& c, std::ostream* os) { *os << c.name; }
