@@ -74,6 +74,7 @@ void BM_PlanWork(benchmark::State& state) {
     r.seed = k;
     r.time_budget = 60;
     r.max_simulations = state.range(0);
+    if (state.range(1) > 0) r.position_spread = static_cast<double>(state.range(1));
     sims += static_cast<double>(planner.Plan(r).simulations);
     ++k;
   }
@@ -81,7 +82,9 @@ void BM_PlanWork(benchmark::State& state) {
   state.counters["wall_us_per_simulation"] =
       benchmark::Counter(sims * 1e-6, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
-BENCHMARK(BM_PlanWork)->Arg(400)->Iterations(32)->Unit(benchmark::kMillisecond);
+// The second argument is the request's position_spread (0: unset): what valuing the
+// position over the cue ball's end spread costs at equal simulations.
+BENCHMARK(BM_PlanWork)->Args({400, 0})->Args({400, 2})->Iterations(32)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace snooker::planner::bench
