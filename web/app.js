@@ -592,6 +592,8 @@ function planRequest() {
   if ($('thin-break-off').checked) request.thinBreakOff = true;
   const breakValue = readNumber($('break-value'));
   if (breakValue !== undefined) request.breakValue = breakValue;
+  const positionSpread = readNumber($('position-spread'));
+  if (positionSpread !== undefined) request.positionSpread = positionSpread;
   return request;
 }
 
@@ -1154,6 +1156,7 @@ function start() {
   $('lookahead').addEventListener('change', () => plan('options'));
   $('thin-break-off').addEventListener('change', () => plan('options'));
   $('break-value').addEventListener('change', () => plan('options'));
+  $('position-spread').addEventListener('change', () => plan('options'));
   $('noise-preset').addEventListener('change', () => {
     applyNoisePreset($('noise-preset').value);
     plan('options');

@@ -471,20 +471,23 @@ async function main() {
       await page.$eval('#budget', (e) => { e.value = '5000'; });
       await page.$eval('#max-simulations', (e) => { e.value = '1500'; });
       await page.$eval('#break-value', (e) => { e.value = '100'; });
+      await page.$eval('#position-spread', (e) => { e.value = '2'; });
       await click('#lookahead');
       const request = await page.evaluate(() => window.snookerPage.lastPlanRequest);
       const texts = (await shotRows(page)).map((r) => r.pot);
       const answer = await unary(base, 'Plan', request);
       const expected = ((answer.body && answer.body.shots) || []).map((x) => pct(x.potProbability));
-      check('routes, lookahead and break value in the request; the rows equal a direct Plan call\'s',
+      check('routes, lookahead, break value and position spread in the request; the rows equal a direct Plan call\'s',
         request.kinds === undefined && JSON.stringify(request.routes) === '["DIRECT","PLANT","DOUBLE"]' &&
-        request.lookahead === false && request.breakValue === 100 &&
+        request.lookahead === false && request.breakValue === 100 && request.positionSpread === 2 &&
         texts.length > 0 && JSON.stringify(texts) === JSON.stringify(expected),
-        `routes ${JSON.stringify(request.routes)}, lookahead ${request.lookahead}, breakValue ${request.breakValue}; ` +
+        `routes ${JSON.stringify(request.routes)}, lookahead ${request.lookahead}, breakValue ${request.breakValue}, ` +
+        `positionSpread ${request.positionSpread}; ` +
         `page ${texts.join(', ')}; Plan ${expected.join(', ')}`);
       await page.$eval('#budget', (e) => { e.value = ''; });
       await page.$eval('#max-simulations', (e) => { e.value = ''; });
       await page.$eval('#break-value', (e) => { e.value = ''; });
+      await page.$eval('#position-spread', (e) => { e.value = ''; });
       await click('[data-route="KICK"]');
       await click('#lookahead');
     }
