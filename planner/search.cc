@@ -577,7 +577,7 @@ LeaveScratch& TableLeft(const TableState& table, BallOn on, std::span<const Vec2
 PositionValue MeanOverSpread(TableState& after, int cue, BallOn next_on, const Vec2& spread,
                              const PositionValue& at_end, const PotContext& after_ctx,
                              const PositionOptions& options) {
-  constexpr double kCentreWeight = 2.0 / 3, kSideWeight = 1.0 / 6;
+  constexpr double kCentreWeight = 2.0 / 3, kSideShare = 6;  // the sides' weight: 1 / kSideShare
   const physics::TableModel& model = *after_ctx.table;
   const double d = model.cushion_contact_distance();
   Vec2& ball = after.balls[static_cast<size_t>(cue)].position;
@@ -589,8 +589,8 @@ PositionValue MeanOverSpread(TableState& after, int cue, BallOn next_on, const V
     const Vec2 p = end + s * spread;
     ball = Vec2(std::clamp(p.x(), d, model.spec().width - d), std::clamp(p.y(), d, model.spec().length - d));
     const PositionValue v = EvaluatePosition(after, next_on, after_ctx, options);
-    mean.value += kSideWeight * v.value;
-    mean.expected_points += kSideWeight * v.expected_points;
+    mean.value += v.value / kSideShare;
+    mean.expected_points += v.expected_points / kSideShare;
   }
   ball = end;
   return mean;
