@@ -342,6 +342,14 @@ answer whatever the thread timing (a test checks it); when it does, the answer i
 best found in time. Two worker threads share the candidates and the Monte Carlo
 blocks, one simulator each.
 
+Once the buffers have grown, no evaluation allocates: a candidate's search keeps the
+table a stroke leaves and its copy with the cue ball in hand (`LeaveScratch`) for all
+its evaluations, and a worker keeps its simulators and the Monte Carlo's sampled and
+final positions (`SampleScratch`) from block to block.
+`tests/planner/allocation_test.cc` counts the global `operator new` over a second
+evaluation of each kind (a pot's leave, a re-spot, a safety, an in-off handed over in
+hand, a block of eight samples) and asserts zero.
+
 ## Self-play
 
 {selfplay_table(runs, ['default', 'position 0.5 mm', 'pot only', 'cue clearance 5 cm'], data)}
