@@ -91,8 +91,9 @@ struct ShotOutcome {
   int object_cushions = 0;
   /// The cue ball's path from its first contact to rest, m: the chords between its
   /// events (a bound from below on a curved path), and the direction of its last
-  /// chord (zero when it did not move after the contact or went down). The
-  /// search's position spread (SearchSettings::position_spread) is scaled by it.
+  /// chord (zero when it did not move after the contact); a cue ball that went down
+  /// is followed to its last event before the pocket. The search's position spread
+  /// (SearchSettings::position_spread) is scaled by it.
   double cue_travel = 0;
   physics::Vec2 cue_last_direction = physics::Vec2::Zero();
 };
