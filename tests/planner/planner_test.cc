@@ -328,13 +328,11 @@ TEST(PlannerTest, TheBreakValuePricesTheLeaveByWhatItKeepsAlive) {
 // on the demo's table 2 still answers pots the Monte Carlo rates likely, found by a
 // different search (another count of NLopt evaluations: another optimum's path).
 TEST(PlannerTest, APositionSpreadOfZeroIsTheNominalEnd) {
-  PlanRequest r = Request(testing_tables::DemoTable());
-  r.max_shots = 3;
-  r.max_simulations = 4000;
+  PlanRequest r = Request(testing_tables::DemoTable(), 4000);
   const PlanAnswer unset = Planner::Default().Plan(r);
+  ASSERT_EQ(unset.status, PlanStatus::kOk) << unset.reason;
   r.position_spread = 0;
   const PlanAnswer zero = Planner::Default().Plan(r);
-  ASSERT_EQ(unset.status, PlanStatus::kOk) << unset.reason;
   ASSERT_EQ(zero.shots.size(), unset.shots.size());
   for (size_t i = 0; i < zero.shots.size(); ++i) {
     EXPECT_EQ(zero.shots[i].score, unset.shots[i].score) << i;
