@@ -286,9 +286,12 @@ INSTANTIATE_TEST_SUITE_P(Players, CliMatchReplayTest,
                          testing::Values(ReplayCase{"DefaultAgainstDirectPots", "", kDefaultFlags, kDirectPotsFlags, 13},
                                          ReplayCase{"OnePlyAgainstDefault", "--player-a one-ply --player-b default",
                                                     kOnePlyFlags, kDefaultFlags, 11},
-                                         // The match's --position-spread is the default's, not direct-pots'.
-                                         ReplayCase{"DefaultWithAPositionSpread", "--position-spread 2",
-                                                    " --break-value 100 --position-spread 2", kDirectPotsFlags, 13}),
+                                         // The match's --position-spread is both players' here (one-ply's
+                                         // too; direct-pots' never, MatchTest).
+                                         ReplayCase{"DefaultAndOnePlyWithAPositionSpread",
+                                                    "--player-b one-ply --position-spread 2",
+                                                    " --break-value 100 --position-spread 2",
+                                                    " --break-value 100 --position-spread 2 --no-lookahead", 11}),
                          [](const testing::TestParamInfo<ReplayCase>& p) { return std::string(p.param.name); });
 
 // A seed is any uint64, as the API's: the largest plays, and the JSON gives it whole.
