@@ -577,7 +577,9 @@ LeaveScratch& TableLeft(const TableState& table, BallOn on, std::span<const Vec2
 PositionValue MeanOverSpread(TableState& after, int cue, BallOn next_on, const Vec2& spread,
                              const PositionValue& at_end, const PotContext& after_ctx,
                              const PositionOptions& options) {
-  constexpr double kCentreWeight = 2.0 / 3, kSideShare = 6;  // the sides' weight: 1 / kSideShare
+  // The sides are added as v / 6, not (1 / 6) v: the last bit differs, and this is
+  // the form whose matches docs/whole-frame-planner.md records, stroke for stroke.
+  constexpr double kCentreWeight = 2.0 / 3, kSideShare = 6;
   const physics::TableModel& model = *after_ctx.table;
   const double d = model.cushion_contact_distance();
   Vec2& ball = after.balls[static_cast<size_t>(cue)].position;

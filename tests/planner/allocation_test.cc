@@ -95,7 +95,7 @@ TEST(AllocationTest, AReusedSimulatorAndScratchScoreAPotWithoutAllocating) {
   std::vector<Vec2> finals;
   finals.reserve(s.table.balls.size());
   const physics::Shot shot{1.5, std::atan2(p.axis.y(), p.axis.x()), -1.5 / 0.02625, 0};  // screw: no in-off
-  double score = 0;
+  double score = 0, over_spread = 0;
   const long n = AllocationsOfASecondRun([&] {
     const ShotOutcome& out = sim.Run(setup, shot, {}, ShotSimulator::Mode::kDecide, {});
     ASSERT_TRUE(out.success);
@@ -103,9 +103,15 @@ TEST(AllocationTest, AReusedSimulatorAndScratchScoreAPotWithoutAllocating) {
     for (const physics::BallState& b : sim.final_balls()) finals.push_back(b.r);
     score = ScoreLeave(s.table, BallOn::kRed, 1, finals, out.potted, 1.0, s.ctx, s.settings, &scratch)
                 .score;
+    // The position over the cue ball's end spread (the search's position_spread).
+    over_spread = ScoreLeave(s.table, BallOn::kRed, 1, finals, out.potted, 1.0, s.ctx, s.settings, &scratch,
+                             0.05 * out.cue_last_direction)
+                      .score;
   });
   EXPECT_EQ(n, 0);
   EXPECT_GT(score, 1.0);  // the red's point and a colour to follow
+  EXPECT_GT(over_spread, 1.0);
+  EXPECT_NE(over_spread, score);  // the cue ball came back: it had a spread to value
 }
 
 TEST(AllocationTest, ScoringALeaveThatRespotsAColourDoesNotAllocateWithAScratch) {
