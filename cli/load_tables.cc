@@ -129,7 +129,7 @@ bool BuiltinTable(const std::string& name, v1::TableState* t) {
   t->Clear();
   const auto balls = planner::BuiltinTable(name);
   if (!balls) return false;
-  for (const planner::NamedBall& b : *balls) Add(t, b.id, server::ToProto(b.ball.kind), b.ball.position);
+  server::ToProto(*balls, t);
   return true;
 }
 

@@ -52,16 +52,21 @@ void BreakOff(std::vector<NamedBall>& balls, const physics::TableModel& table) {
 
 // Every built-in table by name, in the order the names are listed.
 struct Builder {
-  std::string_view name;
+  BuiltinTableEntry entry;
   void (*build)(std::vector<NamedBall>&, const physics::TableModel&);
 };
-constexpr Builder kTables[] = {{"black", Black}, {"red", Red}, {"colours", Colours}, {"break-off", BreakOff}};
+constexpr Builder kTables[] = {
+    {{"black", "the black and three reds"}, Black},
+    {{"red", "a red by the top-right pocket"}, Red},
+    {{"colours", "the six colours on their spots"}, Colours},
+    {{"break-off", "the reds racked, the cue ball in hand"}, BreakOff},
+};
 
 }  // namespace
 
 std::optional<std::vector<NamedBall>> BuiltinTable(std::string_view name) {
   for (const Builder& b : kTables) {
-    if (b.name != name) continue;
+    if (b.entry.name != name) continue;
     std::vector<NamedBall> balls;
     b.build(balls, physics::DefaultTable());
     return balls;
@@ -69,10 +74,16 @@ std::optional<std::vector<NamedBall>> BuiltinTable(std::string_view name) {
   return std::nullopt;
 }
 
+std::vector<BuiltinTableEntry> BuiltinTableList() {
+  std::vector<BuiltinTableEntry> list;
+  for (const Builder& b : kTables) list.push_back(b.entry);
+  return list;
+}
+
 const char* BuiltinTableNames() {
   static const std::string names = [] {
     std::string s;
-    for (const Builder& b : kTables) s += (s.empty() ? "" : ", ") + std::string(b.name);
+    for (const Builder& b : kTables) s += (s.empty() ? "" : ", ") + std::string(b.entry.name);
     return s;
   }();
   return names.c_str();

@@ -30,6 +30,16 @@ struct NamedBall {
 /// nullopt for any other name.
 std::optional<std::vector<NamedBall>> BuiltinTable(std::string_view name);
 
+/// A built-in table's name and a one-line description of it, for a menu.
+struct BuiltinTableEntry {
+  std::string_view name;
+  std::string_view description;
+};
+
+/// Every name BuiltinTable knows, with its description, in a fixed order ("black"
+/// first: the demonstration's table).
+std::vector<BuiltinTableEntry> BuiltinTableList();
+
 /// The names BuiltinTable knows, comma-separated (for messages).
 const char* BuiltinTableNames();
 

@@ -12,6 +12,7 @@
 #include "physics/motion/slip_phase.h"
 #include "physics/sim/paths.h"
 #include "server/convert.h"
+#include "server/plan_convert.h"
 
 namespace snooker::server {
 
@@ -286,6 +287,7 @@ ApiStatus GetModel(const v1::GetModelRequest& /*request*/, v1::GetModelResponse*
   const physics::TableModel& table = physics::DefaultTable();
   ToProto(table, response->mutable_table());
   ModelToProto(limits.physics_model(), table, kDefaultPathSampleS, response);  // what Simulate uses for unset options
+  BuiltinTablesToProto(response);
   *response->mutable_service() =
       limits.service != nullptr ? *limits.service : DefaultServiceLimits(limits);
   return ApiStatus::Ok();

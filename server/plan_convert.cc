@@ -450,4 +450,23 @@ void ToProto(const planner::PlanAnswer& a, const v1::TableState& table,
   out->set_elapsed_ms(a.elapsed * 1e3);
 }
 
+void ToProto(const std::vector<planner::NamedBall>& balls, v1::TableState* out) {
+  out->Clear();
+  for (const planner::NamedBall& b : balls) {
+    v1::Ball* ball = out->add_balls();
+    ball->set_id(b.id);
+    ball->set_kind(ToProto(b.ball.kind));
+    ToProto(b.ball.position, ball->mutable_position());
+  }
+}
+
+void BuiltinTablesToProto(v1::GetModelResponse* response) {
+  for (const planner::BuiltinTableEntry& entry : planner::BuiltinTableList()) {
+    v1::BuiltinTable* table = response->add_builtin_tables();
+    table->set_name(std::string(entry.name));
+    table->set_description(std::string(entry.description));
+    ToProto(*planner::BuiltinTable(entry.name), table->mutable_state());
+  }
+}
+
 }  // namespace snooker::server

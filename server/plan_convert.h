@@ -7,9 +7,11 @@
 #include <vector>
 
 #include "physics/table/table.h"
+#include "planner/builtin_tables.h"
 #include "planner/planner.h"
 #include "server/convert.h"
 #include "server/limits.h"
+#include "snooker/v1/model.pb.h"
 #include "snooker/v1/plan.pb.h"
 
 namespace snooker::server {
@@ -70,6 +72,12 @@ std::optional<planner::PotRoute> PotRouteFrom(v1::PotRoute route);
 /// was in hand.
 void ToProto(const planner::PlannedShot& shot, const v1::TableState& table,
              const physics::TableModel& model, v1::PlannedShot* out);
+
+/// A built-in table's balls in API form, with their ids, in their order.
+void ToProto(const std::vector<planner::NamedBall>& balls, v1::TableState* out);
+
+/// Every built-in table (planner::BuiltinTableList) into GetModel's answer.
+void BuiltinTablesToProto(v1::GetModelResponse* response);
 
 /// The planner's answer in API form.
 void ToProto(const planner::PlanAnswer& answer, const v1::TableState& table,

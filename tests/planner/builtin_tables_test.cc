@@ -52,6 +52,18 @@ TEST(BuiltinTablesTest, EveryListedTableIsLegalWithUniqueIdsThatNameTheKind) {
   }
 }
 
+TEST(BuiltinTablesTest, TheListHasTheNamesOfTheMessageInTheirOrderEachDescribed) {
+  const std::vector<BuiltinTableEntry> list = BuiltinTableList();
+  const std::vector<std::string> names = ListedNames();
+  ASSERT_EQ(list.size(), names.size());
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    EXPECT_EQ(list[i].name, names[i]);
+    EXPECT_TRUE(BuiltinTable(list[i].name).has_value()) << list[i].name;
+    EXPECT_FALSE(list[i].description.empty()) << list[i].name;
+  }
+  EXPECT_EQ(list.front().name, "black");  // the demonstration's table comes first
+}
+
 TEST(BuiltinTablesTest, AnUnlistedNameHasNoTable) {
   EXPECT_FALSE(BuiltinTable("snooker").has_value());
   EXPECT_FALSE(BuiltinTable("").has_value());

@@ -6,10 +6,13 @@
 #include <cmath>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "physics/core/limits.h"
 #include "physics/table/table.h"
+#include "planner/builtin_tables.h"
 #include "server/api.h"
+#include "server/plan_convert.h"
 #include "tests/service/requests.h"
 #include "tests/service/server_support.h"
 
@@ -95,6 +98,51 @@ TEST(GetModelTest, DescribesTheTableTheServerSimulatesOn) {
       EXPECT_EQ(pockets.count(e.pocket()), 1u) << e.pocket();
     }
   }
+}
+
+// The built-in tables a client offers are the command line's, ball for ball, and a
+// Plan takes each as it is (the break-off's with the cue ball in hand).
+TEST(GetModelTest, ListsTheBuiltInTablesThatAPlanAccepts) {
+  TestServer s;
+  ASSERT_NE(s.stub, nullptr);
+  const v1::GetModelResponse m = Model(s);
+  const std::vector<planner::BuiltinTableEntry> list = planner::BuiltinTableList();
+  ASSERT_EQ(m.builtin_tables_size(), static_cast<int>(list.size()));
+  for (int t = 0; t < m.builtin_tables_size(); ++t) {
+    const v1::BuiltinTable& table = m.builtin_tables(t);
+    EXPECT_EQ(table.name(), list[static_cast<std::size_t>(t)].name);
+    EXPECT_FALSE(table.description().empty()) << table.name();
+    const auto balls = planner::BuiltinTable(table.name());
+    ASSERT_TRUE(balls.has_value()) << table.name();
+    ASSERT_EQ(table.state().balls_size(), static_cast<int>(balls->size())) << table.name();
+    bool has_cue = false;
+    for (int i = 0; i < table.state().balls_size(); ++i) {
+      const v1::Ball& b = table.state().balls(i);
+      const planner::NamedBall& want = (*balls)[static_cast<std::size_t>(i)];
+      EXPECT_EQ(b.id(), want.id) << table.name();
+      EXPECT_EQ(b.kind(), ToProto(want.ball.kind)) << table.name() << " " << b.id();
+      EXPECT_EQ(b.position().x(), want.ball.position.x()) << table.name() << " " << b.id();
+      EXPECT_EQ(b.position().y(), want.ball.position.y()) << table.name() << " " << b.id();
+      has_cue = has_cue || b.kind() == v1::CUE;
+    }
+    EXPECT_EQ(has_cue, table.name() != "break-off") << table.name();
+
+    v1::PlanRequest r;
+    *r.mutable_table() = table.state();
+    r.set_cue_in_hand(!has_cue);
+    r.set_max_simulations(300);
+    r.set_monte_carlo_samples(16);
+    r.set_time_budget_ms(10'000);
+    r.set_max_shots(1);
+    r.set_seed(1);
+    v1::PlanResponse answer;
+    grpc::ClientContext ctx;
+    const grpc::Status st = s.stub->Plan(&ctx, r, &answer);
+    EXPECT_TRUE(st.ok()) << table.name() << ": " << st.error_message();
+    EXPECT_EQ(answer.shots_size(), 1) << table.name();
+  }
+  // The demonstration's table first, as the page draws it on load.
+  EXPECT_EQ(m.builtin_tables(0).name(), "black");
 }
 
 TEST(GetModelTest, ReportsTheServersOwnBounds) {
