@@ -12,50 +12,6 @@ const KINDS = ['CUE', 'RED', 'YELLOW', 'GREEN', 'BROWN', 'BLUE', 'PINK', 'BLACK'
 const COLOUR_IDS = { YELLOW: 'yellow', GREEN: 'green', BROWN: 'brown', BLUE: 'blue', PINK: 'pink', BLACK: 'black' };
 const PLACED_CUE_ID = 'cue';  // the planner's name for the cue ball placed from hand
 
-// The built-in tables of `snooker plan --table builtin:NAME` (planner/builtin_tables.cc,
-// BuiltinTable), with the default table's spots and opening reds
-// (physics/table/table.cc): "black" has the cue ball at the black spot + (0.45, -0.30)
-// and reds 1, 5 and 10 of the triangle, "colours" the cue ball at the brown spot +
-// (0.12, 0.35), "break-off" the 15 reds racked and the colours on their spots with
-// the cue ball in hand. The browser test checks them against GetModel's spots and
-// triangle.
-const BUILTIN_TABLES = {
-  black: [
-    { id: 'cue', kind: 'CUE', position: { x: 1.339, y: 2.945 } },
-    { id: 'black', kind: 'BLACK', position: { x: 0.889, y: 3.245 } },
-    { id: 'red-1', kind: 'RED', position: { x: 0.889, y: 2.73025 } },
-    { id: 'red-5', kind: 'RED', position: { x: 0.889, y: 2.821182667 } },
-    { id: 'red-10', kind: 'RED', position: { x: 0.96775, y: 2.866649001 } },
-  ],
-  red: [
-    { id: 'cue', kind: 'CUE', position: { x: 1.1819, y: 2.9729 } },
-    { id: 'red-1', kind: 'RED', position: { x: 1.4648, y: 3.2558 } },
-    { id: 'black', kind: 'BLACK', position: { x: 0.889, y: 3.245 } },
-    { id: 'red-2', kind: 'RED', position: { x: 0.4, y: 1.5 } },
-  ],
-  colours: [
-    { id: 'cue', kind: 'CUE', position: { x: 1.009, y: 1.087 } },
-    { id: 'yellow', kind: 'YELLOW', position: { x: 1.181, y: 0.737 } },
-    { id: 'green', kind: 'GREEN', position: { x: 0.597, y: 0.737 } },
-    { id: 'brown', kind: 'BROWN', position: { x: 0.889, y: 0.737 } },
-    { id: 'blue', kind: 'BLUE', position: { x: 0.889, y: 1.7845 } },
-    { id: 'pink', kind: 'PINK', position: { x: 0.889, y: 2.67675 } },
-    { id: 'black', kind: 'BLACK', position: { x: 0.889, y: 3.245 } },
-  ],
-};
-// The opening triangle (physics::TableModel::reds()): the apex on the centre line a
-// ball's width and the apex gap (1 mm) above the pink spot, five rows a radius times
-// sqrt 3 apart, the balls of a row two radii apart; numbered row by row from the apex.
-BUILTIN_TABLES['break-off'] = [];
-for (let row = 0, i = 1, R = 0.02625; row < 5; ++row) {
-  for (let k = 0; k <= row; ++k, ++i) {
-    BUILTIN_TABLES['break-off'].push({
-      id: `red-${i}`, kind: 'RED', position: { x: 0.889 + (2 * k - row) * R, y: 2.73025 + row * Math.sqrt(3) * R },
-    });
-  }
-}
-BUILTIN_TABLES['break-off'].push(...BUILTIN_TABLES.colours.filter((b) => b.kind !== 'CUE'));
-
 // Noise presets: NoiseModel (plan.proto), one standard deviation of each error.
 //  * robot: the server's defaults (planner/pot_estimate.h, argued in
 //    docs/planning-notes.md section 3.3): a calibrated arm with a rigid cue.
@@ -177,6 +133,7 @@ async function callStream(method, request, signal, onMessage) {
 
 const state = {
   model: null,            // GetModelResponse
+  builtinTables: {},      // name -> the balls of GetModel's built-in table
   radius: 0.02625,        // m, the model's ball radius
   balls: [],              // [{id, kind, x, y}]
   selectedId: null,
@@ -201,7 +158,7 @@ const debugInfo = {
   lastPlanResponse: null,
   replaySeq: 0,
   progressShown: 0,       // progress messages drawn (the best shot so far)
-  builtinTables: BUILTIN_TABLES,
+  builtinTables: null,    // as GetModel gave them, by name
 };
 window.snookerPage = debugInfo;
 
@@ -616,6 +573,7 @@ function abortPlan() {
 }
 
 async function plan(trigger, startMs) {
+  if (!state.model) return;  // the page's first plan is asked for once the model is in
   abortPlan();
   abortReplay();
   endReplayView();
@@ -632,28 +590,18 @@ async function plan(trigger, startMs) {
   $('progress').textContent = 'Planning…';
   setStatus('Planning…');
   let progressCount = 0;
-  let early = null;  // the answer, when it came before the model (the page's first plan)
   const timing = { sentMs: performance.now(), answerMs: null };
   try {
-    // The plan does not wait for GetModel: on load both go at once, and what comes
-    // back is drawn once the model is there.
     await callStream('PlanStream', request, controller.signal, (message) => {
       if (seq !== state.planSeq) return;
       if (!message.final) {
         ++progressCount;
-        if (state.model) showProgress(message, balls, request);
-      } else if (state.model) {
-        timing.answerMs = performance.now();
-        finishPlan(request, balls, message, { seq, trigger, start, progressCount, timing });
+        showProgress(message, balls, request);
       } else {
         timing.answerMs = performance.now();
-        early = message;
+        finishPlan(request, balls, message, { seq, trigger, start, progressCount, timing });
       }
     });
-    if (early) {
-      await modelReady;
-      if (seq === state.planSeq) finishPlan(request, balls, early, { seq, trigger, start, progressCount, timing });
-    }
   } catch (e) {
     if (controller.signal.aborted || (e && e.name === 'AbortError') || seq !== state.planSeq) return;
     planFailed(e);
@@ -1094,23 +1042,50 @@ function scrub() {
 // ---------------------------------------------------------------------------
 // Start.
 
-let modelReady;
+// The built-in tables come from GetModel (the planner's, as `snooker plan --table
+// builtin:NAME` plays them): the menu lists them before "(your table)", and the first,
+// the demonstration's, is drawn and planned on load.
+function useBuiltinTables(tables) {
+  const select = $('builtin');
+  const custom = select.querySelector('option[value="custom"]');
+  for (const t of tables) {
+    state.builtinTables[t.name] = (t.state && t.state.balls) || [];
+    const option = document.createElement('option');
+    option.value = t.name;
+    option.textContent = `${t.name}: ${t.description}`;
+    select.insertBefore(option, custom);
+  }
+  debugInfo.builtinTables = state.builtinTables;
+  if (tables.length) {
+    select.value = tables[0].name;
+    setBuiltin(tables[0].name);
+  }
+}
+
+// Puts built-in table `name` on the page; a table without a cue ball has it in hand.
+function setBuiltin(name) {
+  const balls = state.builtinTables[name];
+  if (!balls) return false;
+  $('cue-in-hand').checked = !balls.some((b) => b.kind === 'CUE');
+  setBalls(balls);
+  return true;
+}
 
 function start() {
   applyNoisePreset('robot');
-  setBalls(BUILTIN_TABLES.black);
 
-  modelReady = callUnary('GetModel', {}).then((model) => {
+  const modelReady = callUnary('GetModel', {}).then((model) => {
     state.model = model;
     state.radius = num(model.ball && model.ball.radiusM) || state.radius;
     drawTable();
-    drawBalls();
+    useBuiltinTables(model.builtinTables || []);
     const s = model.service || {};
     const budget = $('budget');
     budget.placeholder = String(num(s.defaultPlanBudgetMs));
     budget.title = `empty: the server's default, ${num(s.defaultPlanBudgetMs)} ms`;
     if (s.maxPlanBudgetMs) budget.max = String(num(s.maxPlanBudgetMs));
     setStatus('Ready.');
+    plan('load');
   });
   modelReady.catch((e) => {
     showError('Cannot load the table model: ' + errorText(e));
@@ -1127,12 +1102,7 @@ function start() {
   table.addEventListener('pointercancel', onBallPointerUp);
 
   $('builtin').addEventListener('change', () => {
-    const name = $('builtin').value;
-    if (!BUILTIN_TABLES[name]) return;
-    // A built-in table without a cue ball (the break-off's) has it in hand.
-    $('cue-in-hand').checked = !BUILTIN_TABLES[name].some((b) => b.kind === 'CUE');
-    setBalls(BUILTIN_TABLES[name]);
-    plan('table');
+    if (setBuiltin($('builtin').value)) plan('table');
   });
   $('add-ball').addEventListener('click', addBall);
   $('remove-ball').addEventListener('click', removeSelected);
@@ -1170,8 +1140,6 @@ function start() {
   });
   $('play').addEventListener('click', togglePlay);
   $('scrubber').addEventListener('input', scrub);
-
-  plan('load');
 }
 
 start();

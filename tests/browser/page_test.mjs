@@ -102,7 +102,8 @@ async function unary(base, method, request) {
 const pct = (p) => (100 * (Number(p) || 0)).toFixed(1) + ' %';
 const near = (a, b, tol = 1e-6) => Math.abs(a.x - b.x) <= tol && Math.abs(a.y - b.y) <= tol;
 
-// The page's built-in tables, rebuilt from GetModel as cli/load_tables.cc builds them.
+// The built-in tables the page took from GetModel, against GetModel's own spots and
+// triangle: the cue balls where planner/builtin_tables.h puts them, the rest on the spots.
 function checkBuiltinTables(tables, model) {
   const spot = (kind) => model.table.spots.find((s) => s.kind === kind).position;
   const reds = model.table.redTriangle;
@@ -221,6 +222,16 @@ async function main() {
       `${loads.map((t) => t.toFixed(0)).join(', ')} ms; median ${medianLoad.toFixed(0)} ms`);
     const problems = checkBuiltinTables(first.tables, model);
     check('built-in tables match GetModel\'s spots and triangle', problems.length === 0, problems.join(', '));
+    const offered = await page.$$eval('#builtin option', (os) => os.map((o) => ({ value: o.value, text: o.textContent })));
+    const listed = (model.builtinTables || []).map((t) => ({ value: t.name, text: `${t.name}: ${t.description}` }))
+      .concat([{ value: 'custom', text: '(your table)' }]);
+    check('the menu offers GetModel\'s built-in tables in its order, then your table',
+      listed.length > 1 && JSON.stringify(offered) === JSON.stringify(listed), offered.map((o) => o.value).join(', '));
+    const firstTable = (model.builtinTables || [])[0] || { state: { balls: [] } };
+    const loadedBalls = first.request.table.balls.map((b) => `${b.id}@${b.position.x},${b.position.y}`).join(' ');
+    const firstBalls = firstTable.state.balls.map((b) => `${b.id}@${b.position.x},${b.position.y}`).join(' ');
+    check('the first plan is on GetModel\'s first built-in table', loadedBalls === firstBalls,
+      `${firstTable.name}: ${loadedBalls}`);
 
     const rows = await shotRows(page);
     check('ranked shots listed', rows.length >= 1, rows.map((r) => r.cells.join(' | ')).join('\n      '));
