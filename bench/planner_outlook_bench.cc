@@ -3,6 +3,8 @@
 // spots, reds scattered, the cue ball free):
 //  * BM_EvaluateOutlook/<reds>: planner/outlook.h with the cue ball on the table;
 //  * BM_EvaluatePosition/<reds>: position.h on the same tables, for scale;
+//  * BM_EvaluatePositionTwice/<reds> and ...TwiceCached/<reds>: each table valued
+//    twice with the cue ball moved, without and with a kept PocketLineCache;
 //  * BM_EvaluateOutlookInHand/<reds>: the same tables without the cue ball (the
 //    grid in the D);
 //  * BM_EvaluateOutlookSnookered: a constructed snooker (the escape search runs);
@@ -15,7 +17,9 @@
 // One table per iteration, cycling over 64.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "planner/break_off.h"
@@ -64,6 +68,45 @@ void BM_EvaluatePosition(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_EvaluatePosition)->Arg(10)->Unit(benchmark::kMicrosecond);
+
+// The same with a kept cache of the lines into the pockets, each table valued twice
+// with the cue ball 5 cm apart (as the position spread's sides are): the second
+// value finds the object balls' lines in the cache.
+void BM_EvaluatePositionTwiceCached(benchmark::State& state) {
+  std::vector<TableState> tables = Tables(static_cast<int>(state.range(0)));
+  const PotContext ctx = Context();
+  const PositionOptions options;
+  PocketLineCache lines;
+  size_t k = 0;
+  for (auto _ : state) {
+    TableState& t = tables[k++ % tables.size()];
+    physics::Vec2& cue = t.balls[static_cast<size_t>(t.cue_index())].position;
+    benchmark::DoNotOptimize(EvaluatePosition(t, BallOn::kRed, ctx, options, &lines));
+    cue.x() += 0.05;
+    benchmark::DoNotOptimize(EvaluatePosition(t, BallOn::kRed, ctx, options, &lines));
+    cue.x() -= 0.05;
+  }
+  state.counters["hit_rate"] =
+      static_cast<double>(lines.hits()) / static_cast<double>(std::max<std::int64_t>(1, lines.hits() + lines.misses()));
+}
+BENCHMARK(BM_EvaluatePositionTwiceCached)->Arg(10)->Unit(benchmark::kMicrosecond);
+
+// For scale: the two values without the cache.
+void BM_EvaluatePositionTwice(benchmark::State& state) {
+  std::vector<TableState> tables = Tables(static_cast<int>(state.range(0)));
+  const PotContext ctx = Context();
+  const PositionOptions options;
+  size_t k = 0;
+  for (auto _ : state) {
+    TableState& t = tables[k++ % tables.size()];
+    physics::Vec2& cue = t.balls[static_cast<size_t>(t.cue_index())].position;
+    benchmark::DoNotOptimize(EvaluatePosition(t, BallOn::kRed, ctx, options));
+    cue.x() += 0.05;
+    benchmark::DoNotOptimize(EvaluatePosition(t, BallOn::kRed, ctx, options));
+    cue.x() -= 0.05;
+  }
+}
+BENCHMARK(BM_EvaluatePositionTwice)->Arg(10)->Unit(benchmark::kMicrosecond);
 
 void BM_EvaluateOutlookInHand(benchmark::State& state) {
   std::vector<TableState> tables = Tables(static_cast<int>(state.range(0)));

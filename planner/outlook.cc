@@ -194,8 +194,8 @@ Escape BestEscape(const TableState& table, int cue, BallOn on, const PotContext&
 // it and block strokes towards it, and is made a kind that is not on, so that it
 // stays an obstacle but is no pot (playing into it would be a push).
 PositionValue Pots(const TableState& table, int cue, BallOn on, const PotContext& ctx,
-                   const OutlookOptions& options, TouchMask touching) {
-  if (touching == 0) return EvaluatePosition(table, on, ctx, options.position);
+                   const OutlookOptions& options, TouchMask touching, PocketLineCache* lines) {
+  if (touching == 0) return EvaluatePosition(table, on, ctx, options.position, lines);
   TableState moved = table;
   const Vec2 c = table.balls[static_cast<size_t>(cue)].position;
   const double apart = 2 * ctx.table->ball_radius() + ctx.path_clearance + kTouchingGap;
@@ -206,14 +206,14 @@ PositionValue Pots(const TableState& table, int cue, BallOn on, const PotContext
     if (away.norm() > 0) b.position = c + apart * away.normalized();
     b.kind = on == BallOn::kRed ? BallKind::kBlack : BallKind::kRed;
   }
-  return EvaluatePosition(moved, on, ctx, options.position);
+  return EvaluatePosition(moved, on, ctx, options.position, lines);
 }
 
 Outlook OutlookWithCue(const TableState& table, int cue, BallOn on, const PotContext& ctx,
-                       const OutlookOptions& options) {
+                       const OutlookOptions& options, PocketLineCache* lines) {
   Outlook out;
   const TouchMask touching = TouchingBalls(table, cue, ctx.table->ball_radius());
-  const PositionValue pv = Pots(table, cue, on, ctx, options, touching);
+  const PositionValue pv = Pots(table, cue, on, ctx, options, touching, lines);
   out.pot_probability = pv.next_probability;
   out.pot_ball = pv.next_ball;
   out.pot_pocket = pv.next_pocket;
@@ -255,7 +255,7 @@ Vec2 DPoint(int k, const physics::TableModel& model, const OutlookOptions& optio
 }
 
 Outlook OutlookInHand(const TableState& table, BallOn on, const PotContext& table_ctx,
-                      const OutlookOptions& options, TableState& placed) {
+                      const OutlookOptions& options, TableState& placed, PocketLineCache& lines) {
   const physics::TableModel& model = *table_ctx.table;
   // The table and the placed cue ball, in the buffer's capacity when it has grown.
   placed.balls.reserve(table.balls.size() + 1);
@@ -274,7 +274,7 @@ Outlook OutlookInHand(const TableState& table, BallOn on, const PotContext& tabl
     const Vec2 p = DPoint(k, model, options);
     if (!FreeFor(p, table, keep_off)) continue;
     placed.balls[static_cast<size_t>(cue)].position = p;
-    Outlook o = OutlookWithCue(placed, cue, on, ctx, options);
+    Outlook o = OutlookWithCue(placed, cue, on, ctx, options, &lines);
     const double score = o.expected_points - o.expected_penalty;
     if (tried == 0 || score > best_score) {
       best = o;
@@ -306,11 +306,15 @@ SnookerCheck CheckSnooker(const TableState& table, int cue, BallOn on, const Pot
 }
 
 Outlook EvaluateOutlook(const TableState& table, BallOn on, const PotContext& ctx,
-                        const OutlookOptions& options, TableState* placed) {
+                        const OutlookOptions& options, TableState* placed, PocketLineCache* lines) {
   const int cue = table.cue_index();
-  if (cue >= 0) return OutlookWithCue(table, cue, on, ctx, options);
+  if (cue >= 0) return OutlookWithCue(table, cue, on, ctx, options, lines);
   TableState own;
-  return OutlookInHand(table, on, ctx, options, placed != nullptr ? *placed : own);
+  // Every placement in the D values the same object balls: their lines are worked
+  // out once, in the caller's cache or in one of the call's own.
+  if (lines != nullptr) return OutlookInHand(table, on, ctx, options, placed != nullptr ? *placed : own, *lines);
+  PocketLineCache own_lines;
+  return OutlookInHand(table, on, ctx, options, placed != nullptr ? *placed : own, own_lines);
 }
 
 }  // namespace snooker::planner

@@ -185,8 +185,10 @@ struct Outlook {
 /// answer are those of `table` either way (the placed cue ball is not among them).
 /// `placed`: the caller's buffer for the table with the cue ball placed in hand
 /// (kept from call to call, it makes an outlook in hand allocate nothing once it
-/// has grown, when ctx has no per-ball vision sigma), or none.
+/// has grown, when ctx has no per-ball vision sigma), or none. `lines`: the
+/// caller's cache of lines into the pockets (position.h), or none.
 Outlook EvaluateOutlook(const TableState& table, BallOn on, const PotContext& ctx,
-                        const OutlookOptions& options, TableState* placed = nullptr);
+                        const OutlookOptions& options, TableState* placed = nullptr,
+                        PocketLineCache* lines = nullptr);
 
 }  // namespace snooker::planner

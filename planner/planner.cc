@@ -55,6 +55,7 @@ struct Worker {
   ShotSimulator search;
   ShotSimulator full;
   SampleScratch samples;
+  LeaveScratch leave;  // the searches' tables left
   std::int64_t evaluations = 0;
 };
 
@@ -630,7 +631,7 @@ void PlanRun::SearchAndVerify() {
     s.global_evaluations = static_cast<int>(std::lround(evaluations_[t] * config_.global_share));
     s.local_evaluations = evaluations_[t] - s.global_evaluations;
     const SearchResult r = SearchCandidate(tables_[static_cast<size_t>(cand.table)], on_, cand, ctx_, s, w.search,
-                                           schedule_.search);
+                                           schedule_.search, &w.leave);
     w.evaluations += r.evaluations;
     search_simulations[t] = r.simulations;
     interrupted[t] = r.status == SearchStatus::kInterrupted;
@@ -741,7 +742,7 @@ double PlanRun::NextShotValue(Worker& w, const PlannedShot& ps, int evaluations,
   s.local_evaluations = evaluations - s.global_evaluations;
   if (next.candidates.empty()) return 0;
   const Candidate& c = next.candidates.front();  // the likeliest next pot
-  const SearchResult r = SearchCandidate(after, *next_on, c, after_ctx_, s, w.search, schedule_.lookahead);
+  const SearchResult r = SearchCandidate(after, *next_on, c, after_ctx_, s, w.search, schedule_.lookahead, &w.leave);
   *simulations += r.simulations;
   if (!r.best) return 0;
   const double points = Value(after.balls[static_cast<size_t>(c.object)].kind) + settings_.position.continuation;

@@ -34,6 +34,8 @@ Vec2 Rotate(const Vec2& v, double a) {
 PocketModel::PocketModel(const physics::TableModel& table, const physics::SimParams& params,
                          const Options& options)
     : table_(table), params_(params), options_(options) {
+  static std::atomic<std::uint64_t> built{0};
+  serial_ = ++built;
   // Every cell is independent: two threads (one simulator each) share them, and the
   // table is the same whichever thread measured a cell.
   struct Cell {

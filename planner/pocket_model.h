@@ -19,6 +19,7 @@
 // two threads.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "physics/sim/simulate.h"
@@ -71,6 +72,9 @@ class PocketModel {
   /// Single-ball simulations spent building the table.
   long simulations() const { return simulations_; }
   const physics::TableModel& table() const { return table_; }
+  /// A number no other model built in this process has (a copy keeps it, with the
+  /// same windows): what a cache of this model's answers is keyed by.
+  std::uint64_t serial() const { return serial_; }
 
  private:
   struct AngleGrid {
@@ -90,6 +94,7 @@ class PocketModel {
   Options options_;
   AngleGrid corner_, middle_;
   long simulations_ = 0;
+  std::uint64_t serial_ = 0;
 };
 
 }  // namespace snooker::planner

@@ -26,7 +26,7 @@ double CushionGap(const Vec2& c, const physics::TableModel& table) {
 }  // namespace
 
 PositionValue EvaluatePosition(const TableState& table, BallOn next_on, const PotContext& ctx,
-                               const PositionOptions& options) {
+                               const PositionOptions& options, PocketLineCache* lines) {
   PositionValue out;
   const int cue = table.cue_index();
   if (cue < 0) return out;
@@ -37,6 +37,12 @@ PositionValue EvaluatePosition(const TableState& table, BallOn next_on, const Po
   // Every option's estimate (cheap), best score first.
   Option options_buf[physics::Simulator::kMaxBalls * physics::kPocketCount];
   int count = 0;
+  // Each pocket's angular reach as the cosine of the largest approach angle (and a
+  // margin), once for all balls.
+  double reach[physics::kPocketCount];
+  for (int k = 0; k < physics::kPocketCount; ++k) {
+    reach[k] = std::cos(std::min(physics::kPi, ctx.pockets->MaxApproach(static_cast<physics::PocketId>(k)) + 0.1));
+  }
   for (size_t i = 0; i < table.balls.size(); ++i) {
     const BallKind kind = table.balls[i].kind;
     if (!IsLegalTarget(next_on, kind)) continue;
@@ -47,10 +53,12 @@ PositionValue EvaluatePosition(const TableState& table, BallOn next_on, const Po
       // product against the cosine of the largest approach angle, no atan2).
       const physics::Pocket& p = ctx.table->pocket(id);
       const Vec2 to_mouth = p.mouth_centre - o;
-      const double reach = std::cos(std::min(physics::kPi, ctx.pockets->MaxApproach(id) + 0.1));
-      if (to_mouth.dot(p.axis) < reach * to_mouth.norm()) continue;
-      const auto est = EstimatePot(c, o, id, ctx.sigma_of(cue), ctx.sigma_of(static_cast<int>(i)),
-                                   ctx.noise, *ctx.pockets, *ctx.throws);
+      if (to_mouth.dot(p.axis) < reach[k] * to_mouth.norm()) continue;
+      // The line depends on the object ball alone: the cache's when there is one.
+      const auto line = lines != nullptr ? lines->Line(*ctx.pockets, o, id) : LineIntoPocket(*ctx.pockets, o, id);
+      if (!line) continue;
+      const auto est = EstimatePotAlong(*line, c, o, id, ctx.sigma_of(cue), ctx.sigma_of(static_cast<int>(i)),
+                                        ctx.noise, *ctx.pockets, *ctx.throws);
       if (!est || std::abs(est->aim.cut) > ctx.max_cut || est->probability <= 0) continue;
       options_buf[count++] = {static_cast<int>(i), id, est->probability,
                               est->probability * (Value(kind) + options.continuation)};

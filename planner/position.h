@@ -49,7 +49,9 @@ struct PositionValue {
 };
 
 /// Evaluates `table` (the cue ball where the shot left it) with `next_on` to play.
+/// `lines`: the caller's cache of the balls' lines into the pockets (the same value
+/// with or without it), or none.
 PositionValue EvaluatePosition(const TableState& table, BallOn next_on, const PotContext& ctx,
-                               const PositionOptions& options);
+                               const PositionOptions& options, PocketLineCache* lines = nullptr);
 
 }  // namespace snooker::planner

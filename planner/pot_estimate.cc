@@ -1,6 +1,7 @@
 #include "planner/pot_estimate.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace snooker::planner {
@@ -89,22 +90,57 @@ std::optional<PocketLine> LineIntoPocket(const PocketModel& pockets, const Vec2&
   return line;
 }
 
+std::optional<PocketLine> PocketLineCache::Line(const PocketModel& pockets, const Vec2& from,
+                                                physics::PocketId pocket, double arrival_speed) {
+  const int k = static_cast<int>(pocket);
+  const std::uint64_t model = pockets.serial();
+  // The key's bits mixed (splitmix64's multipliers), the set from the top bits.
+  std::uint64_t h = std::bit_cast<std::uint64_t>(from.x()) * 0x9E3779B97F4A7C15ull;
+  h = (h ^ (h >> 31) ^ std::bit_cast<std::uint64_t>(from.y())) * 0xBF58476D1CE4E5B9ull;
+  h = (h ^ (h >> 29) ^ std::bit_cast<std::uint64_t>(arrival_speed) ^ static_cast<std::uint64_t>(k)) *
+      0x94D049BB133111EBull;
+  Set& set = sets_[static_cast<std::size_t>(h >> (64 - kSetBits))];
+  for (const Entry& e : set.ways) {
+    if (e.model == model && e.pocket == k && e.x == from.x() && e.y == from.y() && e.speed == arrival_speed) {
+      ++hits_;
+      return e.line;
+    }
+  }
+  ++misses_;
+  Entry& e = set.ways[static_cast<std::size_t>(set.next)];
+  set.next = (set.next + 1) % kWays;
+  e.model = model;
+  e.x = from.x();
+  e.y = from.y();
+  e.speed = arrival_speed;
+  e.pocket = k;
+  e.line = LineIntoPocket(pockets, from, pocket, arrival_speed);
+  return e.line;
+}
+
 std::optional<PotEstimate> EstimatePot(const Vec2& cue, const Vec2& object, physics::PocketId pocket,
                                        double cue_sigma, double object_sigma,
                                        const NoiseModel& noise, const PocketModel& pockets,
                                        const ThrowModel& throws, double arrival_speed) {
-  const double radius = pockets.table().ball_radius();
   const auto line = LineIntoPocket(pockets, object, pocket, arrival_speed);
   if (!line) return std::nullopt;
-  const double theta = line->direction;
+  return EstimatePotAlong(*line, cue, object, pocket, cue_sigma, object_sigma, noise, pockets, throws);
+}
+
+std::optional<PotEstimate> EstimatePotAlong(const PocketLine& line, const Vec2& cue, const Vec2& object,
+                                            physics::PocketId pocket, double cue_sigma, double object_sigma,
+                                            const NoiseModel& noise, const PocketModel& pockets,
+                                            const ThrowModel& throws) {
+  const double radius = pockets.table().ball_radius();
+  const double theta = line.direction;
   PotEstimate e;
-  e.window = line->window;
+  e.window = line.window;
   const auto aim = AimAlong(cue, object, theta, radius);
   if (!aim) return std::nullopt;
   e.aim = *aim;
   e.object_direction = theta;
   e.approach = pockets.Approach(pocket, theta);
-  e.distance = line->distance;
+  e.distance = line.distance;
   const double contact = TypicalContactSpeed(e.distance, e.aim.cut);
   e.sigma = LateralSigma(cue, object, e.aim.heading, e.aim.cut, e.distance, contact, cue_sigma,
                          object_sigma, noise, throws, radius);

@@ -18,6 +18,9 @@
 // tests/planner/pot_estimate_test.cc checks it against Monte Carlo with the simulator.
 #pragma once
 
+#include <array>
+#include <cstddef>
+#include <cstdint>
 #include <optional>
 
 #include "physics/core/types.h"
@@ -146,6 +149,39 @@ struct PocketLine {
 std::optional<PocketLine> LineIntoPocket(const PocketModel& pockets, const physics::Vec2& from,
                                          physics::PocketId pocket, double arrival_speed = kTypicalArrivalSpeed);
 
+/// Lines into pockets remembered by all they depend on: the pocket model, the ball's
+/// position, the pocket and the arrival speed, compared exactly, so that a hit is the
+/// very line LineIntoPocket would give. A position valued again with the same object
+/// balls (the spread's two sides, the placements of a cue ball in hand, the search's
+/// next stroke, which moved few of them) then skips their lines' work. Four ways in
+/// each of 64 sets, the oldest line of a full set giving way. Fixed size, no
+/// allocation; one per thread (it is written on every look-up).
+class PocketLineCache {
+ public:
+  std::optional<PocketLine> Line(const PocketModel& pockets, const physics::Vec2& from,
+                                 physics::PocketId pocket, double arrival_speed = kTypicalArrivalSpeed);
+  /// Look-ups answered from the cache, and worked out, since construction.
+  std::int64_t hits() const { return hits_; }
+  std::int64_t misses() const { return misses_; }
+
+ private:
+  static constexpr int kSetBits = 6;
+  static constexpr int kWays = 4;
+  struct Entry {
+    std::uint64_t model = 0;  // PocketModel::serial(); 0: empty
+    double x = 0, y = 0, speed = 0;
+    int pocket = -1;
+    std::optional<PocketLine> line;
+  };
+  struct Set {
+    std::array<Entry, kWays> ways{};
+    int next = 0;  // the way the next new line takes
+  };
+  std::array<Set, std::size_t{1} << kSetBits> sets_{};
+  std::int64_t hits_ = 0;
+  std::int64_t misses_ = 0;
+};
+
 /// The estimate for potting `object` into `pocket` from `cue`, or nullopt when the
 /// pocket cannot be reached at that angle or the cut is 90 deg or more. Only the
 /// geometry of the three points: paths blocked by other balls are the caller's.
@@ -154,5 +190,11 @@ std::optional<PotEstimate> EstimatePot(const physics::Vec2& cue, const physics::
                                        double object_sigma, const NoiseModel& noise,
                                        const PocketModel& pockets, const ThrowModel& throws,
                                        double arrival_speed = kTypicalArrivalSpeed);
+
+/// The same estimate along `line`, the object ball's LineIntoPocket (or a cache's).
+std::optional<PotEstimate> EstimatePotAlong(const PocketLine& line, const physics::Vec2& cue,
+                                            const physics::Vec2& object, physics::PocketId pocket,
+                                            double cue_sigma, double object_sigma, const NoiseModel& noise,
+                                            const PocketModel& pockets, const ThrowModel& throws);
 
 }  // namespace snooker::planner

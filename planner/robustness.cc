@@ -160,7 +160,7 @@ SampleWorth MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std:
   ApplyShotInto(table, setup.on, finals, out.potted, true, *after_ctx.table, &buf.after, nullptr);
   const TableState& after = buf.after;
   if (const auto opponent_on = OpeningBallOn(after)) {
-    const Outlook o = OpponentOutlook(after, *opponent_on, after_ctx, settings, &buf.placed);
+    const Outlook o = OpponentOutlook(after, *opponent_on, after_ctx, settings, &buf.placed, &buf.lines);
     return HandedOver(-(penalty + (o.expected_points - o.expected_penalty)), o);
   }
   return SampleWorth{-static_cast<double>(penalty)};

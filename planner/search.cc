@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <exception>
 #include <limits>
 #include <nlopt.hpp>
@@ -91,9 +92,11 @@ std::optional<double> ObjectDirection(const Vec2& cue, const Vec2& object, doubl
 class Search {
  public:
   Search(const TableState& table, BallOn on, const Candidate& cand, const PotContext& ctx,
-         const SearchSettings& settings, ShotSimulator& sim, const StopControl& stop)
+         const SearchSettings& settings, ShotSimulator& sim, const StopControl& stop, LeaveScratch* scratch)
       : table_(table), on_(on), cand_(cand), ctx_(ctx), settings_(settings), sim_(sim),
-        stop_(stop), interrupt_(stop.AsInterrupt()) {
+        stop_(stop), interrupt_(stop.AsInterrupt()),
+        own_(scratch == nullptr ? std::make_unique<LeaveScratch>() : nullptr),
+        scratch_(scratch != nullptr ? *scratch : *own_) {
     cue_ = table.cue_index();
     setup_ = {&table_, cue_, cand.object, cand.pocket, on, cand.kind, cand.first, TouchingBallOn(table, on, *ctx.table)};
     if (cand.speed_hi > 0) {
@@ -457,7 +460,8 @@ class Search {
   SearchResult result_;
   PotContext after_ctx_;
   std::vector<Vec2> final_positions_;
-  LeaveScratch scratch_;  // the table each evaluation leaves
+  std::unique_ptr<LeaveScratch> own_;  // when the caller keeps none
+  LeaveScratch& scratch_;              // the table each evaluation leaves
 };
 
 }  // namespace
@@ -576,7 +580,7 @@ LeaveScratch& TableLeft(const TableState& table, BallOn on, std::span<const Vec2
 // ball keeps the nominal end's: the one the stroke plays for.
 PositionValue MeanOverSpread(TableState& after, int cue, BallOn next_on, const Vec2& spread,
                              const PositionValue& at_end, const PotContext& after_ctx,
-                             const PositionOptions& options) {
+                             const PositionOptions& options, PocketLineCache& lines) {
   // The sides are added as v / 6, not (1 / 6) v: the last bit differs, and this is
   // the form whose matches docs/whole-frame-planner.md records, stroke for stroke.
   constexpr double kCentreWeight = 2.0 / 3, kSideShare = 6;
@@ -590,7 +594,7 @@ PositionValue MeanOverSpread(TableState& after, int cue, BallOn next_on, const V
   for (const double s : {-std::sqrt(3.0), std::sqrt(3.0)}) {
     const Vec2 p = end + s * spread;
     ball = Vec2(std::clamp(p.x(), d, model.spec().width - d), std::clamp(p.y(), d, model.spec().length - d));
-    const PositionValue v = EvaluatePosition(after, next_on, after_ctx, options);
+    const PositionValue v = EvaluatePosition(after, next_on, after_ctx, options, &lines);
     mean.value += v.value / kSideShare;
     mean.expected_points += v.expected_points / kSideShare;
   }
@@ -609,10 +613,11 @@ Leave ScoreLeave(const TableState& table, BallOn on, int object, std::span<const
   const BallKind object_kind = table.balls[static_cast<size_t>(object)].kind;
   Leave leave;
   if (const auto next_on = NextBallOn(on, object_kind, after)) {
-    leave.position = EvaluatePosition(after, *next_on, after_ctx, settings.position);
+    leave.position = EvaluatePosition(after, *next_on, after_ctx, settings.position, &buf.lines);
     const int cue = after.cue_index();
     if (cue >= 0 && settings.position_play && cue_spread.squaredNorm() > 0) {
-      leave.position = MeanOverSpread(after, cue, *next_on, cue_spread, leave.position, after_ctx, settings.position);
+      leave.position = MeanOverSpread(after, cue, *next_on, cue_spread, leave.position, after_ctx, settings.position,
+                                      buf.lines);
     }
   }
   if (leave.position.next_ball >= 0) leave.next_ball = origin[static_cast<size_t>(leave.position.next_ball)];
@@ -628,10 +633,10 @@ Leave ScoreLeave(const TableState& table, BallOn on, int object, std::span<const
 }
 
 Outlook OpponentOutlook(const TableState& after, BallOn on, const PotContext& after_ctx,
-                        const SearchSettings& settings, TableState* placed) {
+                        const SearchSettings& settings, TableState* placed, PocketLineCache* lines) {
   OutlookOptions options;
   options.position = settings.position;
-  return EvaluateOutlook(after, on, after_ctx, options, placed);
+  return EvaluateOutlook(after, on, after_ctx, options, placed, lines);
 }
 
 Leave ScoreSafety(const TableState& table, BallOn on, int first_hit, std::span<const Vec2> finals,
@@ -649,13 +654,13 @@ Leave ScoreSafety(const TableState& table, BallOn on, int first_hit, std::span<c
   if (j.legal_pots > 0 && j.potted_kind) {
     // A ball on dropped after all: the visit goes on, scored as a pot.
     if (const auto next_on = NextBallOn(on, *j.potted_kind, after)) {
-      leave.position = EvaluatePosition(after, *next_on, after_ctx, settings.position);
+      leave.position = EvaluatePosition(after, *next_on, after_ctx, settings.position, &work.lines);
     }
     leave.score = j.points + (settings.position_play ? leave.position.expected_points : 0.0);
   } else if (const auto opponent_on = OpeningBallOn(after)) {
     // The opponent plays the table left: what they can expect, in the same points,
     // less what a snooker makes them give away.
-    const Outlook outlook = OpponentOutlook(after, *opponent_on, after_ctx, settings, &work.placed);
+    const Outlook outlook = OpponentOutlook(after, *opponent_on, after_ctx, settings, &work.placed, &work.lines);
     leave.position.value = outlook.position_value;
     leave.position.expected_points = outlook.expected_points;
     leave.position.next_ball = outlook.pot_ball;
@@ -668,8 +673,8 @@ Leave ScoreSafety(const TableState& table, BallOn on, int first_hit, std::span<c
 
 SearchResult SearchCandidate(const TableState& table, BallOn on, const Candidate& cand,
                              const PotContext& ctx, const SearchSettings& settings,
-                             ShotSimulator& sim, const StopControl& stop) {
-  Search search(table, on, cand, ctx, settings, sim, stop);
+                             ShotSimulator& sim, const StopControl& stop, LeaveScratch* scratch) {
+  Search search(table, on, cand, ctx, settings, sim, stop, scratch);
   return search.Run();
 }
 

@@ -191,10 +191,14 @@ std::optional<physics::Shot> RollingPotShot(const physics::Vec2& cue, const phys
                                             const PotEstimate& estimate,
                                             const physics::SimParams& params);
 
-/// Searches one candidate. `sim` runs at the search's fidelity.
+struct LeaveScratch;
+
+/// Searches one candidate. `sim` runs at the search's fidelity. `scratch`: the
+/// caller's buffers for the table each evaluation leaves, kept from one search to
+/// the next (its lines into the pockets among them), or none.
 SearchResult SearchCandidate(const TableState& table, BallOn on, const Candidate& cand,
                              const PotContext& ctx, const SearchSettings& settings,
-                             ShotSimulator& sim, const StopControl& stop);
+                             ShotSimulator& sim, const StopControl& stop, LeaveScratch* scratch = nullptr);
 
 /// The objective of a succeeding shot: pot_probability x (value + the expected
 /// points of the position left; the latter only with position_play).
@@ -224,6 +228,8 @@ struct LeaveScratch {
   std::vector<int> origin;
   /// `after` with the cue ball placed in hand, for the opponent's outlook.
   TableState placed;
+  /// The lines into the pockets of the balls positions are valued with.
+  PocketLineCache lines;
 };
 
 /// Scores what a legal safety, escape or break-off leaves, for the striker, in
@@ -239,9 +245,10 @@ Leave ScoreSafety(const TableState& table, BallOn on, int first_hit, std::span<c
 
 /// The outlook (outlook.h) of the table `after` for the opponent, to play with `on`
 /// (the cue ball in hand when `after` has none; `placed`: the buffer for the table
-/// with it placed, or none).
+/// with it placed, or none; `lines`: a cache of lines into the pockets, or none).
 Outlook OpponentOutlook(const TableState& after, BallOn on, const PotContext& after_ctx,
-                        const SearchSettings& settings, TableState* placed = nullptr);
+                        const SearchSettings& settings, TableState* placed = nullptr,
+                        PocketLineCache* lines = nullptr);
 
 /// Scores what a succeeding shot of `object` with `on` leaves, the one sequence the
 /// search, the verification and the Monte Carlo share: the table after the rules

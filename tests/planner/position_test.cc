@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -142,6 +143,43 @@ TEST(PositionSpreadTest, ThePositionIsTheQuadratureMeanAlongTheSpread) {
             ScoreLeave(table, BallOn::kRed, 1, finals, potted, 0.9, ctx, settings).score);
   settings.position_play = false;
   EXPECT_EQ(ScoreLeave(table, BallOn::kRed, 1, finals, potted, 0.9, ctx, settings, nullptr, spread).score, 0.9);
+}
+
+// A position valued with a cache of the lines is the position valued without, to the
+// bit, the cache cold or warm from other tables and other cue balls; and a table
+// valued again with its cue ball moved finds its lines in the cache.
+TEST(PositionTest, ACacheOfLinesChangesNoValue) {
+  const PotContext ctx = Context();
+  const PositionOptions options;
+  const physics::TableModel& model = physics::DefaultTable();
+  PocketLineCache lines;
+  for (int t = 0; t < 4; ++t) {
+    TableState table;
+    table.balls.push_back({BallKind::kCue, Vec2(0.5 + 0.2 * t, 1.2 + 0.3 * t)});
+    for (int i = 0; i < 6; ++i) {
+      table.balls.push_back({BallKind::kRed, Vec2(0.25 + 0.24 * i, 2.2 + 0.13 * ((i + t) % 4))});
+    }
+    table.balls.push_back({BallKind::kBlack, model.spot(physics::Colour::kBlack)});
+    table.balls.push_back({BallKind::kPink, model.spot(physics::Colour::kPink)});
+    for (const BallOn on : {BallOn::kRed, BallOn::kAnyColour}) {
+      for (int c = 0; c < 3; ++c) {
+        table.balls[0].position = Vec2(0.5 + 0.2 * t + 0.1 * c, 1.2 + 0.3 * t - 0.05 * c);
+        const std::int64_t misses = lines.misses(), hits = lines.hits();
+        const PositionValue plain = EvaluatePosition(table, on, ctx, options);
+        const PositionValue cached = EvaluatePosition(table, on, ctx, options, &lines);
+        EXPECT_EQ(cached.value, plain.value) << t << " " << c;
+        EXPECT_EQ(cached.expected_points, plain.expected_points) << t << " " << c;
+        EXPECT_EQ(cached.next_ball, plain.next_ball);
+        EXPECT_EQ(cached.next_pocket, plain.next_pocket);
+        EXPECT_EQ(cached.next_probability, plain.next_probability);
+        if (c > 0) {  // the object balls did not move
+          EXPECT_GE(lines.hits() - hits, 9 * (lines.misses() - misses)) << t << " " << c;
+          EXPECT_GT(lines.hits(), hits);
+        }
+      }
+    }
+  }
+  EXPECT_GT(lines.hits(), lines.misses());
 }
 
 }  // namespace

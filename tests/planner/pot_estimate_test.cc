@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "planner/candidates.h"
@@ -209,6 +211,79 @@ TEST(PotEstimateTest, LongerAndThinnerPotsAreHarder) {
     EXPECT_LT(e->probability, last + 1e-12) << deg;
     last = e->probability;
   }
+}
+
+// Two lines are the same to the bit (both absent, or every field equal).
+bool SameLine(const std::optional<PocketLine>& a, const std::optional<PocketLine>& b) {
+  if (a.has_value() != b.has_value()) return false;
+  if (!a) return true;
+  return a->direction == b->direction && a->distance == b->distance && a->window.lo == b->window.lo &&
+         a->window.hi == b->window.hi && a->window.empty == b->window.empty;
+}
+
+// The cache answers what LineIntoPocket answers, from the cache or not: balls over
+// the table, every pocket, two arrival speeds, looked up twice.
+TEST(PocketLineCacheTest, AnswersExactlyWhatLineIntoPocketDoesAndRemembersIt) {
+  const PocketModel& model = PocketModel::Default();
+  PocketLineCache cache;
+  int lookups = 0, closed = 0, second_pass = 0, second_pass_hits = 0;
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int i = 0; i < 5; ++i) {
+      for (int j = 0; j < 4; ++j) {
+        const Vec2 ball(0.15 + 0.35 * i, 0.3 + 0.95 * j + 0.01 * i);
+        for (int k = 0; k < physics::kPocketCount; ++k) {
+          const auto pocket = static_cast<physics::PocketId>(k);
+          for (const double speed : {kTypicalArrivalSpeed, 1.7}) {
+            const auto want = LineIntoPocket(model, ball, pocket, speed);
+            closed += pass == 0 && !want ? 1 : 0;
+            const std::int64_t before = cache.hits();
+            EXPECT_TRUE(SameLine(cache.Line(model, ball, pocket, speed), want)) << i << " " << j << " " << k;
+            if (pass == 1) {
+              ++second_pass;
+              second_pass_hits += static_cast<int>(cache.hits() - before);
+            }
+            // The same key again at once is always the cache's.
+            const std::int64_t hits = cache.hits();
+            EXPECT_TRUE(SameLine(cache.Line(model, ball, pocket, speed), want));
+            EXPECT_EQ(cache.hits(), hits + 1);
+            lookups += 2;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(closed, 0);  // closed pockets are remembered as such too
+  EXPECT_EQ(cache.hits() + cache.misses(), lookups);
+  // 240 keys in 256 places: the second pass finds most of the first's lines.
+  EXPECT_GT(second_pass_hits, second_pass / 2);
+}
+
+// A cache handed another pocket model (a coarser table of windows) answers for that
+// model, not with the lines it remembers from the first.
+TEST(PocketLineCacheTest, AnotherPocketModelIsAnotherKey) {
+  PocketModel::Options coarse;
+  coarse.angle_step = 10.0 * physics::kPi / 180;
+  coarse.arrival_speeds = {0.5};
+  coarse.scan_step = 0.005;
+  coarse.bisections = 2;
+  const PocketModel other(physics::DefaultTable(), physics::SimParams{}, coarse);
+  const PocketModel& model = PocketModel::Default();
+  ASSERT_NE(other.serial(), model.serial());
+  PocketLineCache cache;
+  int differ = 0;
+  for (int i = 0; i < 6; ++i) {
+    const Vec2 ball(0.3 + 0.2 * i, 2.6 + 0.1 * i);
+    for (int k = 0; k < physics::kPocketCount; ++k) {
+      const auto pocket = static_cast<physics::PocketId>(k);
+      const auto first = cache.Line(model, ball, pocket);
+      const auto second = cache.Line(other, ball, pocket);
+      EXPECT_TRUE(SameLine(first, LineIntoPocket(model, ball, pocket)));
+      EXPECT_TRUE(SameLine(second, LineIntoPocket(other, ball, pocket)));
+      differ += SameLine(first, second) ? 0 : 1;
+    }
+  }
+  EXPECT_GT(differ, 0);  // the two models do give different lines
+  EXPECT_EQ(cache.hits(), 0);
 }
 
 }  // namespace
