@@ -186,7 +186,7 @@ struct Outlook {
 /// `placed`: the caller's buffer for the table with the cue ball placed in hand
 /// (kept from call to call, it makes an outlook in hand allocate nothing once it
 /// has grown, when ctx has no per-ball vision sigma), or none. `lines`: the
-/// caller's cache of lines into the pockets (position.h), or none.
+/// caller's cache of lines into the pockets (PocketLineCache), or none.
 Outlook EvaluateOutlook(const TableState& table, BallOn on, const PotContext& ctx,
                         const OutlookOptions& options, TableState* placed = nullptr,
                         PocketLineCache* lines = nullptr);

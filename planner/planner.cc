@@ -579,11 +579,12 @@ std::optional<PlannedShot> PlanRun::Verify(Worker& w, const Candidate& cand, con
   ps.cue_ball_end = finals[static_cast<size_t>(setup.cue)];
   Leave leave;
   if (pot) {
-    leave = ScoreLeave(table, on_, setup.object, finals, out.potted, ps.pot_probability, after_ctx_, settings_);
+    leave = ScoreLeave(table, on_, setup.object, finals, out.potted, ps.pot_probability, after_ctx_, settings_,
+                       &w.leave);
   } else if (foul) {
     leave.score = MonteCarloScore(setup, out, finals, after_ctx_, settings_).score;
   } else {
-    leave = ScoreSafety(table, on_, out.first_hit, finals, out.potted, after_ctx_, settings_);
+    leave = ScoreSafety(table, on_, out.first_hit, finals, out.potted, after_ctx_, settings_, &w.leave);
     if (const std::optional<Outlook>& o = leave.opponent) {
       ps.opponent = OpponentLeave{o->pot_probability, o->expected_points, o->snooker.snookered, o->foul_probability,
                                   o->penalty};

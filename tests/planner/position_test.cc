@@ -11,6 +11,7 @@
 
 #include "planner/planner.h"
 #include "planner/search.h"
+#include "tests/planner/demo_plans.h"
 
 namespace snooker::planner {
 namespace {
@@ -180,6 +181,36 @@ TEST(PositionTest, ACacheOfLinesChangesNoValue) {
     }
   }
   EXPECT_GT(lines.hits(), lines.misses());
+}
+
+// A candidate's search with a kept scratch, its cache of lines warm from the searches
+// before it, finds the very shots a search with a scratch of its own finds, with the
+// position spread as without it.
+TEST(PositionTest, ASearchWithAKeptScratchFindsTheSameShots) {
+  const TableState table = testing_tables::DemoTable();
+  const Planner& planner = Planner::Default();
+  const PotContext ctx = planner.ContextFor(PlanRequest{});
+  const CandidateSet set = EnumerateCandidates(table, BallOn::kRed, ctx);
+  ASSERT_GE(set.candidates.size(), 3u);
+  ShotSimulator sim(*ctx.table, planner.config().search);
+  LeaveScratch kept;
+  for (const double spread : {0.0, 2.0}) {
+    SearchSettings settings;
+    settings.position_spread = spread;
+    for (size_t i = 0; i < 3; ++i) {
+      const Candidate& cand = set.candidates[i];
+      const SearchResult own = SearchCandidate(table, BallOn::kRed, cand, ctx, settings, sim, StopControl{});
+      const SearchResult warm = SearchCandidate(table, BallOn::kRed, cand, ctx, settings, sim, StopControl{}, &kept);
+      ASSERT_EQ(own.best.has_value(), warm.best.has_value()) << i;
+      EXPECT_EQ(own.evaluations, warm.evaluations) << i;
+      if (!own.best) continue;
+      EXPECT_EQ(own.best->score, warm.best->score) << "candidate " << i << ", spread " << spread;
+      EXPECT_EQ(own.best->shot.speed, warm.best->shot.speed) << i;
+      EXPECT_EQ(own.best->cut, warm.best->cut) << i;
+      EXPECT_EQ(own.best->position.expected_points, warm.best->position.expected_points) << i;
+    }
+  }
+  EXPECT_GT(kept.lines.hits(), kept.lines.misses());
 }
 
 }  // namespace
