@@ -358,7 +358,11 @@ from the cache: the same line to the bit, looked up by exact keys, and the same 
 (tests in `pot_estimate_test.cc` and `position_test.cc`). Paired runs of
 `build/bench/planner_bench --benchmark_filter=BM_PlanWork/400/ --benchmark_repetitions=1`
 before and after, eight of each alternately, gave a median CPU time a plan of 6.70 ms
-against 7.22 (0.94) and, with the position spread at 2, 8.20 against 9.56 (0.87).
+against 7.22 (0.94) and, with the position spread at 2, 8.20 against 9.56 (0.87). An
+outlook with the cue ball in hand values the same object balls from every point of its
+grid in the D, and keeps a cache for the call when its caller has none:
+`build/bench/planner_outlook_bench --benchmark_filter=BM_EvaluateOutlookInHand` went
+from 464 to 285 us a call (medians of five runs of each, alternately).
 
 ## Self-play
 
