@@ -86,6 +86,7 @@ std::optional<FallbackShot> FindLegalStroke(const TableState& table, int cue, Ba
     return answer;
   };
   std::vector<Vec2> finals;
+  LeaveScratch scratch;  // the tables each stroke leaves, and their lines into the pockets
   // Plays `heading` at both speeds, aimed at `ball`; false when the cap or the
   // interrupt ends the scan.
   auto try_heading = [&](double heading, int ball) {
@@ -131,13 +132,14 @@ std::optional<FallbackShot> FindLegalStroke(const TableState& table, int cue, Ba
         ShotSetup as_foul = setup;
         as_foul.kind = ShotKind::kFoul;
         as_foul.object = Nomination(table, on, ball);
-        const double score = MonteCarloScore(as_foul, out, finals, after_ctx, settings).score;
+        const double score = MonteCarloScore(as_foul, out, finals, after_ctx, settings, &scratch).score;
         if (!best_foul || score > best_foul->score) {
           best_foul = FallbackShot{ShotKind::kFoul, as_foul.object, k, shot, score, 0};
         }
         continue;
       }
-      const double score = ScoreSafety(table, on, out.first_hit, finals, out.potted, after_ctx, settings).score;
+      const double score =
+          ScoreSafety(table, on, out.first_hit, finals, out.potted, after_ctx, settings, &scratch).score;
       if (!best || score > best->score) {
         best = FallbackShot{out.cue_cushions_first > 0 ? ShotKind::kEscape : ShotKind::kSafety, out.first_hit, k,
                             shot, score, 0};

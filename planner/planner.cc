@@ -582,7 +582,7 @@ std::optional<PlannedShot> PlanRun::Verify(Worker& w, const Candidate& cand, con
     leave = ScoreLeave(table, on_, setup.object, finals, out.potted, ps.pot_probability, after_ctx_, settings_,
                        &w.leave);
   } else if (foul) {
-    leave.score = MonteCarloScore(setup, out, finals, after_ctx_, settings_).score;
+    leave.score = MonteCarloScore(setup, out, finals, after_ctx_, settings_, &w.leave).score;
   } else {
     leave = ScoreSafety(table, on_, out.first_hit, finals, out.potted, after_ctx_, settings_, &w.leave);
     if (const std::optional<Outlook>& o = leave.opponent) {
