@@ -118,8 +118,7 @@ std::optional<Aim> AimAt(const Vec2& o, physics::PocketId pocket, const physics:
   // The pocket's angular reach first (a dot product, as position.cc does): past
   // its largest tabulated approach, plus a margin for the window's offset, the
   // window is empty.
-  const double reach = std::cos(std::min(physics::kPi, pockets.MaxApproach(pocket) + 0.1));
-  if (q.dot(p.axis) < reach * l0) return std::nullopt;
+  if (q.dot(p.axis) < pockets.ReachCosine(pocket) * l0) return std::nullopt;
   // Aim at the window's centre (the window taken along the line to the mouth's
   // centre: it changes little over the fraction of a degree to the window's).
   Aim aim;

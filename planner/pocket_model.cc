@@ -47,6 +47,7 @@ PocketModel::PocketModel(const physics::TableModel& table, const physics::SimPar
   for (const bool corner : {true, false}) {
     AngleGrid& g = corner ? corner_ : middle_;
     g.max_angle = corner ? options_.corner_max_angle : options_.middle_max_angle;
+    g.reach_cosine = std::cos(std::min(physics::kPi, g.max_angle + 0.1));
     g.count = 2 * static_cast<int>(std::lround(g.max_angle / options_.angle_step)) + 1;
     g.cells.resize(static_cast<size_t>(g.count) * options_.arrival_speeds.size());
     for (size_t s = 0; s < options_.arrival_speeds.size(); ++s) {
@@ -181,6 +182,7 @@ double PocketModel::Approach(PocketId id, double direction) const {
 }
 
 double PocketModel::MaxApproach(PocketId id) const { return Grid(IsCorner(id)).max_angle; }
+double PocketModel::ReachCosine(PocketId id) const { return Grid(IsCorner(id)).reach_cosine; }
 
 PocketWindow PocketModel::InterpolateAngle(const AngleGrid& g, int speed_index,
                                            double approach) const {

@@ -64,6 +64,11 @@ class PocketModel {
   double Approach(physics::PocketId id, double direction) const;
   /// Largest tabulated approach angle for the pocket's kind (beyond it: empty). rad.
   double MaxApproach(physics::PocketId id) const;
+  /// The cheapest test of a pocket's reach: the cosine of MaxApproach plus 0.1 rad
+  /// (a margin for the window's offset from the line to the mouth). A ball whose
+  /// line to the mouth makes a larger angle with the axis, (mouth - ball) . axis <
+  /// this x |mouth - ball|, has no window there.
+  double ReachCosine(physics::PocketId id) const;
   /// The window at grid cell (kind, angle index, speed index), for reports and tests.
   PocketWindow Cell(bool corner, int angle_index, int speed_index) const;
   int angle_count(bool corner) const { return Grid(corner).count; }
@@ -79,6 +84,7 @@ class PocketModel {
  private:
   struct AngleGrid {
     double max_angle = 0;
+    double reach_cosine = -1;  // ReachCosine
     int count = 0;
     std::vector<PocketWindow> cells;  // [speed][angle]
   };

@@ -37,12 +37,6 @@ PositionValue EvaluatePosition(const TableState& table, BallOn next_on, const Po
   // Every option's estimate (cheap), best score first.
   Option options_buf[physics::Simulator::kMaxBalls * physics::kPocketCount];
   int count = 0;
-  // Each pocket's angular reach as the cosine of the largest approach angle (and a
-  // margin), once for all balls.
-  double reach[physics::kPocketCount];
-  for (int k = 0; k < physics::kPocketCount; ++k) {
-    reach[k] = std::cos(std::min(physics::kPi, ctx.pockets->MaxApproach(static_cast<physics::PocketId>(k)) + 0.1));
-  }
   for (size_t i = 0; i < table.balls.size(); ++i) {
     const BallKind kind = table.balls[i].kind;
     if (!IsLegalTarget(next_on, kind)) continue;
@@ -53,7 +47,7 @@ PositionValue EvaluatePosition(const TableState& table, BallOn next_on, const Po
       // product against the cosine of the largest approach angle, no atan2).
       const physics::Pocket& p = ctx.table->pocket(id);
       const Vec2 to_mouth = p.mouth_centre - o;
-      if (to_mouth.dot(p.axis) < reach[k] * to_mouth.norm()) continue;
+      if (to_mouth.dot(p.axis) < ctx.pockets->ReachCosine(id) * to_mouth.norm()) continue;
       // The line depends on the object ball alone: the cache's when there is one.
       const auto line = lines != nullptr ? lines->Line(*ctx.pockets, o, id) : LineIntoPocket(*ctx.pockets, o, id);
       if (!line) continue;
