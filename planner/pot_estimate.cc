@@ -100,15 +100,19 @@ std::optional<PocketLine> PocketLineCache::Line(const PocketModel& pockets, cons
   h = (h ^ (h >> 29) ^ std::bit_cast<std::uint64_t>(arrival_speed) ^ static_cast<std::uint64_t>(k)) *
       0x94D049BB133111EBull;
   Set& set = sets_[static_cast<std::size_t>(h >> (64 - kSetBits))];
-  for (const Entry& e : set.ways) {
+  for (std::size_t i = 0; i < set.ways.size(); ++i) {
+    if (set.hashes[i] != h) continue;
+    const Entry& e = set.ways[i];
     if (e.model == model && e.pocket == k && e.x == from.x() && e.y == from.y() && e.speed == arrival_speed) {
       ++hits_;
       return e.line;
     }
   }
   ++misses_;
-  Entry& e = set.ways[static_cast<std::size_t>(set.next)];
+  const auto way = static_cast<std::size_t>(set.next);
   set.next = (set.next + 1) % kWays;
+  set.hashes[way] = h;
+  Entry& e = set.ways[way];
   e.model = model;
   e.x = from.x();
   e.y = from.y();

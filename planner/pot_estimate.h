@@ -153,8 +153,11 @@ std::optional<PocketLine> LineIntoPocket(const PocketModel& pockets, const physi
 /// position, the pocket and the arrival speed, compared exactly, so that a hit is the
 /// very line LineIntoPocket would give. A position valued again with the same object
 /// balls (the spread's two sides, the placements of a cue ball in hand, the search's
-/// next stroke, which moved few of them) then skips their lines' work. Four ways in
-/// each of 64 sets, the oldest line of a full set giving way. Fixed size, no
+/// next stroke, which moved few of them) then skips their lines' work. Eight ways in
+/// each of 32 sets, the oldest line of a full set giving way: a table's lines (six
+/// pockets for each of its balls) then share a set only eight at a time, which no
+/// hash makes likely. A set keeps its keys' hashes in a row of their own, so that a
+/// look-up compares one cache line before it reads an entry. Fixed size, no
 /// allocation; one per thread (it is written on every look-up).
 class PocketLineCache {
  public:
@@ -165,8 +168,8 @@ class PocketLineCache {
   std::int64_t misses() const { return misses_; }
 
  private:
-  static constexpr int kSetBits = 6;
-  static constexpr int kWays = 4;
+  static constexpr int kSetBits = 5;
+  static constexpr int kWays = 8;
   struct Entry {
     std::uint64_t model = 0;  // PocketModel::serial(); 0: empty
     double x = 0, y = 0, speed = 0;
@@ -174,6 +177,7 @@ class PocketLineCache {
     std::optional<PocketLine> line;
   };
   struct Set {
+    std::array<std::uint64_t, kWays> hashes{};  // of the ways' keys; a match is then checked
     std::array<Entry, kWays> ways{};
     int next = 0;  // the way the next new line takes
   };
