@@ -78,6 +78,26 @@ def selfplay_table(runs, names, data):
     return out
 
 
+def pool(data, seed_runs):
+    """Mean break, pot rate and the mean's standard error over all frames of the runs
+    (one per seed), from their records; `over` says what they pooled when more than one."""
+    recs = []
+    for run in seed_runs:
+        path = os.path.join(data, run.get("records", ""))
+        if not run.get("records") or not os.path.exists(path):
+            x = run["result"]
+            return {"meanBreak": x["meanBreak"], "potRate": x["potRate"], "se": float("nan"), "over": ""}
+        with open(path) as f:
+            recs += [json.loads(line) for line in f]
+    pts = [r["points"] for r in recs]
+    mean = sum(pts) / len(pts)
+    se = (sum((p - mean) ** 2 for p in pts) / (len(pts) - 1)) ** 0.5 / len(pts) ** 0.5
+    shots = sum(r["attempts"] for r in recs)
+    over = f" over the {len(pts)} frames of seeds 1 to {len(seed_runs)}" if len(seed_runs) > 1 else ""
+    return {"meanBreak": mean, "potRate": sum(r["pots"] for r in recs) / shots if shots else 0,
+            "se": se, "over": over}
+
+
 def break_se(data, run, n):
     """Standard error of the mean break over the run's first n frames."""
     path = os.path.join(data, run.get("records", ""))
@@ -177,6 +197,17 @@ def main():
     estimate_plot([(0.2, est2), (0.5, est5)], os.path.join(docs, "planner-estimate.svg"))
 
     d = runs["default"]["result"]
+    # The default settings on every seed played (seed 1 alone in older data): the
+    # targets' mean break and pot rate are over all their frames.
+    seed_runs = [runs[n] for n in ("default", "default, seed 2", "default, seed 3") if n in runs]
+    pooled = pool(data, seed_runs)
+    seeds_text = ""
+    if len(seed_runs) > 1:
+        seeds_text = (", and the runs of seeds 1 to %d broke %s on average (%.1f, standard error %.1f, over "
+                      "their %d frames)" % (len(seed_runs),
+                                            ", ".join("%.1f" % r["result"]["meanBreak"] for r in seed_runs),
+                                            pooled["meanBreak"], pooled["se"],
+                                            sum(r["result"]["frames"] for r in seed_runs)))
     # The comparisons use the default run's first frames: the same tables as theirs.
     d_same = first_frames(data, runs["default"], sp["frames"])
     half = runs["position 0.5 mm"]["result"]
@@ -211,8 +242,10 @@ def main():
         "| target | reached (default noise, default budget 80 ms) | |\n|---|---|---|\n"
         f"| planning p50 < 100 ms | {d['planMsP50']:.1f} ms | {status(d['planMsP50'] < 100)} |\n"
         f"| planning p99 < 500 ms | {d['planMsP99']:.1f} ms | {status(d['planMsP99'] < 500)} |\n"
-        f"| >= 95 % of attempted pots drop | {100 * d['potRate']:.1f} % | {status(d['potRate'] >= 0.95)} |\n"
-        f"| mean break >= 50 | {d['meanBreak']:.1f} (standard error {se:.1f}) | {status(d['meanBreak'] >= 50)} |\n"
+        f"| >= 95 % of attempted pots drop | {100 * pooled['potRate']:.1f} %{pooled['over']} | "
+        f"{status(pooled['potRate'] >= 0.95)} |\n"
+        f"| mean break >= 50 | {pooled['meanBreak']:.1f}{pooled['over']} (standard error {pooled['se']:.1f}) | "
+        f"{status(pooled['meanBreak'] >= 50)} |\n"
         f"| position play at least doubles the pot-only mean break | {ratio:.1f}x ({d_same['meanBreak']:.1f} against "
         f"{pot['meanBreak']:.1f} on the same first {sp['frames']} frames) | {status(ratio >= 2)} |\n")
 
@@ -285,7 +318,7 @@ Machine: {machine()}; shared with other developers' builds and tests while it ra
 ## Results against the targets
 
 {targets}
-Self-play is `snooker selfplay` ({d['frames']} frames at the default settings, {sp['frames']} for the
+Self-play is `snooker selfplay` ({d['frames']} frames at the default settings{' on each of ' + str(len(seed_runs)) + ' seeds' if len(seed_runs) > 1 else ''}, {sp['frames']} for the
 other runs; seed 1, so every run's first {sp['frames']} frames start from the same tables):
 random mid-frame tables of
 6 to 10 reds with the colours on their spots (up to 17 balls; the budget benchmark below
@@ -366,7 +399,7 @@ from 464 to 285 us a call (medians of five runs of each, alternately).
 
 ## Self-play
 
-{selfplay_table(runs, ['default', 'position 0.5 mm', 'pot only', 'cue clearance 5 cm'], data)}
+{selfplay_table(runs, [r['name'] for r in seed_runs] + ['position 0.5 mm', 'pot only', 'cue clearance 5 cm'], data)}
 What position play is worth: the same planner with the position term switched off
 (`--pot-only`: the objective is P x value, the most likely points now) breaks
 {pot['meanBreak']:.1f} on average against {d_same['meanBreak']:.1f} on the same {sp['frames']} tables
@@ -377,7 +410,7 @@ the default) the mean break is {half['meanBreak']:.1f} and {100 * half['potRate'
 vision error dominates a pot's error (an object ball 0.5 mm off where vision put it
 leaves about 0.5 deg off line; docs/planning-notes.md §2), and over a metre that is
 most of the pocket's tolerance. The standard error of the default run's mean break is
-{se:.1f} points ({d['frames']} frames); of a 100-frame run's about {se * (d['frames'] / 100) ** 0.5:.1f}: differences
+{se:.1f} points ({d['frames']} frames, seed 1){seeds_text}; of a 100-frame run's about {se * (d['frames'] / 100) ** 0.5:.1f}: differences
 smaller than twice that are noise. The same frames played twice do not give the same
 breaks: the work a plan does depends on the time it gets (the budget binds on a
 shared machine), so the shots, and everything after them, differ. The default run's
@@ -508,8 +541,10 @@ defaults and reasons are in [cue.md](cue.md).
   optimises the nominal shot's position, and more of it can find positions the noise
   does not keep (a cue ball that ends just right after two cushions); the Monte Carlo
   ranking sees that, but only among the few shots it ranks. Nearly all of a plan's time
-  is simulation (in a profile, perf, the cushion impact solver took about 28 % of a
-  plan's CPU time, the event detection's root finding about 14 %), so a faster
+  is simulation (in a profile, perf, of `planner_bench --benchmark_filter=BM_PlanWork/400/0`
+  on commit 026f14a, the event search, event times recomputed and their polynomials'
+  roots, took about a quarter of a plan's CPU time, the cushion impact's integrator
+  about 14 % and the ball-ball impact's about 7 %), so a faster
   simulator buys more search in the same budget (docs/selfplay-before-after.md
   measures the default run on a faster one).
 - **Missed pots** end most breaks ({d_ends.get('miss', '?')} of {d['frames']}; {d_ends.get('foul', '?')} end by a foul):
