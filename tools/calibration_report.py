@@ -123,7 +123,6 @@ def throw_section(data):
     limits = {g["cut"]: g["limit"] for g in pred["gear_limit"]}
     text, err = ends_30(pred)
     text_i, err_i = ends_30(pred_i)
-    best = min(err, err_i)
     out += ["", "Against the measured 30 deg curve (its ends, about 6.0 deg slow and 3.5 deg fast, taken at the "
             "45 deg data's slowest and fastest speeds):", "",
             f"- slip form: {text}, a mean error of **{err:.2f} deg**;",
