@@ -25,21 +25,34 @@ def load(data, name):
         return json.load(f)
 
 
-def ends(data, run):
-    """How the run's breaks ended: counts of cleared, miss, foul, no pot (and of those,
-    no pot from the frame's first shot)."""
-    out = {"cleared": 0, "miss": 0, "foul": 0, "no pot": 0, "no pot at once": 0, "shot cap": 0}
+def records(data, run):
+    """The run's frame records (selfplay --records), or None when it has none."""
     path = os.path.join(data, run.get("records", ""))
     if not run.get("records") or not os.path.exists(path):
         return None
     with open(path) as f:
-        for line in f:
-            rec = json.loads(line)
-            end = rec["end"]
-            key = "foul" if end.startswith("foul") else end
-            out[key] = out.get(key, 0) + 1
-            if end == "no pot" and rec["attempts"] == 0:
-                out["no pot at once"] += 1
+        return [json.loads(line) for line in f]
+
+
+def mean_se(pts):
+    """The standard error of the mean of pts."""
+    m = sum(pts) / len(pts)
+    return (sum((p - m) ** 2 for p in pts) / (len(pts) - 1)) ** 0.5 / len(pts) ** 0.5
+
+
+def ends(data, run):
+    """How the run's breaks ended: counts of cleared, miss, foul, no pot (and of those,
+    no pot from the frame's first shot)."""
+    out = {"cleared": 0, "miss": 0, "foul": 0, "no pot": 0, "no pot at once": 0, "shot cap": 0}
+    recs = records(data, run)
+    if recs is None:
+        return None
+    for rec in recs:
+        end = rec["end"]
+        key = "foul" if end.startswith("foul") else end
+        out[key] = out.get(key, 0) + 1
+        if end == "no pot" and rec["attempts"] == 0:
+            out["no pot at once"] += 1
     return out
 
 
@@ -47,11 +60,10 @@ def first_frames(data, run, n):
     """The run's first n frames (from its records) in the form of a self-play result,
     so runs of different lengths compare on the same tables. Planning times are the
     whole run's."""
-    path = os.path.join(data, run.get("records", ""))
-    if not run.get("records") or not os.path.exists(path):
+    recs = records(data, run)
+    if recs is None:
         return run["result"]
-    with open(path) as f:
-        recs = [json.loads(line) for line in f][:n]
+    recs = recs[:n]
     shots = sum(r["attempts"] for r in recs)
     out = dict(run["result"])
     out.update({"frames": len(recs), "shots": shots,
@@ -83,15 +95,14 @@ def pool(data, seed_runs):
     (one per seed), from their records; `over` says what they pooled when more than one."""
     recs = []
     for run in seed_runs:
-        path = os.path.join(data, run.get("records", ""))
-        if not run.get("records") or not os.path.exists(path):  # the first run's own figures
+        run_recs = records(data, run)
+        if run_recs is None:  # the first run's own figures
             x = seed_runs[0]["result"]
             return {"meanBreak": x["meanBreak"], "potRate": x["potRate"], "se": float("nan"), "over": ""}
-        with open(path) as f:
-            recs += [json.loads(line) for line in f]
+        recs += run_recs
     pts = [r["points"] for r in recs]
     mean = sum(pts) / len(pts)
-    se = (sum((p - mean) ** 2 for p in pts) / (len(pts) - 1)) ** 0.5 / len(pts) ** 0.5
+    se = mean_se(pts)
     shots = sum(r["attempts"] for r in recs)
     over = f" over the {len(pts)} frames of seeds 1 to {len(seed_runs)}" if len(seed_runs) > 1 else ""
     return {"meanBreak": mean, "potRate": sum(r["pots"] for r in recs) / shots if shots else 0,
@@ -100,13 +111,8 @@ def pool(data, seed_runs):
 
 def break_se(data, run, n):
     """Standard error of the mean break over the run's first n frames."""
-    path = os.path.join(data, run.get("records", ""))
-    if not run.get("records") or not os.path.exists(path):
-        return 0.0
-    with open(path) as f:
-        pts = [json.loads(line)["points"] for line in f][:n]
-    m = sum(pts) / len(pts)
-    return (sum((p - m) ** 2 for p in pts) / (len(pts) - 1)) ** 0.5 / len(pts) ** 0.5
+    recs = records(data, run)
+    return mean_se([r["points"] for r in recs[:n]]) if recs is not None else 0.0
 
 
 def budget_plot(runs, budgets, path, data, frames):
@@ -199,7 +205,7 @@ def main():
     d = runs["default"]["result"]
     # The default settings on every seed played (seed 1 alone in older data): the
     # targets' mean break and pot rate are over all their frames.
-    seed_runs = [runs[n] for n in ("default", "default, seed 2", "default, seed 3") if n in runs]
+    seed_runs = [r for r in sp["runs"] if r["name"] == "default" or r["name"].startswith("default, seed ")]
     pooled = pool(data, seed_runs)
     seeds_text = ""
     if len(seed_runs) > 1:
@@ -215,17 +221,11 @@ def main():
     room = runs["cue clearance 5 cm"]["result"]
     ratio = d_same["meanBreak"] / pot["meanBreak"] if pot["meanBreak"] > 0 else float("inf")
     se = float("nan")
-    rec_path = os.path.join(data, runs["default"].get("records", ""))
-    if runs["default"].get("records") and os.path.exists(rec_path):
-        with open(rec_path) as f:
-            pts = [json.loads(line)["points"] for line in f]
-        mean = sum(pts) / len(pts)
-        se = (sum((p - mean) ** 2 for p in pts) / (len(pts) - 1)) ** 0.5 / len(pts) ** 0.5
     d_ends = ends(data, runs["default"]) or {}
     blocks = []
-    if runs["default"].get("records") and os.path.exists(rec_path):
-        with open(rec_path) as f:
-            pts = [json.loads(line)["points"] for line in f]
+    if (d_recs := records(data, runs["default"])) is not None:
+        pts = [r["points"] for r in d_recs]
+        se = mean_se(pts)
         blocks = [sum(pts[k:k + 100]) / len(pts[k:k + 100]) for k in range(0, len(pts), 100)]
     by_budget = [(b, first_frames(data, runs[n], sp["frames"])) for b, n in budgets]
     # Are the budgets' mean breaks further apart than two standard errors of a run?
