@@ -181,7 +181,6 @@ double PocketModel::Approach(PocketId id, double direction) const {
   return WrapAngle(direction - Direction(table_.pocket(id).axis));
 }
 
-double PocketModel::MaxApproach(PocketId id) const { return Grid(IsCorner(id)).max_angle; }
 double PocketModel::ReachCosine(PocketId id) const { return Grid(IsCorner(id)).reach_cosine; }
 
 PocketWindow PocketModel::InterpolateAngle(const AngleGrid& g, int speed_index,

@@ -62,10 +62,9 @@ class PocketModel {
   PocketWindow Window(physics::PocketId id, double direction, double arrival_speed) const;
   /// The angle from pocket `id`'s axis to `direction`, in (-pi, pi]. rad.
   double Approach(physics::PocketId id, double direction) const;
-  /// Largest tabulated approach angle for the pocket's kind (beyond it: empty). rad.
-  double MaxApproach(physics::PocketId id) const;
-  /// The cheapest test of a pocket's reach: the cosine of MaxApproach plus 0.1 rad
-  /// (a margin for the window's offset from the line to the mouth). A ball whose
+  /// The cheapest test of a pocket's reach: the cosine of the largest approach angle
+  /// tabulated for the pocket's kind (beyond it the window is empty) plus 0.1 rad (a
+  /// margin for the window's offset from the line to the mouth). A ball whose
   /// line to the mouth makes a larger angle with the axis, (mouth - ball) . axis <
   /// this x |mouth - ball|, has no window there.
   double ReachCosine(physics::PocketId id) const;
