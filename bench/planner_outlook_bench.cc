@@ -69,43 +69,34 @@ void BM_EvaluatePosition(benchmark::State& state) {
 }
 BENCHMARK(BM_EvaluatePosition)->Arg(10)->Unit(benchmark::kMicrosecond);
 
-// The same with a kept cache of the lines into the pockets, each table valued twice
-// with the cue ball 5 cm apart (as the position spread's sides are): the second
-// value finds the object balls' lines in the cache.
-void BM_EvaluatePositionTwiceCached(benchmark::State& state) {
+// Each table valued twice with the cue ball 5 cm apart (as the position spread's
+// sides are), with `lines` kept across the tables or without a cache: with one, the
+// second value finds the object balls' lines in it.
+void ValueEachTableTwice(benchmark::State& state, PocketLineCache* lines) {
   std::vector<TableState> tables = Tables(static_cast<int>(state.range(0)));
   const PotContext ctx = Context();
   const PositionOptions options;
-  PocketLineCache lines;
   size_t k = 0;
   for (auto _ : state) {
     TableState& t = tables[k++ % tables.size()];
     physics::Vec2& cue = t.balls[static_cast<size_t>(t.cue_index())].position;
-    benchmark::DoNotOptimize(EvaluatePosition(t, BallOn::kRed, ctx, options, &lines));
+    benchmark::DoNotOptimize(EvaluatePosition(t, BallOn::kRed, ctx, options, lines));
     cue.x() += 0.05;
-    benchmark::DoNotOptimize(EvaluatePosition(t, BallOn::kRed, ctx, options, &lines));
+    benchmark::DoNotOptimize(EvaluatePosition(t, BallOn::kRed, ctx, options, lines));
     cue.x() -= 0.05;
   }
+}
+
+void BM_EvaluatePositionTwiceCached(benchmark::State& state) {
+  PocketLineCache lines;
+  ValueEachTableTwice(state, &lines);
   state.counters["hit_rate"] =
       static_cast<double>(lines.hits()) / static_cast<double>(std::max<std::int64_t>(1, lines.hits() + lines.misses()));
 }
 BENCHMARK(BM_EvaluatePositionTwiceCached)->Arg(10)->Unit(benchmark::kMicrosecond);
 
 // For scale: the two values without the cache.
-void BM_EvaluatePositionTwice(benchmark::State& state) {
-  std::vector<TableState> tables = Tables(static_cast<int>(state.range(0)));
-  const PotContext ctx = Context();
-  const PositionOptions options;
-  size_t k = 0;
-  for (auto _ : state) {
-    TableState& t = tables[k++ % tables.size()];
-    physics::Vec2& cue = t.balls[static_cast<size_t>(t.cue_index())].position;
-    benchmark::DoNotOptimize(EvaluatePosition(t, BallOn::kRed, ctx, options));
-    cue.x() += 0.05;
-    benchmark::DoNotOptimize(EvaluatePosition(t, BallOn::kRed, ctx, options));
-    cue.x() -= 0.05;
-  }
-}
+void BM_EvaluatePositionTwice(benchmark::State& state) { ValueEachTableTwice(state, nullptr); }
 BENCHMARK(BM_EvaluatePositionTwice)->Arg(10)->Unit(benchmark::kMicrosecond);
 
 void BM_EvaluateOutlookInHand(benchmark::State& state) {
