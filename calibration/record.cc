@@ -113,7 +113,7 @@ physics::CueStrike DrawStrike(Random& rng, const RecordOptions& o, const physics
   physics::CueStrike straight = k;
   straight.heading = 0;
   const double squirt = physics::Strike(straight, world.cue, world.ball, world.cloth.g).squirt;
-  k.heading = std::remainder(heading - squirt, 2 * physics::kPi);
+  k.heading = physics::RemainderTwoPi(heading - squirt);
   return k;
 }
 

@@ -13,7 +13,7 @@ using physics::Vec3;
 
 double WrapAngle(double a) {
   if (!std::isfinite(a)) return a;
-  a = std::remainder(a, 2 * physics::kPi);
+  a = physics::RemainderTwoPi(a);
   return a <= -physics::kPi ? a + 2 * physics::kPi : a;
 }
 

@@ -57,7 +57,7 @@ double ThrowModel::Throw(double cut, double speed, double topspin, double sidesp
   }
   const Vec2 v(o.v.x(), o.v.y());
   if (v.norm() <= 0) return 0;
-  return std::remainder(std::atan2(v.y(), v.x()) - std::atan2(n.y(), n.x()), 2 * physics::kPi);
+  return physics::RemainderTwoPi(std::atan2(v.y(), v.x()) - std::atan2(n.y(), n.x()));
 }
 
 ThrowSensitivity ThrowModel::At(double cut, double contact_speed) const {

@@ -16,6 +16,8 @@
 // that of the second body's, each being v + w x r.
 #pragma once
 
+#include <cmath>
+
 #include <Eigen/Core>
 
 namespace snooker::physics {
@@ -35,5 +37,13 @@ inline constexpr double kDegPerRad = 180.0 / kPi;
 
 inline constexpr double DegToRad(double deg) { return deg / kDegPerRad; }
 inline constexpr double RadToDeg(double rad) { return rad * kDegPerRad; }
+
+/// std::remainder(a, 2 pi): an angle reduced to [-pi, pi], to the same bits. An angle
+/// already in that range is its own remainder (the quotient rounds to 0, ties to even
+/// at +-pi), so it skips the library call, which costs as much as an atan2 and is
+/// on the planner's hot path.
+inline double RemainderTwoPi(double a) {
+  return a >= -kPi && a <= kPi ? a : std::remainder(a, 2 * kPi);
+}
 
 }  // namespace snooker::physics

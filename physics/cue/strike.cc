@@ -62,7 +62,7 @@ StrikeResult Strike(const CueStrike& k, const CueParams& cue, const BallParams& 
   out.shot.topspin = out.w.dot(left);
   out.shot.sidespin = out.w.z();
   out.shot.swerve_spin = out.w.dot(h);
-  out.squirt = std::remainder(heading - k.heading, 2 * kPi);
+  out.squirt = RemainderTwoPi(heading - k.heading);
 
   out.status = std::sqrt(offset2) > MiscueLimit(cue) ? StrikeStatus::kMiscue
                : out.hop > cue.max_hop              ? StrikeStatus::kHop
@@ -112,7 +112,7 @@ std::optional<CueStrike> StrikeFor(const Shot& shot, double elevation, const Cue
   const StrikeResult unit = Strike(CueStrike{1.0, 0.0, side, height, elevation}, cue, ball, gravity);
   CueStrike k;
   k.speed = shot.speed / unit.shot.speed;
-  k.heading = std::remainder(shot.heading - unit.squirt, 2 * kPi);
+  k.heading = RemainderTwoPi(shot.heading - unit.squirt);
   k.side = side;
   k.height = height;
   k.elevation = elevation;
