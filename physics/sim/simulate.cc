@@ -18,24 +18,39 @@ constexpr double kOverlapTolerance = 1e-9;
 
 bool Moving(MotionState s) { return s == MotionState::kSliding || s == MotionState::kRolling; }
 
+// The distance culls below round by about 1e-16 m; this is far beyond that.
+constexpr double kBoxMargin = 1e-9;
+
+// True when q lies more than `room` outside the box [lo, hi] along either axis (by
+// more than kBoxMargin besides): then every point of the box is farther than `room`
+// from q, and an exact distance test against anything inside the box rejects q too.
+// Four comparisons, where the exact test takes a division and a square root; most
+// of a table's cushions, jaws and pockets are far from a ball along one axis.
+bool OutsideBox(const Vec2& q, const Vec2& lo, const Vec2& hi, double room) {
+  room += kBoxMargin;
+  return lo.x() - q.x() > room || q.x() - hi.x() > room || lo.y() - q.y() > room ||
+         q.y() - hi.y() > room;
+}
+
 // A lower bound on the distance from `q` to the path p(t) = c + b t + a t^2 over
 // [0, w]: the path stays within |a| w^2 / 4 of its chord from p(0) to p(w).
 // The chord and the bulge are computed once per path (PathChord) when many points
 // are tested against it.
 struct PathChord {
   PathChord(const PositionPoly& p, double w)
-      : p0(p.c), d(p.At(w) - p.c), len2(d.squaredNorm()), bulge(p.a.norm() * w * w / 4) {}
+      : p0(p.c), d(p.At(w) - p.c), lo(p0.cwiseMin(p0 + d)), hi(p0.cwiseMax(p0 + d)),
+        len2(d.squaredNorm()), bulge(p.a.norm() * w * w / 4) {}
   double Bound(const Vec2& q) const {
     const double u = len2 > 0 ? std::clamp((q - p0).dot(d) / len2, 0.0, 1.0) : 0.0;
     return (q - (p0 + u * d)).norm() - bulge;
   }
-  Vec2 p0, d;
+  /// Bound(q) > room, decided by the chord's box where that suffices.
+  bool Beyond(const Vec2& q, double room) const {
+    return OutsideBox(q, lo, hi, room + bulge) || Bound(q) > room;
+  }
+  Vec2 p0, d, lo, hi;
   double len2, bulge;
 };
-
-double PathDistanceBound(const PositionPoly& p, double w, const Vec2& q) {
-  return PathChord(p, w).Bound(q);
-}
 
 // Adds one impact's work to a run's totals (the counters Simulator::impact_work reports).
 void AddImpactWork(const ImpulseWork& w, ImpulseWork* total) {
@@ -145,7 +160,7 @@ double Simulator::Reach(int i, double dt) const {
   const Slot& s = slots_[i];
   if (!s.moving || !(dt > 0)) return 0;
   if (!std::isfinite(dt)) return kInf;
-  return s.poly.b.norm() * dt + s.poly.a.norm() * dt * dt;
+  return s.speed_bound * dt + s.accel_bound * dt * dt;
 }
 
 void Simulator::SetState(int i, const BallState& state, double t) {
@@ -157,6 +172,8 @@ void Simulator::SetState(int i, const BallState& state, double t) {
                   ? kInf
                   : t + TransitionTime(state, params_.ball, params_.cloth);
   s.poly = PositionPolynomial(state, params_.ball, params_.cloth);
+  s.speed_bound = s.poly.b.norm();
+  s.accel_bound = s.poly.a.norm();
   if (options_.record_paths) paths_[static_cast<size_t>(i)].push_back({t, state});
 }
 
@@ -177,6 +194,10 @@ void Simulator::RecomputeOwn(int i) {
     for (int k = 0; k < static_cast<int>(segments.size()); ++k) {
       const CushionSegment& seg = segments[static_cast<size_t>(k)];
       // Cull: distance from the centre to the segment against the reach.
+      if (OutsideBox(s.s.r, seg.p0.cwiseMin(seg.p1), seg.p0.cwiseMax(seg.p1),
+                     reach + contact_distance_)) {
+        continue;
+      }
       const Vec2 d = seg.p1 - seg.p0;
       const double u = std::clamp((s.s.r - seg.p0).dot(d) / d.squaredNorm(), 0.0, 1.0);
       if ((s.s.r - (seg.p0 + u * d)).norm() - contact_distance_ > reach) continue;
@@ -197,7 +218,7 @@ void Simulator::RecomputeOwn(int i) {
     const auto jaws = table_.jaws();
     for (int k = 0; k < static_cast<int>(jaws.size()); ++k) {
       const JawCircle& jaw = jaws[static_cast<size_t>(k)];
-      if (chord.Bound(jaw.centre) > jaw.radius + contact_distance_) continue;
+      if (chord.Beyond(jaw.centre, jaw.radius + contact_distance_)) continue;
       // The knuckle meets the ball at the nose height too: centre distance
       // r_jaw + R cos(theta), which DetectBallJaw computes from this "radius".
       consider(DetectBallJaw(s.poly, jaw, contact_distance_, window), EventKind::kKnuckle, k);
@@ -205,7 +226,7 @@ void Simulator::RecomputeOwn(int i) {
     const auto pockets = table_.pockets();
     for (int k = 0; k < static_cast<int>(pockets.size()); ++k) {
       const Pocket& p = pockets[static_cast<size_t>(k)];
-      if (chord.Bound(p.capture_centre) > p.capture_radius) continue;
+      if (chord.Beyond(p.capture_centre, p.capture_radius)) continue;
       consider(DetectBallPocket(s.poly, p, window), EventKind::kPocket, k);
     }
   }
@@ -229,8 +250,10 @@ void Simulator::RecomputePair(int i, int j) {
   if (!(window >= 0)) return;
   // Cheapest cull first, before evolving either ball: each stays within its reach of
   // where it was last set, until the horizon.
-  if ((a.s.r - b.s.r).norm() - Reach(i, horizon - a.t) - Reach(j, horizon - b.t) >
-      2 * params_.ball.radius) {
+  const double reach_a = Reach(i, horizon - a.t), reach_b = Reach(j, horizon - b.t);
+  const double contact = 2 * params_.ball.radius;
+  if (OutsideBox(a.s.r, b.s.r, b.s.r, reach_a + reach_b + contact) ||
+      (a.s.r - b.s.r).norm() - reach_a - reach_b > contact) {
     ++pair_culls_;
     return;
   }
@@ -242,7 +265,7 @@ void Simulator::RecomputePair(int i, int j) {
   rel.c = pb.c - pa.c;
   rel.b = pb.b - pa.b;
   rel.a = pb.a - pa.a;
-  if (PathDistanceBound(rel, window, Vec2::Zero()) > 2 * params_.ball.radius) {
+  if (PathChord(rel, window).Beyond(Vec2::Zero(), contact)) {
     ++pair_culls_;
     return;
   }

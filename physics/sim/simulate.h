@@ -208,6 +208,8 @@ class Simulator {
     double t = 0;     // when s was last set
     double horizon;   // absolute time of the next motion transition (or +inf)
     PositionPoly poly;  // from time t
+    double speed_bound = 0;  // |poly.b| and |poly.a|, for Reach: a pair's cull
+    double accel_bound = 0;  // reads them for both balls on every recompute
     bool moving = false;
   };
   struct Own {  // a ball's next own event
