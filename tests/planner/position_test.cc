@@ -183,6 +183,40 @@ TEST(PositionTest, ACacheOfLinesChangesNoValue) {
   EXPECT_GT(lines.hits(), lines.misses());
 }
 
+// A full table (fifteen reds spread about and the six colours on their spots) keeps
+// its lines through a change of the ball on: the reds' lines and the colours' fit the
+// cache together, so that valuing both again from a new cue ball position misses
+// hardly any (a set of the cache holds eight lines; six pockets a ball).
+TEST(PositionTest, AFullTablesLinesStayInTheCache) {
+  const PotContext ctx = Context();
+  const PositionOptions options;
+  const physics::TableModel& model = physics::DefaultTable();
+  TableState table;
+  table.balls.push_back({BallKind::kCue, Vec2(0.9, 1.0)});
+  for (int i = 0; i < 15; ++i) {
+    table.balls.push_back({BallKind::kRed, Vec2(0.2 + 0.35 * (i % 5), 2.0 + 0.4 * (i / 5) + 0.03 * i)});
+  }
+  for (const physics::Colour c :
+       {physics::Colour::kYellow, physics::Colour::kGreen, physics::Colour::kBrown,
+        physics::Colour::kBlue, physics::Colour::kPink, physics::Colour::kBlack}) {
+    table.balls.push_back({KindOf(c), model.spot(c)});
+  }
+  PocketLineCache lines;
+  for (const BallOn on : {BallOn::kRed, BallOn::kAnyColour}) EvaluatePosition(table, on, ctx, options, &lines);
+  const std::int64_t first_misses = lines.misses(), hits = lines.hits();
+  EXPECT_GE(first_misses, 100);  // 21 object balls, six pockets each
+  table.balls[0].position = Vec2(1.1, 1.3);
+  for (const BallOn on : {BallOn::kRed, BallOn::kAnyColour}) {
+    const PositionValue plain = EvaluatePosition(table, on, ctx, options);
+    const PositionValue cached = EvaluatePosition(table, on, ctx, options, &lines);
+    EXPECT_EQ(cached.value, plain.value);
+    EXPECT_EQ(cached.expected_points, plain.expected_points);
+  }
+  const std::int64_t new_misses = lines.misses() - first_misses;
+  EXPECT_GE(lines.hits() - hits, 20 * new_misses) << new_misses << " misses";
+  EXPECT_GE(lines.hits() - hits, first_misses / 2);
+}
+
 // A candidate's search with a kept scratch, its cache of lines warm from the searches
 // before it, finds the very shots a search with a scratch of its own finds, with the
 // position spread as without it.
