@@ -146,7 +146,7 @@ int Simulator::ResolveCluster(int bi, int bj, double te) {
     SetState(i, st[i], te);
     last_impact_[i] = te;
   }
-  for (int k = 0; k < cluster.count; ++k) Changed(cluster.members[k]);
+  Changed(std::span<const int>(cluster.members, static_cast<size_t>(cluster.count)));
   return cluster.count;
 }
 
@@ -296,10 +296,17 @@ void Simulator::Record(const SimEvent& e) {
   events_.push_back(r);
 }
 
-void Simulator::Changed(int i) {
-  RecomputeOwn(i);
-  for (int j = 0; j < n_; ++j) {
-    if (j != i) RecomputePair(i, j);
+void Simulator::Changed(std::span<const int> balls) {
+  // A pair's time depends on its two balls' own events (its window ends at the
+  // earlier), so every changed ball's own event comes first; then each pair that
+  // has a changed ball is computed once, a pair of two changed balls included.
+  for (const int i : balls) RecomputeOwn(i);
+  bool done[kMaxBalls] = {};
+  for (const int i : balls) {
+    for (int j = 0; j < n_; ++j) {
+      if (j != i && !done[j]) RecomputePair(i, j);
+    }
+    done[i] = true;
   }
 }
 
@@ -421,8 +428,8 @@ SimStatus Simulator::ResolvePair(int bi, int bj, double te) {
   // Both balls restart at te, so no search can go back before the current time.
   SetState(bi, r.a, te);
   SetState(bj, r.b, te);
-  Changed(bi);
-  Changed(bj);
+  const int pair[] = {bi, bj};
+  Changed(pair);
   ev.state_after = slots_[bi].s.s;
   Record(ev);
   return SimStatus::kRunning;
@@ -444,7 +451,7 @@ SimStatus Simulator::ResolveOwn(int bi, double te) {
       SetState(bi, Evolve(from, TransitionTime(from, params_.ball, params_.cloth), params_.ball,
                           params_.cloth),
                te);
-      Changed(bi);
+      Changed(std::span<const int>(&bi, 1));
       break;
     }
     case EventKind::kPocket: {
@@ -454,7 +461,7 @@ SimStatus Simulator::ResolveOwn(int bi, double te) {
       p.s = MotionState::kPocketed;
       pocket_of_[static_cast<size_t>(bi)] = own.where;
       SetState(bi, p, te);
-      Changed(bi);
+      Changed(std::span<const int>(&bi, 1));
       break;
     }
     case EventKind::kCushion:
@@ -481,7 +488,7 @@ SimStatus Simulator::ResolveOwn(int bi, double te) {
       ev.contact = r.contact;
       // Restarts at te even when nothing was resolved: no search goes back in time.
       SetState(bi, r.ball, te);
-      Changed(bi);
+      Changed(std::span<const int>(&bi, 1));
       break;
     }
     case EventKind::kBallBall: break;  // ResolvePair

@@ -231,7 +231,8 @@ class Simulator {
   SimStatus Finish(SimStatus status);  // sets final_ and the end status
   SimStatus ResolvePair(int i, int j, double t);
   SimStatus ResolveOwn(int i, double t);
-  void Changed(int i);  // recompute ball i's own event and its pairs
+  // Recomputes the own events of balls whose states were just set, then their pairs.
+  void Changed(std::span<const int> balls);
   void Record(const SimEvent& e);
   double TotalKineticEnergy() const;
 
