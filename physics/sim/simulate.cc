@@ -235,19 +235,34 @@ void Simulator::RecomputeOwn(int i) {
 
 void Simulator::RecomputePair(int i, int j) {
   if (i > j) std::swap(i, j);
-  double& out = pair_[i][j];
-  out = kInf;
+  const double t = PairTime(i, j);
+  pair_[i][j] = t;
+  // Keep row i's earliest time and its first index (the scan in Step breaks ties
+  // to the lower indices): a time below it, or equal at a lower index, replaces it;
+  // the earliest itself put later means a scan of the row.
+  RowFirst& row = row_first_[i];
+  if (t < row.time || (t == row.time && j < row.j)) {
+    row = {t, j};
+  } else if (j == row.j && !(t <= row.time)) {
+    row = {kInf, -1};
+    for (int k = i + 1; k < n_; ++k) {
+      if (pair_[i][k] < row.time) row = {pair_[i][k], k};
+    }
+  }
+}
+
+double Simulator::PairTime(int i, int j) {
   const Slot& a = slots_[i];
   const Slot& b = slots_[j];
-  if (a.s.s == MotionState::kPocketed || b.s.s == MotionState::kPocketed) return;
-  if (!a.moving && !b.moving) return;
+  if (a.s.s == MotionState::kPocketed || b.s.s == MotionState::kPocketed) return kInf;
+  if (!a.moving && !b.moving) return kInf;
   const double t = std::max(a.t, b.t);
   // Nothing after either ball's next own event matters: its motion changes there and
   // its pairs are recomputed (own_ is always current when pairs are computed).
   const double horizon = std::min({a.horizon, b.horizon, own_[i].time, own_[j].time,
                                    params_.max_time});
   const double window = horizon - t;
-  if (!(window >= 0)) return;
+  if (!(window >= 0)) return kInf;
   // Cheapest cull first, before evolving either ball: each stays within its reach of
   // where it was last set, until the horizon.
   const double reach_a = Reach(i, horizon - a.t), reach_b = Reach(j, horizon - b.t);
@@ -255,7 +270,7 @@ void Simulator::RecomputePair(int i, int j) {
   if (OutsideBox(a.s.r, b.s.r, b.s.r, reach_a + reach_b + contact) ||
       (a.s.r - b.s.r).norm() - reach_a - reach_b > contact) {
     ++pair_culls_;
-    return;
+    return kInf;
   }
   const BallState sa = StateAt(i, t), sb = StateAt(j, t);
   const PositionPoly pa = a.t == t ? a.poly : PositionPolynomial(sa, params_.ball, params_.cloth);
@@ -267,11 +282,11 @@ void Simulator::RecomputePair(int i, int j) {
   rel.a = pb.a - pa.a;
   if (PathChord(rel, window).Beyond(Vec2::Zero(), contact)) {
     ++pair_culls_;
-    return;
+    return kInf;
   }
   ++pair_checks_;
   const double dt = DetectBallBall(pa, pb, params_.ball.radius, window);
-  if (std::isfinite(dt)) out = t + dt;
+  return std::isfinite(dt) ? t + dt : kInf;
 }
 
 bool Simulator::Decided(int i) const {
@@ -350,6 +365,7 @@ SimStatus Simulator::Start(std::span<const BallState> balls, const RunOptions& o
     SetState(i, b.s == MotionState::kPocketed ? b : Settle(b, params_.ball), 0.0);
   }
   for (int i = 0; i < n_; ++i) RecomputeOwn(i);  // pair windows need every own event
+  for (RowFirst& row : row_first_) row = {};
   for (int i = 0; i < n_; ++i) {
     for (int j = i + 1; j < n_; ++j) RecomputePair(i, j);
   }
@@ -375,9 +391,7 @@ SimStatus Simulator::Step() {
   double te = kInf;
   int bi = -1, bj = -1;
   for (int i = 0; i < n_; ++i) {
-    for (int j = i + 1; j < n_; ++j) {
-      if (pair_[i][j] < te) te = pair_[i][j], bi = i, bj = j;
-    }
+    if (row_first_[i].time < te) te = row_first_[i].time, bi = i, bj = row_first_[i].j;
   }
   for (int i = 0; i < n_; ++i) {
     if (own_[i].time < te) te = own_[i].time, bi = i, bj = -1;

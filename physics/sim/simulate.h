@@ -226,7 +226,8 @@ class Simulator {
   int ResolveCluster(int i, int j, double t);
   void SetState(int i, const BallState& s, double t);  // and mark for recompute
   void RecomputeOwn(int i);
-  void RecomputePair(int i, int j);
+  void RecomputePair(int i, int j);  // and row i's first event
+  double PairTime(int i, int j);      // i < j: the pair's next contact, or +inf
   double Reach(int i, double dt) const;  // bound on ball i's travel in dt seconds
   SimStatus Finish(SimStatus status);  // sets final_ and the end status
   SimStatus ResolvePair(int i, int j, double t);
@@ -254,6 +255,11 @@ class Simulator {
   int press_count_[kMaxBalls] = {};  // and how many it had then
   // Upper triangle: next contact time of (i < j); +inf when none.
   double pair_[kMaxBalls][kMaxBalls];
+  struct RowFirst {  // the earliest time in a row of pair_, at its lowest index j
+    double time = std::numeric_limits<double>::infinity();
+    int j = -1;
+  };
+  RowFirst row_first_[kMaxBalls];
   std::vector<SimEvent> events_;
   std::vector<BallState> final_;
   std::vector<int> pocket_of_;

@@ -325,6 +325,40 @@ std::uint64_t HashFinalState(const Simulator& sim, int n) {
   return h;
 }
 
+// Two impacts at the same instant go in the order of their balls' indices, the
+// lower first (the pair's lower index, then the higher): two copies of one head-on
+// shot side by side on a grid of exact binary fractions meet at the same time to the
+// bit. The copies' balls are numbered so that the lower pair is the one whose
+// indices come second in a scan of each ball's partners in turn.
+TEST_F(SimulateTest, SimultaneousImpactsGoInTheOrderOfTheirIndices) {
+  const Vec2 up(0, 1);
+  for (const bool crossed : {false, true}) {
+    // Pair A at x = 0.5 and pair B at x = 1.0: each a ball rolling up at 1.5 m/s
+    // from y = 1.0 onto one at rest at y = 1.5.
+    std::vector<BallState> balls(4);
+    const int a_moving = 0, a_still = crossed ? 3 : 1;
+    const int b_moving = crossed ? 1 : 2, b_still = crossed ? 2 : 3;
+    balls[a_moving] = Rolling(Vec2(0.5, 1.0), up, 1.5);
+    balls[a_still] = AtRest(Vec2(0.5, 1.5));
+    balls[b_moving] = Rolling(Vec2(1.0, 1.0), up, 1.5);
+    balls[b_still] = AtRest(Vec2(1.0, 1.5));
+    RunOptions options;
+    options.record_events = true;
+    Simulator sim(table_, params_);
+    ASSERT_EQ(sim.Run(balls, options), SimStatus::kAtRest);
+    std::vector<SimEvent> impacts;
+    for (const SimEvent& e : sim.events()) {
+      if (e.kind == EventKind::kBallBall) impacts.push_back(e);
+    }
+    ASSERT_GE(impacts.size(), 2u) << crossed;
+    EXPECT_EQ(impacts[0].time, impacts[1].time) << crossed;
+    EXPECT_EQ(impacts[0].ball, 0) << crossed;
+    EXPECT_EQ(impacts[0].other, a_still) << crossed;
+    EXPECT_EQ(impacts[1].ball, b_moving) << crossed;
+    EXPECT_EQ(impacts[1].other, b_still) << crossed;
+  }
+}
+
 TEST_F(SimulateTest, BreakOffIsDeterministic) {
   const std::vector<BallState> balls = BreakOff(table_);
   Simulator a(table_, params_), b(table_, params_);
