@@ -226,7 +226,7 @@ class Simulator {
   int ResolveCluster(int i, int j, double t);
   void SetState(int i, const BallState& s, double t);  // and mark for recompute
   void RecomputeOwn(int i);
-  void RecomputePair(int i, int j);  // and row i's first event
+  void RecomputePair(int i, int j);  // and the lower index's row_first_
   double PairTime(int i, int j);      // i < j: the pair's next contact, or +inf
   double Reach(int i, double dt) const;  // bound on ball i's travel in dt seconds
   SimStatus Finish(SimStatus status);  // sets final_ and the end status
