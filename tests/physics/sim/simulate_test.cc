@@ -325,11 +325,12 @@ std::uint64_t HashFinalState(const Simulator& sim, int n) {
   return h;
 }
 
-// Two impacts at the same instant go in the order of their balls' indices, the
-// lower first (the pair's lower index, then the higher): two copies of one head-on
-// shot side by side on a grid of exact binary fractions meet at the same time to the
-// bit. The copies' balls are numbered so that the lower pair is the one whose
-// indices come second in a scan of each ball's partners in turn.
+// Two impacts at the same instant go in the order of their balls' indices, by the
+// lower index of each pair and then the higher: two copies of one head-on shot side
+// by side on a grid of exact binary fractions meet at the same time to the bit.
+// Numbered (0, 1) and (2, 3), and then crossed, (0, 3) and (1, 2), where the pair
+// that goes first has the higher second index, so that no order by one index alone
+// passes both.
 TEST_F(SimulateTest, SimultaneousImpactsGoInTheOrderOfTheirIndices) {
   const Vec2 up(0, 1);
   for (const bool crossed : {false, true}) {
