@@ -32,24 +32,28 @@ bool OutsideBox(const Vec2& q, const Vec2& lo, const Vec2& hi, double room) {
          q.y() - hi.y() > room;
 }
 
-// A lower bound on the distance from `q` to the path p(t) = c + b t + a t^2 over
-// [0, w]: the path stays within |a| w^2 / 4 of its chord from p(0) to p(w).
-// The chord and the bulge are computed once per path (PathChord) when many points
-// are tested against it.
-struct PathChord {
-  PathChord(const PositionPoly& p, double w)
-      : p0(p.c), d(p.At(w) - p.c), lo(p0.cwiseMin(p0 + d)), hi(p0.cwiseMax(p0 + d)),
-        len2(d.squaredNorm()), bulge(p.a.norm() * w * w / 4) {}
+// The segment from p0 to p1 widened by `pad`: Bound(q) is q's distance to the
+// segment less the pad, a lower bound on its distance to anything within the pad.
+// A cushion's nose line is met by a ball centre within the contact distance of it;
+// a path p(t) = c + b t + a t^2 over [0, w] stays within |a| w^2 / 4 of its chord
+// from p(0) to p(w) (the second constructor). Built once when many points are
+// tested against it.
+struct PaddedSegment {
+  PaddedSegment(const Vec2& a, const Vec2& b, double widen)
+      : p0(a), d(b - a), lo(a.cwiseMin(b)), hi(a.cwiseMax(b)), len2(d.squaredNorm()), pad(widen) {}
+  /// The chord of the path p(t) over [0, w], widened by the bulge.
+  PaddedSegment(const PositionPoly& p, double w)
+      : PaddedSegment(p.c, p.At(w), p.a.norm() * w * w / 4) {}
   double Bound(const Vec2& q) const {
     const double u = len2 > 0 ? std::clamp((q - p0).dot(d) / len2, 0.0, 1.0) : 0.0;
-    return (q - (p0 + u * d)).norm() - bulge;
+    return (q - (p0 + u * d)).norm() - pad;
   }
-  /// Bound(q) > room, decided by the chord's box where that suffices.
+  /// Bound(q) > room, decided by the segment's box where that suffices.
   bool Beyond(const Vec2& q, double room) const {
-    return OutsideBox(q, lo, hi, room + bulge) || Bound(q) > room;
+    return OutsideBox(q, lo, hi, room + pad) || Bound(q) > room;
   }
   Vec2 p0, d, lo, hi;
-  double len2, bulge;
+  double len2, pad;
 };
 
 // Adds one impact's work to a run's totals (the counters Simulator::impact_work reports).
@@ -194,13 +198,7 @@ void Simulator::RecomputeOwn(int i) {
     for (int k = 0; k < static_cast<int>(segments.size()); ++k) {
       const CushionSegment& seg = segments[static_cast<size_t>(k)];
       // Cull: distance from the centre to the segment against the reach.
-      if (OutsideBox(s.s.r, seg.p0.cwiseMin(seg.p1), seg.p0.cwiseMax(seg.p1),
-                     reach + contact_distance_)) {
-        continue;
-      }
-      const Vec2 d = seg.p1 - seg.p0;
-      const double u = std::clamp((s.s.r - seg.p0).dot(d) / d.squaredNorm(), 0.0, 1.0);
-      if ((s.s.r - (seg.p0 + u * d)).norm() - contact_distance_ > reach) continue;
+      if (PaddedSegment(seg.p0, seg.p1, contact_distance_).Beyond(s.s.r, reach)) continue;
       // Cull exactly: the gap to the segment's line, f(t) = g0 + g1 t + g2 t^2, must
       // reach 0 within the window (its minimum is at an end or at the vertex).
       const double g0 = seg.normal.dot(s.poly.c - seg.p0) - contact_distance_;
@@ -214,7 +212,7 @@ void Simulator::RecomputeOwn(int i) {
     // Nothing behind the first straight contact can happen first: search the rounded
     // shapes (quartics) only up to it, and only those near the path.
     window = std::min(window, own.time - s.t);
-    const PathChord chord(s.poly, window);
+    const PaddedSegment chord(s.poly, window);
     const auto jaws = table_.jaws();
     for (int k = 0; k < static_cast<int>(jaws.size()); ++k) {
       const JawCircle& jaw = jaws[static_cast<size_t>(k)];
@@ -280,7 +278,7 @@ double Simulator::PairTime(int i, int j) {
   rel.c = pb.c - pa.c;
   rel.b = pb.b - pa.b;
   rel.a = pb.a - pa.a;
-  if (PathChord(rel, window).Beyond(Vec2::Zero(), contact)) {
+  if (PaddedSegment(rel, window).Beyond(Vec2::Zero(), contact)) {
     ++pair_culls_;
     return kInf;
   }
