@@ -89,7 +89,7 @@ void StrikeTables() {
       const physics::BallState end = physics::Evolve(s, t, ball, cloth);
       const Vec2 h(std::cos(res.shot.heading), std::sin(res.shot.heading));
       const Vec2 right(h.y(), -h.x());
-      const double turn = std::remainder(std::atan2(end.v.y(), end.v.x()) - res.shot.heading, 2 * physics::kPi);
+      const double turn = physics::RemainderTwoPi(std::atan2(end.v.y(), end.v.x()) - res.shot.heading);
       std::printf("| %.0f | %.1f | %.2f | %.1f | %.2f | %.2f | %.3f | %s |\n", e, b, physics::RadToDeg(res.squirt),
                   res.shot.swerve_spin, 1e3 * end.r.dot(right), physics::RadToDeg(-turn), end.r.norm(),
                   physics::ToString(res.status));
