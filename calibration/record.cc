@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "physics/core/splitmix64.h"
 #include "physics/table/table.h"
 
 namespace snooker::calibration {
@@ -12,18 +13,12 @@ namespace {
 
 using physics::Vec2;
 
-// SplitMix64 (Steele, Lea & Flood 2014): small, fast, the same numbers everywhere.
+// SplitMix64 (physics/core/splitmix64.h): small, fast, the same numbers everywhere.
 class Random {
  public:
   explicit Random(std::uint64_t seed) : state_(seed) {}
-  std::uint64_t Next() {
-    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-  }
   /// Uniform in [0, 1), 53 bits.
-  double Uniform() { return static_cast<double>(Next() >> 11) * 0x1.0p-53; }
+  double Uniform() { return physics::UnitInterval(physics::SplitMix64(state_)); }
   double Uniform(double lo, double hi) { return lo + (hi - lo) * Uniform(); }
   /// Standard normal (Box-Muller, one of the pair).
   double Normal() {

@@ -7,6 +7,7 @@
 #include "cli/json_input.h"
 #include "cli/read_file.h"
 #include "physics/core/params.h"
+#include "physics/core/splitmix64.h"
 #include "physics/core/types.h"
 #include "physics/table/table.h"
 #include "planner/builtin_tables.h"
@@ -16,17 +17,9 @@
 
 namespace snooker::cli {
 
-std::uint64_t LoadRandom::Next() {
-  std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
+std::uint64_t LoadRandom::Next() { return physics::SplitMix64(state_); }
 
-double LoadRandom::Uniform(double lo, double hi) {
-  const double u = static_cast<double>(Next() >> 11) * 0x1.0p-53;
-  return lo + (hi - lo) * u;
-}
+double LoadRandom::Uniform(double lo, double hi) { return lo + (hi - lo) * physics::UnitInterval(Next()); }
 
 int LoadRandom::Below(int n) { return static_cast<int>(Next() % static_cast<std::uint64_t>(n)); }
 

@@ -11,7 +11,7 @@
 
 namespace snooker::cli {
 
-/// A small deterministic generator (splitmix64).
+/// A small deterministic generator (physics/core/splitmix64.h).
 class LoadRandom {
  public:
   explicit LoadRandom(std::uint64_t seed) : state_(seed) {}

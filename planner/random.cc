@@ -2,15 +2,12 @@
 
 #include <cmath>
 
+#include "physics/core/splitmix64.h"
+
 namespace snooker::planner {
 namespace {
 
-std::uint64_t SplitMix(std::uint64_t& x) {
-  std::uint64_t z = (x += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
+using physics::SplitMix64;
 
 std::uint64_t Rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
 
@@ -18,16 +15,16 @@ std::uint64_t Rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); 
 
 std::uint64_t DeriveSeed(std::uint64_t seed, std::uint64_t a, std::uint64_t b) {
   std::uint64_t x = seed;
-  std::uint64_t h = SplitMix(x);
+  std::uint64_t h = SplitMix64(x);
   x = h ^ (a * 0xD1B54A32D192ED03ull);
-  h = SplitMix(x);
+  h = SplitMix64(x);
   x = h ^ (b * 0xABC98388FB8FAC03ull);
-  return SplitMix(x);
+  return SplitMix64(x);
 }
 
 Rng::Rng(std::uint64_t seed) {
   std::uint64_t x = seed;
-  for (std::uint64_t& s : s_) s = SplitMix(x);
+  for (std::uint64_t& s : s_) s = SplitMix64(x);
 }
 
 std::uint64_t Rng::Next() {
@@ -42,7 +39,7 @@ std::uint64_t Rng::Next() {
   return result;
 }
 
-double Rng::Uniform() { return static_cast<double>(Next() >> 11) * 0x1.0p-53; }
+double Rng::Uniform() { return physics::UnitInterval(Next()); }
 
 double Rng::Gaussian() {
   if (has_spare_) {

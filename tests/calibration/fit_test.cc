@@ -15,6 +15,7 @@
 
 #include "calibration/datasets.h"
 #include "calibration/record.h"
+#include "physics/core/splitmix64.h"
 
 namespace snooker::calibration {
 namespace {
@@ -25,12 +26,7 @@ constexpr double kR = 0.02625;
 class Noise {
  public:
   explicit Noise(std::uint64_t seed) : s_(seed) {}
-  double Uniform() {
-    std::uint64_t z = (s_ += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
-  }
+  double Uniform() { return physics::UnitInterval(physics::SplitMix64(s_)); }
   double Normal(double sigma) {
     return sigma * std::sqrt(-2 * std::log(1 - Uniform())) * std::cos(2 * physics::kPi * Uniform());
   }
