@@ -12,10 +12,13 @@
 
 namespace snooker::planner {
 
-/// Runs fn(task, worker) for every task in [0, tasks) on min(threads, tasks)
+/// Runs fn(task, worker) for every task in [0, tasks) on at most min(threads, tasks)
 /// workers: the caller's thread is worker 0, the others are started here and joined
 /// before it returns. Tasks are handed out in order. The first exception a task
 /// throws stops the handing out and is rethrown here, after every worker has ended.
+/// A worker the system cannot start (no thread to spare: a process or container
+/// limit) is done without: the workers already running, the caller's at least,
+/// take its tasks, so the answer is the same and only slower.
 template <typename Fn>
 void ParallelFor(int threads, int tasks, Fn&& fn) {
   std::atomic<int> next{0};
@@ -33,7 +36,13 @@ void ParallelFor(int threads, int tasks, Fn&& fn) {
   std::vector<std::thread> pool;
   const int extra = std::max(0, std::min(threads, tasks) - 1);
   pool.reserve(static_cast<size_t>(extra));
-  for (int w = 1; w <= extra; ++w) pool.emplace_back(work, w);
+  for (int w = 1; w <= extra; ++w) {
+    try {
+      pool.emplace_back(work, w);
+    } catch (...) {  // std::system_error (no thread) or std::bad_alloc: start no more
+      break;
+    }
+  }
   work(0);
   for (std::thread& t : pool) t.join();
   if (error) std::rethrow_exception(error);

@@ -68,9 +68,15 @@ PocketModel::PocketModel(const physics::TableModel& table, const physics::SimPar
     }
     sims += count;
   };
-  std::thread helper(work);
+  // A second thread where the system has one to spare (a process or container limit
+  // may leave none): the cells are independent, so the tables are the same either way.
+  std::thread helper;
+  try {
+    helper = std::thread(work);
+  } catch (...) {  // std::system_error (no thread) or std::bad_alloc: work alone
+  }
   work();
-  helper.join();
+  if (helper.joinable()) helper.join();
   simulations_ = sims.load();
 }
 

@@ -6,10 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <ostream>
 #include <string>
 
 #include "planner/geometry.h"
+#include "tests/support/thread_limit.h"
 
 namespace snooker::planner {
 namespace {
@@ -127,6 +129,42 @@ INSTANTIATE_TEST_SUITE_P(
       const int a = static_cast<int>(param.param.approach_deg);
       return name + "_" + (a < 0 ? "minus" + std::to_string(-a) : std::to_string(a)) + "deg";
     });
+
+// Every window of a coarse model, to the bit, as text.
+std::string Windows(const PocketModel& m) {
+  std::string text;
+  char cell[64];
+  for (const bool corner : {true, false}) {
+    for (int a = 0; a < m.angle_count(corner); ++a) {
+      for (int s = 0; s < static_cast<int>(m.options().arrival_speeds.size()); ++s) {
+        const PocketWindow w = m.Cell(corner, a, s);
+        std::snprintf(cell, sizeof cell, "%d %a %a;", w.empty ? 1 : 0, w.lo, w.hi);
+        text += cell;
+      }
+    }
+  }
+  return text + " " + std::to_string(m.simulations());
+}
+
+// The model measures its cells on a second thread where the system has one; where it
+// has none (a process or container limit) it measures them all on the caller's and
+// builds the same windows. Before, the second thread's failure threw out of the
+// constructor, and out of the first plan that needed the model.
+TEST(PocketModelTest, WithoutASecondThreadTheWindowsAreTheSame) {
+  PocketModel::Options coarse;
+  coarse.angle_step = 15.0 * physics::kPi / 180;
+  coarse.arrival_speeds = {0.5, 2.0};
+  coarse.bisections = 2;
+  const std::string expected = Windows(PocketModel(physics::DefaultTable(), physics::SimParams{}, coarse));
+  const test_support::LimitedRun run = test_support::RunWithSpareThreads(0, [&](std::string* out) {
+    *out = Windows(PocketModel(physics::DefaultTable(), physics::SimParams{}, coarse));
+    return 0;
+  });
+  if (!run.limited) GTEST_SKIP() << run.output;
+  EXPECT_EQ(run.signal, 0);
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(run.output, expected);
+}
 
 }  // namespace
 }  // namespace snooker::planner
