@@ -270,7 +270,9 @@ class Residuals {
     }
   }
 
-  // Shots split round-robin among the threads; each writes only its shots' slots.
+  // Shots split round-robin among the threads; each writes only its shots' slots. A
+  // share whose thread the system cannot start (a process or container limit) is run
+  // by the caller after its own, so every shot is predicted either way.
   void ShotsInParallel(const Model& m, std::vector<double>* r, std::vector<std::string>* errors) const {
     const std::size_t n = o_.shots.size();
     const std::size_t threads = std::clamp<std::size_t>(static_cast<std::size_t>(std::max(1, options_.threads)),
@@ -279,8 +281,17 @@ class Residuals {
       for (std::size_t i = t; i < n && !Due(); i += threads) Shot(i, m, r, &(*errors)[1 + i]);
     };
     std::vector<std::thread> pool;
-    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work, t);
+    pool.reserve(threads - 1);
+    std::size_t started = 1;
+    for (; started < threads; ++started) {
+      try {
+        pool.emplace_back(work, started);
+      } catch (...) {  // std::system_error (no thread) or std::bad_alloc: start no more
+        break;
+      }
+    }
     work(0);
+    for (std::size_t t = started; t < threads; ++t) work(t);
     for (std::thread& th : pool) th.join();
   }
 
