@@ -1,6 +1,9 @@
 #include "server/worker_pool.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <system_error>
 #include <utility>
 
 namespace snooker::server {
@@ -9,7 +12,21 @@ WorkerPool::WorkerPool(int threads, int max_queued)
     : max_queued_(static_cast<std::size_t>(std::max(0, max_queued))),
       thread_count_(static_cast<std::size_t>(std::max(1, threads))) {
   threads_.reserve(thread_count_);
-  for (std::size_t i = 0; i < thread_count_; ++i) threads_.emplace_back([this] { Work(); });
+  for (std::size_t i = 0; i < thread_count_; ++i) {
+    try {
+      threads_.emplace_back([this] { Work(); });
+    } catch (const std::system_error& e) {
+      // The system has no thread to spare (a process or container limit). The
+      // workers already started are stopped and joined, so that the error, and not
+      // an abort over their joinable threads, reaches whoever asked for the pool.
+      Stop();
+      throw std::runtime_error("could not start worker thread " + std::to_string(i + 1) + " of " +
+                               std::to_string(thread_count_) + " (" + e.what() + ")");
+    } catch (...) {
+      Stop();
+      throw;
+    }
+  }
 }
 
 WorkerPool::~WorkerPool() { Stop(); }

@@ -17,7 +17,8 @@ namespace snooker::server {
 class WorkerPool {
  public:
   /// `threads` >= 1 workers; at most `max_queued` jobs wait for one (beyond the
-  /// jobs that idle workers take at once).
+  /// jobs that idle workers take at once). Throws std::runtime_error, naming how many
+  /// it started, when the system cannot start them all.
   WorkerPool(int threads, int max_queued);
   ~WorkerPool();  // Stop()
   WorkerPool(const WorkerPool&) = delete;

@@ -1,0 +1,70 @@
+#include "server/worker_pool.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include "tests/support/thread_limit.h"
+
+namespace snooker::server {
+namespace {
+
+// Free workers take a job each at once, at most `max_queued` more wait, and a job
+// beyond both is refused; Stop runs what was queued, then refuses.
+TEST(WorkerPoolTest, TakesAJobAWorkerPlusTheQueueAndRunsTheQueueOnStop) {
+  WorkerPool pool(2, 1);
+  EXPECT_EQ(pool.threads(), 2);
+  std::mutex mu;
+  std::condition_variable cv;
+  bool open = false;
+  std::atomic<int> started{0}, done{0};
+  auto blocked = [&] {
+    ++started;
+    std::unique_lock<std::mutex> lock(mu);
+    cv.wait(lock, [&] { return open; });
+    ++done;
+  };
+  ASSERT_TRUE(pool.TrySubmit(blocked));
+  ASSERT_TRUE(pool.TrySubmit(blocked));
+  for (int i = 0; i < 2000 && started.load() < 2; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  ASSERT_EQ(started.load(), 2);
+  EXPECT_TRUE(pool.TrySubmit(blocked));   // waits in the queue
+  EXPECT_FALSE(pool.TrySubmit(blocked));  // beyond the workers and the queue
+  {
+    std::lock_guard<std::mutex> lock(mu);
+    open = true;
+  }
+  cv.notify_all();
+  pool.Stop();
+  EXPECT_EQ(done.load(), 3);
+  EXPECT_FALSE(pool.TrySubmit([] {}));
+}
+
+// Where the system can start only one more thread, a pool of four says so, naming
+// how far it got. Before, the second thread's failure left the first joinable as the
+// pool's members were destroyed: std::terminate, an abort of the whole server.
+TEST(WorkerPoolTest, APoolTheSystemCannotStartThrowsAndNamesTheThread) {
+  const test_support::LimitedRun run = test_support::RunWithSpareThreads(1, [](std::string* out) {
+    try {
+      WorkerPool pool(4, 0);
+      *out = "started " + std::to_string(pool.threads());
+      return 1;
+    } catch (const std::runtime_error& e) {
+      *out = e.what();
+      return 0;
+    }
+  });
+  if (!run.limited) GTEST_SKIP() << run.output;
+  EXPECT_EQ(run.signal, 0);
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(run.output.rfind("could not start worker thread 2 of 4 (", 0), 0u) << run.output;
+}
+
+}  // namespace
+}  // namespace snooker::server
