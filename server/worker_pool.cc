@@ -1,6 +1,7 @@
 #include "server/worker_pool.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -66,7 +67,16 @@ void WorkerPool::Work() {
       queue_.pop_front();
       ++busy_;
     }
-    job();
+    // A job finishes its own call, its errors included. One that throws all the same
+    // (an allocation failing as it answers) is reported and the worker goes on: an
+    // exception out of a thread would end the process and every call in it.
+    try {
+      job();
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "snooker: a worker's job failed: %s\n", e.what());
+    } catch (...) {
+      std::fprintf(stderr, "snooker: a worker's job failed\n");
+    }
     job = nullptr;  // its captures go now, not at the next job
     std::lock_guard<std::mutex> lock(mu_);
     --busy_;

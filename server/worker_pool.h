@@ -25,6 +25,7 @@ class WorkerPool {
   WorkerPool& operator=(const WorkerPool&) = delete;
 
   /// Queues `job`; false (and `job` dropped) when the queue is full or the pool stopped.
+  /// A job that throws is reported on stderr and its worker goes on.
   bool TrySubmit(std::function<void()> job);
   /// Runs every queued job, then joins the threads. Later submissions fail.
   void Stop();

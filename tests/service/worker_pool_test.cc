@@ -46,6 +46,25 @@ TEST(WorkerPoolTest, TakesAJobAWorkerPlusTheQueueAndRunsTheQueueOnStop) {
   EXPECT_FALSE(pool.TrySubmit([] {}));
 }
 
+// A job that throws is reported and its worker takes the next job. Before, the
+// exception left the worker's thread: std::terminate, the whole server down.
+TEST(WorkerPoolTest, AJobThatThrowsIsReportedAndTheWorkerGoesOn) {
+  testing::internal::CaptureStderr();
+  std::atomic<int> after{0};
+  {
+    WorkerPool pool(1, 4);
+    ASSERT_TRUE(pool.TrySubmit([] { throw std::runtime_error("no memory left to answer"); }));
+    ASSERT_TRUE(pool.TrySubmit([] { throw 7; }));
+    ASSERT_TRUE(pool.TrySubmit([&] { ++after; }));
+    pool.Stop();
+  }
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(after.load(), 1);
+  EXPECT_EQ(err,
+            "snooker: a worker's job failed: no memory left to answer\n"
+            "snooker: a worker's job failed\n");
+}
+
 // Where the system can start only one more thread, a pool of four says so, naming
 // how far it got. Before, the second thread's failure left the first joinable as the
 // pool's members were destroyed: std::terminate, an abort of the whole server.
