@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <condition_variable>
+#include <functional>
 #include <future>
+#include <limits>
 #include <mutex>
 #include <set>
 #include <sstream>
@@ -19,6 +21,7 @@
 #include "server/limits.h"
 #include "server/server.h"
 #include "server/web_files.h"
+#include "server/worker_pool.h"
 
 // Last: through <resolv.h> it defines the macro _res, a name Eigen's headers use.
 #include <httplib.h>
@@ -338,9 +341,28 @@ struct HttpServer::Impl {
   void Stop(Clock::time_point deadline);
 };
 
+namespace {
+
+// The threads that serve the connections, as many as the system starts of the
+// kHttpConnectionThreads asked for (httplib's own pool aborted the process when one
+// would not start), and with none the listener's own. Stopping runs what is queued.
+class ConnectionThreads : public httplib::TaskQueue {
+ public:
+  ConnectionThreads()
+      : pool_(limits::kHttpConnectionThreads, std::numeric_limits<int>::max(),
+              WorkerPool::Start::kAsManyAsPossible) {}
+  void enqueue(std::function<void()> fn) override { pool_.TrySubmit(std::move(fn)); }
+  void shutdown() override { pool_.Stop(); }
+
+ private:
+  WorkerPool pool_;
+};
+
+}  // namespace
+
 void HttpServer::Impl::Configure() {
   httplib::Server& s = *http;
-  s.new_task_queue = [] { return new httplib::ThreadPool(limits::kHttpConnectionThreads); };
+  s.new_task_queue = [] { return new ConnectionThreads(); };
   // SO_REUSEADDR only: cpp-httplib's default also sets SO_REUSEPORT, with which a
   // second server could share the port unnoticed.
   s.set_socket_options([](socket_t sock) {

@@ -9,7 +9,7 @@
 
 namespace snooker::server {
 
-WorkerPool::WorkerPool(int threads, int max_queued)
+WorkerPool::WorkerPool(int threads, int max_queued, Start start)
     : max_queued_(static_cast<std::size_t>(std::max(0, max_queued))),
       thread_count_(static_cast<std::size_t>(std::max(1, threads))) {
   threads_.reserve(thread_count_);
@@ -17,22 +17,33 @@ WorkerPool::WorkerPool(int threads, int max_queued)
     try {
       threads_.emplace_back([this] { Work(); });
     } catch (const std::system_error& e) {
-      // The system has no thread to spare (a process or container limit). The
-      // workers already started are stopped and joined, so that the error, and not
-      // an abort over their joinable threads, reaches whoever asked for the pool.
+      // The system has no thread to spare (a process or container limit).
+      if (start == Start::kAsManyAsPossible) break;
+      // The workers already started are stopped and joined, so that the error, and
+      // not an abort over their joinable threads, reaches whoever asked for the pool.
       Stop();
       throw std::runtime_error("could not start worker thread " + std::to_string(i + 1) + " of " +
                                std::to_string(thread_count_) + " (" + e.what() + ")");
     } catch (...) {
+      if (start == Start::kAsManyAsPossible) break;
       Stop();
       throw;
     }
   }
+  thread_count_ = threads_.size();  // all of them unless kAsManyAsPossible
 }
 
 WorkerPool::~WorkerPool() { Stop(); }
 
 bool WorkerPool::TrySubmit(std::function<void()> job) {
+  if (thread_count_ == 0) {  // a pool the system gave no thread: the caller's
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      if (stopping_) return false;
+    }
+    Run(job);
+    return true;
+  }
   {
     std::lock_guard<std::mutex> lock(mu_);
     // Free workers take a job each at once; beyond them, at most max_queued_ wait.
@@ -67,19 +78,23 @@ void WorkerPool::Work() {
       queue_.pop_front();
       ++busy_;
     }
-    // A job finishes its own call, its errors included. One that throws all the same
-    // (an allocation failing as it answers) is reported and the worker goes on: an
-    // exception out of a thread would end the process and every call in it.
-    try {
-      job();
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "snooker: a worker's job failed: %s\n", e.what());
-    } catch (...) {
-      std::fprintf(stderr, "snooker: a worker's job failed\n");
-    }
+    Run(job);
     job = nullptr;  // its captures go now, not at the next job
     std::lock_guard<std::mutex> lock(mu_);
     --busy_;
+  }
+}
+
+// A job finishes its own call, its errors included. One that throws all the same (an
+// allocation failing as it answers) is reported and the worker goes on: an exception
+// out of a thread would end the process and every call in it.
+void WorkerPool::Run(const std::function<void()>& job) {
+  try {
+    job();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "snooker: a worker's job failed: %s\n", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "snooker: a worker's job failed\n");
   }
 }
 

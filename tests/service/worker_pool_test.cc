@@ -85,5 +85,48 @@ TEST(WorkerPoolTest, APoolTheSystemCannotStartThrowsAndNamesTheThread) {
   EXPECT_EQ(run.output.rfind("could not start worker thread 2 of 4 (", 0), 0u) << run.output;
 }
 
+// A pool that takes as many threads as the system starts: of four asked, with one to
+// spare it runs every job on that one; with none it runs each at once on the
+// submitter's thread. (The HTTP server's connections are served so.)
+std::string AsManyAsPossible(std::string* out) {
+  WorkerPool pool(4, 1000, WorkerPool::Start::kAsManyAsPossible);
+  std::atomic<int> done{0}, on_caller{0};
+  const std::thread::id caller = std::this_thread::get_id();
+  int accepted = 0;
+  for (int i = 0; i < 20; ++i) {
+    accepted += pool.TrySubmit([&] {
+      on_caller += std::this_thread::get_id() == caller;
+      ++done;
+    });
+  }
+  pool.Stop();
+  *out = std::to_string(pool.threads()) + " threads, " + std::to_string(accepted) + " accepted, " +
+         std::to_string(done.load()) + " done, " + std::to_string(on_caller.load()) + " on the caller";
+  return *out;
+}
+
+void ExpectAsManyAsPossible(int spare, const std::string& expected) {
+  const test_support::LimitedRun run = test_support::RunWithSpareThreads(spare, [](std::string* out) {
+    AsManyAsPossible(out);
+    return 0;
+  });
+  if (!run.limited) GTEST_SKIP() << run.output;
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(run.output, expected);
+}
+
+TEST(WorkerPoolTest, TakingAsManyAsPossibleWorksOnTheOneThreadToSpare) {
+  ExpectAsManyAsPossible(1, "1 threads, 20 accepted, 20 done, 0 on the caller");
+}
+
+TEST(WorkerPoolTest, TakingAsManyAsPossibleWithNoThreadRunsJobsOnTheCaller) {
+  ExpectAsManyAsPossible(0, "0 threads, 20 accepted, 20 done, 20 on the caller");
+}
+
+TEST(WorkerPoolTest, TakingAsManyAsPossibleWithoutALimitTakesAll) {
+  std::string out;
+  EXPECT_EQ(AsManyAsPossible(&out), "4 threads, 20 accepted, 20 done, 0 on the caller");
+}
+
 }  // namespace
 }  // namespace snooker::server
