@@ -1,7 +1,9 @@
 // A fixed set of threads that run the service's calls, with a bounded queue. gRPC's
 // callback API must not block its own threads, and a fixed pool bounds how many
 // calls compute at once (so memory is bounded by threads x the largest call) and
-// how many may wait; a call beyond both is refused at once.
+// how many may wait; a call beyond both is refused at once. The HTTP server's
+// connections have a pool of their own (as many threads as the system starts, a
+// queue without a practical bound: http_server.cc).
 #pragma once
 
 #include <condition_variable>
