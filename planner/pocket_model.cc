@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <thread>
+#include <optional>
 
 #include "planner/geometry.h"
+#include "planner/parallel.h"
 #include "planner/shot_sim.h"
 
 namespace snooker::planner {
@@ -54,30 +55,21 @@ PocketModel::PocketModel(const physics::TableModel& table, const physics::SimPar
       for (int a = 0; a < g.count; ++a) cells.push_back({corner, s, a});
     }
   }
-  std::atomic<size_t> next{0};
-  std::atomic<long> sims{0};
-  auto work = [&] {
-    physics::Simulator sim(table_, params_);
-    long count = 0;
-    for (size_t k = next.fetch_add(1); k < cells.size(); k = next.fetch_add(1)) {
-      const Cell& c = cells[k];
-      AngleGrid& g = c.corner ? corner_ : middle_;
-      g.cells[c.speed * static_cast<size_t>(g.count) + static_cast<size_t>(c.angle)] =
-          Measure(sim, c.corner ? kCornerSample : kMiddleSample, angle_at(c.corner, c.angle),
-                  options_.arrival_speeds[c.speed], &count);
-    }
-    sims += count;
-  };
-  // A second thread where the system has one to spare (a process or container limit
-  // may leave none): the cells are independent, so the tables are the same either way.
-  std::thread helper;
-  try {
-    helper = std::thread(work);
-  } catch (...) {  // std::system_error (no thread) or std::bad_alloc: work alone
-  }
-  work();
-  if (helper.joinable()) helper.join();
-  simulations_ = sims.load();
+  // On two workers, as many as the system starts (planner/parallel.h); each keeps a
+  // simulator and a count of its own.
+  constexpr int kWorkers = 2;
+  std::optional<physics::Simulator> sims[kWorkers];
+  long counts[kWorkers] = {};
+  ParallelFor(kWorkers, static_cast<int>(cells.size()), [&](int task, int worker) {
+    std::optional<physics::Simulator>& sim = sims[worker];
+    if (!sim) sim.emplace(table_, params_);
+    const Cell& c = cells[static_cast<size_t>(task)];
+    AngleGrid& g = c.corner ? corner_ : middle_;
+    g.cells[c.speed * static_cast<size_t>(g.count) + static_cast<size_t>(c.angle)] =
+        Measure(*sim, c.corner ? kCornerSample : kMiddleSample, angle_at(c.corner, c.angle),
+                options_.arrival_speeds[c.speed], &counts[worker]);
+  });
+  simulations_ = counts[0] + counts[1];
 }
 
 const PocketModel& PocketModel::Default() {
