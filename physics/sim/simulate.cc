@@ -463,7 +463,7 @@ SimStatus Simulator::ResolveOwn(int bi, double te) {
       SetState(bi, Evolve(from, TransitionTime(from, params_.ball, params_.cloth), params_.ball,
                           params_.cloth),
                te);
-      Changed(std::span<const int>(&bi, 1));
+      Changed(bi);
       break;
     }
     case EventKind::kPocket: {
@@ -473,7 +473,7 @@ SimStatus Simulator::ResolveOwn(int bi, double te) {
       p.s = MotionState::kPocketed;
       pocket_of_[static_cast<size_t>(bi)] = own.where;
       SetState(bi, p, te);
-      Changed(std::span<const int>(&bi, 1));
+      Changed(bi);
       break;
     }
     case EventKind::kCushion:
@@ -500,7 +500,7 @@ SimStatus Simulator::ResolveOwn(int bi, double te) {
       ev.contact = r.contact;
       // Restarts at te even when nothing was resolved: no search goes back in time.
       SetState(bi, r.ball, te);
-      Changed(std::span<const int>(&bi, 1));
+      Changed(bi);
       break;
     }
     case EventKind::kBallBall: break;  // ResolvePair

@@ -234,6 +234,7 @@ class Simulator {
   SimStatus ResolveOwn(int i, double t);
   // Recomputes the own events of balls whose states were just set, then their pairs.
   void Changed(std::span<const int> balls);
+  void Changed(int i) { Changed(std::span<const int>(&i, 1)); }
   void Record(const SimEvent& e);
   double TotalKineticEnergy() const;
 
