@@ -11,23 +11,26 @@
 #include "server/call_cost.h"
 #include "server/convert.h"
 #include "server/decode.h"
+#include "server/log_line.h"
 #include "server/service_detail.h"
 
 namespace snooker::server {
 
-grpc::Status ToGrpcStatus(const ApiStatus& status) {
-  switch (status.code) {
-    case ApiStatus::Code::kOk: return grpc::Status::OK;
-    case ApiStatus::Code::kInvalidArgument:
-      return {grpc::StatusCode::INVALID_ARGUMENT, status.message};
-    case ApiStatus::Code::kResourceExhausted:
-      return {grpc::StatusCode::RESOURCE_EXHAUSTED, status.message};
-    case ApiStatus::Code::kDeadlineExceeded:
-      return {grpc::StatusCode::DEADLINE_EXCEEDED, status.message};
-    case ApiStatus::Code::kCancelled: return {grpc::StatusCode::CANCELLED, status.message};
-    case ApiStatus::Code::kInternal: return {grpc::StatusCode::INTERNAL, status.message};
+grpc::StatusCode GrpcCodeOf(ApiStatus::Code code) noexcept {
+  switch (code) {
+    case ApiStatus::Code::kOk: return grpc::StatusCode::OK;
+    case ApiStatus::Code::kInvalidArgument: return grpc::StatusCode::INVALID_ARGUMENT;
+    case ApiStatus::Code::kResourceExhausted: return grpc::StatusCode::RESOURCE_EXHAUSTED;
+    case ApiStatus::Code::kDeadlineExceeded: return grpc::StatusCode::DEADLINE_EXCEEDED;
+    case ApiStatus::Code::kCancelled: return grpc::StatusCode::CANCELLED;
+    case ApiStatus::Code::kInternal: return grpc::StatusCode::INTERNAL;
   }
-  return {grpc::StatusCode::UNKNOWN, status.message};
+  return grpc::StatusCode::UNKNOWN;
+}
+
+grpc::Status ToGrpcStatus(const ApiStatus& status) {
+  if (status.code == ApiStatus::Code::kOk) return grpc::Status::OK;
+  return {GrpcCodeOf(status.code), status.message};
 }
 
 const char* StatusCodeName(grpc::StatusCode code) {
@@ -316,26 +319,24 @@ void ShotPlannerService::Refuse(grpc::ServerUnaryReactor* reactor, const ApiStat
   reactor->Finish(ToGrpcStatus(status));
 }
 
-void ShotPlannerService::Count(const ApiStatus& status) {
-  by_status_[static_cast<std::size_t>(ToGrpcStatus(status).error_code()) % by_status_.size()].fetch_add(1);
+void ShotPlannerService::Count(const ApiStatus& status) noexcept {
+  by_status_[static_cast<std::size_t>(GrpcCodeOf(status.code)) % by_status_.size()].fetch_add(1);
   finished_.fetch_add(1);
 }
 
 void ShotPlannerService::Record(const char* method, const std::string& peer, Clock::time_point arrival,
                                 const ApiStatus& status, std::size_t request_bytes,
-                                std::size_t response_bytes, const Work& work, const std::string& extra) {
+                                std::size_t response_bytes, const Work& work, const std::string& extra) noexcept {
   const double latency_ms = std::chrono::duration<double, std::milli>(Clock::now() - arrival).count();
   Count(status);
-  if (options_.log != nullptr) {
-    std::ostringstream line;
-    line.precision(3);
-    line << std::fixed << "snooker: call method=" << method << " peer=" << peer
-         << " status=" << ToString(status.code) << " latency_ms=" << latency_ms
-         << " simulations=" << work.simulations << " request_bytes=" << request_bytes
-         << " response_bytes=" << response_bytes << extra << "\n";
-    std::lock_guard<std::mutex> lock(log_mu_);
-    *options_.log << line.str() << std::flush;
-  }
+  if (options_.log == nullptr) return;
+  // The call is answered after this, whatever becomes of its line.
+  const bool written = WriteLogLine(*options_.log, log_mu_, [&](std::ostream& line) {
+    line << "snooker: call method=" << method << " peer=" << peer << " status=" << ToString(status.code)
+         << " latency_ms=" << latency_ms << " simulations=" << work.simulations
+         << " request_bytes=" << request_bytes << " response_bytes=" << response_bytes << extra << "\n";
+  });
+  if (!written) log_lines_lost_.fetch_add(1);
 }
 
 CallCounts ShotPlannerService::counts() const {
@@ -347,6 +348,7 @@ CallCounts ShotPlannerService::counts() const {
   c.plans = plans_.load();
   c.progress_messages = progress_messages_.load();
   c.progress_dropped = progress_dropped_.load();
+  c.log_lines_lost = log_lines_lost_.load();
   c.received = received_.load();
   return c;
 }

@@ -47,7 +47,9 @@
 
 namespace snooker::server {
 
-/// Maps an API status to a gRPC status (the only place that does).
+/// Maps an API status code to a gRPC status code (the only place that does), and an
+/// API status to a gRPC status with its message.
+grpc::StatusCode GrpcCodeOf(ApiStatus::Code code) noexcept;
 grpc::Status ToGrpcStatus(const ApiStatus& status);
 
 /// gRPC's name of a status code ("OK", "INVALID_ARGUMENT", ...; "UNKNOWN" for a
@@ -87,6 +89,7 @@ struct CallCounts {
   std::int64_t plans = 0;     ///< Plan and PlanStream calls in the server right now
   std::int64_t progress_messages = 0;  ///< PlanStream progress messages written
   std::int64_t progress_dropped = 0;   ///< ... and replaced by newer ones before a write
+  std::int64_t log_lines_lost = 0;     ///< call log lines the log stream refused (the calls still finished)
   /// Finished calls by grpc::StatusCode (0 OK ... 16 UNAUTHENTICATED).
   std::array<std::int64_t, 17> by_status{};
   std::int64_t in_flight() const { return received - finished; }
@@ -199,11 +202,12 @@ class ShotPlannerService final : public ShotPlannerRawService {
                             std::chrono::steady_clock::time_point deadline,
                             const std::atomic<bool>* cancel) const;
   /// Counts a finished call by its status.
-  void Count(const ApiStatus& status);
-  /// Counts a finished call and writes its log line.
+  void Count(const ApiStatus& status) noexcept;
+  /// Counts a finished call and writes its log line (a line the log refuses is
+  /// counted in log_lines_lost, never thrown: the call's answer comes after this).
   void Record(const char* method, const std::string& peer, std::chrono::steady_clock::time_point arrival,
               const ApiStatus& status, std::size_t request_bytes, std::size_t response_bytes,
-              const Work& work, const std::string& extra = "");
+              const Work& work, const std::string& extra = "") noexcept;
   /// Plans: a new PlanCall for a call that arrived (nullptr with `refusal` set when
   /// max_plans are in the server), the plan itself on a worker, and its status.
   std::shared_ptr<PlanCall> AdmitPlan(const char* method, grpc::CallbackServerContext* context,
@@ -217,7 +221,7 @@ class ShotPlannerService final : public ShotPlannerRawService {
   std::unique_ptr<planner::Planner> planner_;
   const physics::Model* model() const { return options_.model ? &*options_.model : nullptr; }
   std::atomic<std::int64_t> received_{0}, finished_{0}, running_{0}, plans_{0};
-  std::atomic<std::int64_t> progress_messages_{0}, progress_dropped_{0};
+  std::atomic<std::int64_t> progress_messages_{0}, progress_dropped_{0}, log_lines_lost_{0};
   std::array<std::atomic<std::int64_t>, 17> by_status_{};
   std::mutex log_mu_;
   WorkerPool pool_;  // last: its threads use the members above

@@ -19,6 +19,7 @@
 #include "server/address.h"
 #include "server/connect.h"
 #include "server/limits.h"
+#include "server/log_line.h"
 #include "server/server.h"
 #include "server/web_files.h"
 #include "server/worker_pool.h"
@@ -563,17 +564,15 @@ void HttpServer::Impl::Stream(const httplib::Request& req, httplib::Response& re
 void HttpServer::Impl::Log(const httplib::Request& req, const httplib::Response& res) {
   const Clock::time_point arrival = std::exchange(t_arrival, Clock::time_point{});
   if (std::exchange(t_logged, false) || log == nullptr) return;
-  std::ostringstream line;
-  line.precision(3);
-  line << std::fixed << "snooker: http method=" << Printable(req.method, 16) << " path=" << Printable(req.path)
-       << " peer=" << PeerOf(req) << " status=" << res.status;
-  // A request that did not parse never reached the router, which notes the arrival.
-  if (arrival != Clock::time_point{}) {
-    line << " latency_ms=" << std::chrono::duration<double, std::milli>(Clock::now() - arrival).count();
-  }
-  line << " response_bytes=" << res.body.size() << "\n";
-  std::lock_guard<std::mutex> lock(log_mu);
-  *log << line.str() << std::flush;
+  WriteLogLine(*log, log_mu, [&](std::ostream& line) {
+    line << "snooker: http method=" << Printable(req.method, 16) << " path=" << Printable(req.path)
+         << " peer=" << PeerOf(req) << " status=" << res.status;
+    // A request that did not parse never reached the router, which notes the arrival.
+    if (arrival != Clock::time_point{}) {
+      line << " latency_ms=" << std::chrono::duration<double, std::milli>(Clock::now() - arrival).count();
+    }
+    line << " response_bytes=" << res.body.size() << "\n";
+  });
 }
 
 void HttpServer::Impl::Stop(Clock::time_point deadline) {

@@ -157,6 +157,29 @@ TEST_F(HttpTest, PlanOfABuiltinTableEqualsTheGrpcAnswer) {
   EXPECT_TRUE(Mentions(log, "transport=http")) << log;
 }
 
+// A log stream that throws on every line (the access log's and the call's alike)
+// loses the lines and answers the calls.
+TEST_F(HttpTest, ALogThatRefusesItsLinesLosesThemAndNotTheCalls) {
+  StartServer();
+  std::ostream& log = test_server_->log;
+  server_support::RefusingBuffer refusing;
+  std::streambuf* const kept = log.rdbuf(&refusing);
+  log.exceptions(std::ios::badbit);
+  for (int call = 0; call < 2; ++call) {
+    const auto res = Call("Plan", Json(BlackPlan()));
+    ASSERT_TRUE(res) << httplib::to_string(res.error());
+    EXPECT_EQ(res->status, 200) << res->body;
+    EXPECT_GT(FromJson<v1::PlanResponse>(res->body).shots_size(), 0);
+  }
+  const server::CallCounts counts =
+      server_support::WaitUntilAnswered(*test_server_->server, 2, std::chrono::seconds(20));
+  EXPECT_EQ(counts.in_flight(), 0);
+  EXPECT_EQ(counts.log_lines_lost, 2);
+  log.exceptions(std::ios::goodbit);
+  log.clear();
+  log.rdbuf(kept);
+}
+
 TEST_F(HttpTest, GetModelAnswersTheServersModelInJson) {
   StartServer();
   v1::GetModelResponse grpc_answer;

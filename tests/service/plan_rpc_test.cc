@@ -13,6 +13,7 @@
 #include <cmath>
 #include <future>
 #include <memory>
+#include <ostream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -362,6 +363,49 @@ TEST_F(PlanRpcTest, SmallVisionErrorsAreRepairedWithAWarning) {
 
 // A deadline far shorter than the budget: the best shots so far (OK) or, with none,
 // DEADLINE_EXCEEDED; either way long before the budget would have ended.
+// The log line is written before a call is answered. A log stream that refuses it,
+// by a throw or by its state alone, loses the line (counted) and never the answer,
+// which would otherwise wait for the client's deadline.
+TEST_F(PlanRpcTest, ALogThatRefusesItsLinesLosesThemAndNotTheCalls) {
+  StartServer();
+  std::ostream& log = test_server_->log;
+  server_support::RefusingBuffer refusing;
+  std::streambuf* const kept = log.rdbuf(&refusing);
+  for (const bool throws : {true, false}) {
+    SCOPED_TRACE(throws ? "the stream throws" : "the stream only fails");
+    log.clear();
+    log.exceptions(throws ? std::ios::badbit : std::ios::goodbit);
+    const std::int64_t lost = server_->counts().log_lines_lost;
+    v1::PlanResponse plan;
+    const grpc::Status planned = Plan(ObviousPot(), &plan, milliseconds(30'000));
+    ASSERT_TRUE(planned.ok()) << planned.error_message();
+    EXPECT_GT(plan.shots_size(), 0);
+    grpc::ClientContext stream_ctx;
+    stream_ctx.set_deadline(std::chrono::system_clock::now() + milliseconds(30'000));
+    auto reader = stub_->PlanStream(&stream_ctx, ObviousPot());
+    v1::PlanResponse m;
+    int messages = 0;
+    while (messages < 1000 && reader->Read(&m)) ++messages;
+    const grpc::Status streamed = reader->Finish();
+    ASSERT_TRUE(streamed.ok()) << streamed.error_message();
+    grpc::ClientContext collide_ctx;
+    collide_ctx.set_deadline(std::chrono::system_clock::now() + milliseconds(30'000));
+    v1::CollideResponse collided;
+    const grpc::Status collide = stub_->Collide(&collide_ctx, testing_requests::PaperCollide(), &collided);
+    ASSERT_TRUE(collide.ok()) << collide.error_message();
+    EXPECT_EQ(server_support::WaitUntilAnswered(*server_, 0, std::chrono::seconds(20)).in_flight(), 0);
+    EXPECT_EQ(server_->counts().log_lines_lost - lost, 3);
+  }
+  log.exceptions(std::ios::goodbit);
+  log.clear();
+  log.rdbuf(kept);
+  // The stream takes lines again once it can: the next call is logged.
+  v1::PlanResponse plan;
+  ASSERT_TRUE(Plan(ObviousPot(), &plan, milliseconds(30'000)).ok());
+  EXPECT_EQ(server_support::WaitUntilAnswered(*server_, 0, std::chrono::seconds(20)).in_flight(), 0);
+  EXPECT_TRUE(Mentions(Log(), "method=Plan ")) << Log();
+}
+
 TEST_F(PlanRpcTest, ADeadlineShorterThanTheBudgetEndsThePlan) {
   StartServer();
   const v1::PlanRequest request = LongPlan(10'000);

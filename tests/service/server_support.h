@@ -9,6 +9,7 @@
 #include <chrono>
 #include <memory>
 #include <sstream>
+#include <streambuf>
 #include <string>
 #include <thread>
 
@@ -36,6 +37,12 @@ inline server::CallCounts WaitUntilAnswered(const server::Server& server, std::i
   }
   return c;
 }
+
+/// A stream buffer that takes no character: every write through it fails (a log
+/// on a full disk).
+struct RefusingBuffer : std::streambuf {
+  int_type overflow(int_type) override { return traits_type::eof(); }
+};
 
 struct TestServer {
   /// Starts a server with `options` on 127.0.0.1 (any free port) unless
