@@ -221,6 +221,10 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   sigaddset(&stop, SIGINT);
   sigaddset(&stop, SIGTERM);
   pthread_sigmask(SIG_BLOCK, &stop, nullptr);
+  // A log reader that goes away (a pipe to a log shipper that restarts) must not stop
+  // the service: without this a write to its pipe raises SIGPIPE, which ends the
+  // process. Ignored, the write fails, the line is counted lost, the call answered.
+  std::signal(SIGPIPE, SIG_IGN);
   std::string error;
   auto server = server::Server::Start(options, &error);
   if (!server) {
@@ -237,7 +241,9 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   server->Shutdown();
   const server::CallCounts done = server->counts();
   out << "snooker: stopped after " << done.finished << " calls (" << done.with(grpc::StatusCode::OK)
-      << " OK, " << done.with(grpc::StatusCode::CANCELLED) << " cancelled)" << std::endl;
+      << " OK, " << done.with(grpc::StatusCode::CANCELLED) << " cancelled)";
+  if (done.log_lines_lost > 0) out << "; " << done.log_lines_lost << " of their log lines were lost";
+  out << std::endl;
   return kExitOk;
 }
 

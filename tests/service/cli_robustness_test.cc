@@ -232,10 +232,11 @@ TEST(CliServeTest, BadFlagsAreUsageErrors) {
 }
 
 // `snooker serve` as a subprocess: stdout to a pipe (the port is printed there),
-// stderr (the call log) to a file.
+// stderr (the call log) to a file, or to a pipe whose reader is gone.
 class ServeProcess {
  public:
-  explicit ServeProcess(const std::vector<std::string>& flags) {
+  enum class Log { kToFile, kToAPipeWithoutReader };
+  explicit ServeProcess(const std::vector<std::string>& flags, Log log = Log::kToFile) {
     err_path_ = testing::TempDir() + std::to_string(getpid()) + "_serve_stderr.txt";
     std::vector<std::string> args = {SNOOKER_CLI_PATH, "serve", "--address", "127.0.0.1:0"};
     args.insert(args.end(), flags.begin(), flags.end());
@@ -244,7 +245,15 @@ class ServeProcess {
     argv.push_back(nullptr);
     int out[2];
     if (pipe(out) != 0) return;
-    const int err = open(err_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    int err = -1;
+    if (log == Log::kToFile) {
+      err = open(err_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    } else {
+      int log_pipe[2];
+      if (pipe(log_pipe) != 0) return;
+      close(log_pipe[0]);  // no reader: a write raises SIGPIPE, or fails where that is ignored
+      err = log_pipe[1];
+    }
     pid_ = fork();
     if (pid_ == 0) {  // the child: only async-signal-safe calls until exec
       dup2(out[1], 1);
@@ -333,6 +342,31 @@ TEST(CliServeTest, SigtermWithCallsInFlightExitsWithinTheGrace) {
   const std::vector<int> by_code = batch.Wait();
   EXPECT_GT(by_code[grpc::StatusCode::UNAVAILABLE] + by_code[grpc::StatusCode::CANCELLED], n / 2);
   EXPECT_TRUE(Mentions(serve.Stderr(), "status=CANCELLED")) << serve.Stderr().substr(0, 2000);
+}
+
+// A server whose log reader has gone away (stderr a pipe nobody reads) goes on
+// serving: each call's line is lost and counted, the call answered.
+TEST(CliServeTest, AServerWhoseLogReaderIsGoneGoesOnServing) {
+  ServeProcess serve({}, ServeProcess::Log::kToAPipeWithoutReader);
+  ASSERT_GT(serve.pid(), 0);
+  const std::string first = serve.Line();
+  const auto at = first.find("on port ");
+  ASSERT_NE(at, std::string::npos) << first;
+  auto stub = v1::ShotPlanner::NewStub(grpc::CreateChannel(
+      "127.0.0.1:" + std::to_string(std::stoi(first.substr(at + 8))), grpc::InsecureChannelCredentials()));
+  for (int call = 0; call < 3; ++call) {
+    grpc::ClientContext ctx;
+    ctx.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(20));
+    v1::CollideResponse response;
+    const grpc::Status status = stub->Collide(&ctx, testing_requests::PaperCollide(), &response);
+    ASSERT_TRUE(status.ok()) << "call " << call << ": " << status.error_message();
+  }
+  ASSERT_EQ(kill(serve.pid(), SIGTERM), 0);
+  EXPECT_EQ(serve.Wait(std::chrono::seconds(30)), 0);
+  EXPECT_TRUE(Mentions(serve.Line(), "signal 15, shutting down:"));
+  const std::string stopped = serve.Line();
+  EXPECT_TRUE(Mentions(stopped, "stopped after 3 calls (3 OK, 0 cancelled); 3 of their log lines were lost"))
+      << stopped;
 }
 
 }  // namespace
