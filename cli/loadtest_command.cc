@@ -18,6 +18,8 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <string>
+#include <system_error>
 #include <thread>
 
 #include "cli/args.h"
@@ -386,8 +388,10 @@ struct Load {
 };
 
 // Sends the calls from --concurrency threads, each with a connection of its own, until
-// all are sent or --max-seconds have passed.
-Load SendLoad(const Settings& s, const std::vector<v1::TableState>& tables, const Expectations& expect) {
+// all are sent or --max-seconds have passed. When the system will not start all the
+// threads, `error` says which and the load sent is no measure.
+Load SendLoad(const Settings& s, const std::vector<v1::TableState>& tables, const Expectations& expect,
+              std::string* error) {
   Load load;
   load.outcomes.resize(s.requests);
   std::atomic<std::size_t> next{0};
@@ -407,7 +411,20 @@ Load SendLoad(const Settings& s, const std::vector<v1::TableState>& tables, cons
     }
   };
   std::vector<std::thread> threads;
-  for (long c = 0; c < s.concurrency; ++c) threads.emplace_back(worker);
+  threads.reserve(static_cast<std::size_t>(s.concurrency));
+  for (long c = 0; c < s.concurrency; ++c) {
+    try {
+      threads.emplace_back(worker);
+    } catch (const std::system_error& e) {
+      // Fewer clients than asked would measure another load: the ones started stop
+      // after their call in flight, and the run fails, naming the thread.
+      next = s.requests;
+      for (std::thread& t : threads) t.join();
+      *error = "could not start client thread " + std::to_string(c + 1) + " of " +
+               std::to_string(s.concurrency) + " (" + e.what() + "); lower --concurrency or raise the limit";
+      return load;
+    }
+  }
   for (std::thread& t : threads) t.join();
   load.elapsed_s = std::chrono::duration<double>(Clock::now() - t0).count();
   load.time_bound_hit = time_bound_hit.load();
@@ -527,7 +544,12 @@ int RunLoadTest(const std::vector<std::string>& argv, std::ostream& out, std::os
   if (const int rc = ReadServer(channel, s.client, &health.before, &expect, err); rc != kExitOk) return rc;
   std::vector<v1::TableState> tables;
   if (!ChooseTables(s, expect, &tables, err)) return kExitUsage;
-  const Load load = SendLoad(s, tables, expect);
+  std::string error;
+  const Load load = SendLoad(s, tables, expect, &error);
+  if (!error.empty()) {
+    err << kCommand << ": " << error << "\n";
+    return kExitFailure;
+  }
   CheckHealth(channel, "snooker.v1.ShotPlanner", s.client.deadline, &health.after);
   const Summary sum = Summarize(load);
   if (s.json) {

@@ -6,6 +6,7 @@
 #include <google/protobuf/struct.pb.h>
 #include <google/protobuf/util/json_util.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <fstream>
 #include <string>
@@ -22,6 +23,7 @@ namespace {
 
 using cli_support::RunCli;
 using cli_support::RunResult;
+using cli_support::RunShell;
 using cli_support::TempFile;
 using server_support::TestServer;
 
@@ -111,6 +113,23 @@ TEST(LoadTestTest, ErrorsAreCountedByStatusCodeAndFailTheRun) {
   EXPECT_TRUE(Mentions(r.out, "completed 10 of 10")) << r.out;
   EXPECT_TRUE(Mentions(r.out, "statuses: INVALID_ARGUMENT 5 OK 5")) << r.out;
   EXPECT_TRUE(Mentions(r.out, "problem: call 1: INVALID_ARGUMENT: table.balls = positions")) << r.out;
+}
+
+// A system that will not start every client thread asked for (a process limit) ends
+// the run with a message that names the thread, where the client aborted.
+TEST(LoadTestTest, ClientThreadsTheSystemWillNotStartEndTheRunWithAMessage) {
+  if (geteuid() != 0) GTEST_SKIP() << "needs root, to run the command as a user of its own";
+  // A user no other process has, so that the limit counts this command's threads alone.
+  const std::string uid = std::to_string(200000 + getpid());
+  const std::string as_user = "setpriv --reuid=" + uid + " --regid=" + uid + " --clear-groups ";
+  const RunResult probe = RunShell(as_user + SNOOKER_CLI_PATH + " help");
+  if (probe.exit_code != 0) GTEST_SKIP() << "cannot run the command as uid " << uid << ": " << probe.err;
+  TestServer s;
+  const RunResult r = RunShell(as_user + "prlimit --nproc=20 " + SNOOKER_CLI_PATH + " loadtest --target " +
+                               s.target + " --concurrency 32 --requests 40");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_TRUE(Mentions(r.err, "snooker loadtest: could not start client thread ")) << r.err;
+  EXPECT_TRUE(Mentions(r.err, " of 32 (Resource temporarily unavailable)")) << r.err;
 }
 
 TEST(LoadTestTest, RefusesTargetsOffThisMachine) {
