@@ -2,6 +2,8 @@
 // reflection) and, with --http, the same service over HTTP (the Connect protocol,
 // the web page, /healthz) until SIGINT or SIGTERM; then calls in flight may finish
 // for a bounded time and are cancelled after it.
+#include <sys/resource.h>
+
 #include <csignal>
 #include <iostream>
 #include <sstream>
@@ -16,6 +18,29 @@
 
 namespace snooker::cli {
 namespace {
+
+// Below this many open files a busy server may run out of descriptors.
+constexpr rlim_t kOpenFilesWanted = 4096;
+
+// Every connection takes a descriptor, and gRPC (1.51, Debian 12's) stops accepting
+// connections for good once accept4 fails for want of one. So the soft limit is raised
+// to the hard one, which any process may do, and a limit that stays low is warned of.
+// (HTTP's library waits on its sockets with poll, which takes descriptors of any size.)
+void RaiseOpenFileLimit(std::ostream& err) {
+  rlimit limit{};
+  if (getrlimit(RLIMIT_NOFILE, &limit) != 0) return;
+  if (limit.rlim_cur < limit.rlim_max) {
+    rlimit raised = limit;
+    raised.rlim_cur = limit.rlim_max;
+    if (setrlimit(RLIMIT_NOFILE, &raised) == 0) limit = raised;
+  }
+  if (limit.rlim_cur < kOpenFilesWanted) {
+    err << "snooker serve: warning: only " << limit.rlim_cur
+        << " open files allowed (ulimit -Hn): each connection takes one, and the gRPC "
+           "port stops accepting connections for good once they run out; raise it to "
+        << kOpenFilesWanted << " or more\n";
+  }
+}
 
 std::string Help() {
   namespace lim = server::limits;
@@ -225,6 +250,7 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   // the service: without this a write to its pipe raises SIGPIPE, which ends the
   // process. Ignored, the write fails, the line is counted lost, the call answered.
   std::signal(SIGPIPE, SIG_IGN);
+  RaiseOpenFileLimit(err);
   std::string error;
   auto server = server::Server::Start(options, &error);
   if (!server) {

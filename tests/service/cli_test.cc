@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "tests/physics/impact/paper_shots.h"
@@ -173,6 +174,25 @@ TEST(CliTest, ServeRunsUntilSigtermAndShutsDownCleanly) {
   EXPECT_NE(r.out.find("serving snooker.v1.ShotPlanner on port"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("shutting down"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("rc=0"), std::string::npos) << r.out;
+}
+
+// Each connection takes a descriptor: serve raises its soft open-file limit to the
+// hard one, and warns of a hard limit too low for a busy server.
+TEST(CliTest, ServeRaisesItsOpenFileLimitAndWarnsOfALowOne) {
+  const std::string out = testing::TempDir() + std::to_string(getpid()) + "_serve_limit_out.txt";
+  for (const auto& [limits, soft, warns] : {std::tuple{"512:8192", "8192", false},
+                                            std::tuple{"256:1024", "1024", true}}) {
+    SCOPED_TRACE(limits);
+    const RunResult r = cli_support::RunShell(
+        std::string("{ prlimit --nofile=") + limits + " " + SNOOKER_CLI_PATH +
+        " serve --address 127.0.0.1:0 > " + out + " & pid=$!; " + cli_support::kWaitForPort(out) +
+        "awk '/Max open files/ {print \"soft=\" $4}' /proc/$pid/limits; kill -TERM $pid; wait $pid; "
+        "echo rc=$?; }");
+    EXPECT_TRUE(Mentions(r.out, std::string("soft=") + soft + "\n")) << r.out;
+    EXPECT_TRUE(Mentions(r.out, "rc=0")) << r.out;
+    EXPECT_EQ(Mentions(r.err, "snooker serve: warning: only 1024 open files allowed"), warns) << r.err;
+  }
+  std::remove(out.c_str());
 }
 
 TEST(CliTest, ServeOnABadAddressFails) {
