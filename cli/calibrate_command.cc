@@ -1,7 +1,6 @@
 // `snooker calibrate` (fit the physical model to observations of a table) and
 // `snooker record` (tracked shots made in a world model with vision-like noise: test
 // data, and the reference of the tracked-shot format).
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -16,6 +15,7 @@
 #include "cli/json_input.h"
 #include "cli/model_file.h"
 #include "cli/read_file.h"
+#include "cli/write_file.h"
 #include "server/calibrate_api.h"
 #include "server/model_convert.h"
 
@@ -130,10 +130,9 @@ bool WriteJson(const google::protobuf::Message& m, const std::string& path, cons
     err << command << ": cannot write JSON\n";
     return false;
   }
-  std::ofstream f(path);
-  f << json;
-  if (!f) {
-    err << command << ": cannot write '" << path << "'\n";
+  std::string why;
+  if (!WriteOutputFile(path, json, &why)) {
+    err << command << ": cannot write '" << path << "': " << why << "\n";
     return false;
   }
   return true;

@@ -6,7 +6,6 @@
 #include <grpcpp/grpcpp.h>
 
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 
 #include "cli/args.h"
@@ -14,6 +13,7 @@
 #include "cli/commands.h"
 #include "cli/load_tables.h"
 #include "cli/svg.h"
+#include "cli/write_file.h"
 #include "server/api.h"
 #include "server/server.h"
 #include "snooker/v1/service.grpc.pb.h"
@@ -109,8 +109,13 @@ int RunDemo(const std::vector<std::string>& argv, std::ostream& out, std::ostrea
     }
   }
   if (!svg_path->empty()) {
-    std::ofstream(*svg_path) << ShotSvg(physics::DefaultTable(), sim.table(), s,
-                                        physics::BallParams{}.radius);
+    std::string why;
+    if (!WriteOutputFile(*svg_path, ShotSvg(physics::DefaultTable(), sim.table(), s, physics::BallParams{}.radius),
+                         &why)) {
+      err << "snooker demo: cannot write '" << *svg_path << "': " << why << "\n";
+      server->Shutdown();
+      return kExitFailure;
+    }
     out << "  drawn in " << *svg_path << "\n";
   }
   server->Shutdown();

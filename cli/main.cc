@@ -1,4 +1,6 @@
 // The `snooker` command.
+#include <cerrno>
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <new>
@@ -28,7 +30,22 @@ commands:
 'snooker <command> --help' explains a command's options.
 )";
 
-int Run(int argc, char** argv) {
+// Output that did not all reach the standard output (a full disk, a closed
+// descriptor) fails the command, with a word on stderr: a tool reading a truncated
+// answer must not be told it is whole. `serve`'s stdout only says where it listens, and
+// a clean stop stays a clean stop.
+int CheckOutput(const std::string& command, int status) {
+  if (command == "serve") return status;
+  errno = 0;
+  std::cout.flush();
+  if (std::cout) return status;
+  const int error = errno;
+  std::cerr << "snooker " << command << ": cannot write the standard output"
+            << (error != 0 ? std::string(" (") + std::strerror(error) + ")" : std::string()) << std::endl;
+  return status == snooker::cli::kExitOk ? snooker::cli::kExitFailure : status;
+}
+
+int Dispatch(int argc, char** argv) {
   using namespace snooker::cli;
   if (argc < 2) {
     std::cerr << kUsage;
@@ -53,6 +70,11 @@ int Run(int argc, char** argv) {
   }
   std::cerr << "snooker: unknown command '" << command << "'\n\n" << kUsage;
   return kExitUsage;
+}
+
+int Run(int argc, char** argv) {
+  const int status = Dispatch(argc, argv);
+  return argc < 2 ? status : CheckOutput(argv[1], status);
 }
 
 }  // namespace

@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <map>
@@ -28,6 +27,7 @@
 #include "cli/load_tables.h"
 #include "cli/read_file.h"
 #include "cli/svg.h"
+#include "cli/write_file.h"
 #include "server/api.h"
 #include "server/convert.h"
 #include "server/limits.h"
@@ -230,10 +230,9 @@ void PrintProgress(const v1::PlanResponse& r, bool json, std::ostream& out, std:
 
 // `doc` in `path`. False after saying why on `err`.
 bool WriteFile(const std::string& path, const std::string& doc, std::ostream& err) {
-  std::ofstream f(path);
-  f << doc;
-  if (!f) {
-    err << "snooker plan: cannot write '" << path << "'\n";
+  std::string why;
+  if (!WriteOutputFile(path, doc, &why)) {
+    err << "snooker plan: cannot write '" << path << "': " << why << "\n";
     return false;
   }
   return true;

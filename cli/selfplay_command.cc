@@ -1,7 +1,6 @@
 // snooker selfplay: the planner plays breaks alone (planner/selfplay.h) and reports
 // mean and largest break, the share of attempted pots that dropped, and planning
 // time per shot. The measure of docs/planner.md.
-#include <fstream>
 #include <iomanip>
 #include <set>
 #include <iostream>
@@ -11,6 +10,7 @@
 #include "cli/args.h"
 #include "cli/play_flags.h"
 #include "cli/commands.h"
+#include "cli/write_file.h"
 #include "planner/selfplay.h"
 
 namespace snooker::cli {
@@ -114,15 +114,16 @@ int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::os
           : nullptr,
       &progress);
   if (const auto records = args.Text("records", ""); !records->empty()) {
-    std::ofstream f(*records);
+    std::ostringstream f;
     for (size_t i = 0; i < r.records.size(); ++i) {
       const planner::FrameRecord& rec = r.records[i];
       f << "{\"frame\": " << i << ", \"reds\": " << rec.reds << ", \"points\": " << rec.points
         << ", \"attempts\": " << rec.attempts << ", \"pots\": " << rec.pots << ", \"end\": \""
         << rec.end << "\"}\n";
     }
-    if (!f) {
-      err << "snooker selfplay: cannot write '" << *records << "'\n";
+    std::string why;
+    if (!WriteOutputFile(*records, f.str(), &why)) {
+      err << "snooker selfplay: cannot write '" << *records << "': " << why << "\n";
       return kExitFailure;
     }
   }

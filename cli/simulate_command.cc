@@ -2,7 +2,6 @@
 // table and shot messages of proto/snooker/v1/table.proto). Builds the same
 // SimulateRequest the gRPC service takes and calls the same operation.
 
-#include <fstream>
 #include <iomanip>
 #include <new>
 #include <set>
@@ -16,6 +15,7 @@
 #include "cli/json_input.h"
 #include "cli/read_file.h"
 #include "cli/svg.h"
+#include "cli/write_file.h"
 #include "server/api.h"
 #include "server/convert.h"
 #include "server/limits.h"
@@ -201,10 +201,12 @@ int RunSimulate(const std::vector<std::string>& argv, std::ostream& out, std::os
         if (b.id() == w.ball_id()) *b.mutable_position() = w.to();
       }
     }
-    std::ofstream f(*svg_path);
-    f << ShotSvg(physics::DefaultTable(), drawn, resp, model ? model->ball.radius : physics::BallParams{}.radius);
-    if (!f) {
-      err << "snooker simulate: cannot write '" << *svg_path << "'\n";
+    std::string why;
+    if (!WriteOutputFile(*svg_path,
+                         ShotSvg(physics::DefaultTable(), drawn, resp,
+                                 model ? model->ball.radius : physics::BallParams{}.radius),
+                         &why)) {
+      err << "snooker simulate: cannot write '" << *svg_path << "': " << why << "\n";
       return kExitFailure;
     }
   }

@@ -202,6 +202,42 @@ TEST(CliJsonInputTest, AFolderOfTablesIsReadTheSameWay) {
 #endif
 #endif
 
+// Output that cannot be written (here to /dev/full, a device always full) fails the
+// command with the system's reason. The file writers had checked their stream before
+// its buffer was flushed (a short file on a full disk passed), the demo's SVG was not
+// checked, nor was standard output: each said exit 0.
+TEST(CliOutputTest, AFullDeviceFailsTheCommandWithTheReason) {
+  if (access("/dev/full", W_OK) != 0) GTEST_SKIP() << "this machine has no /dev/full";
+  const std::string cli = SNOOKER_CLI_PATH;
+  const std::string table = TempFile(
+      "output_table.json", R"({"balls": [{"id": "cue", "kind": "CUE", "position": {"x": 0.9, "y": 0.6}},
+                                         {"id": "red-1", "kind": "RED", "position": {"x": 0.9, "y": 1.6}}]})");
+  const std::string shot = TempFile("output_shot.json", kPlainShot);
+  struct Case {
+    std::string command, says;
+  };
+  const std::string full = "cannot write '/dev/full': No space left on device";
+  for (const Case& c : {
+           Case{"collide --speed 2 --json > /dev/full", "snooker collide: cannot write the standard output"},
+           Case{"model > /dev/full", "snooker model: cannot write the standard output"},
+           Case{"simulate --table " + table + " --shot " + shot + " --json > /dev/full",
+                "snooker simulate: cannot write the standard output"},
+           Case{"simulate --table " + table + " --shot " + shot + " --svg /dev/full > /dev/null",
+                "snooker simulate: " + full},
+           Case{"plan --table builtin:black --max-simulations 200 --svg /dev/full > /dev/null",
+                "snooker plan: " + full},
+           Case{"selfplay --frames 1 --seed 1 --max-simulations 200 --records /dev/full > /dev/null",
+                "snooker selfplay: " + full},
+           Case{"record --world default --shots 1 --seed 5 --out /dev/full", "snooker record: " + full},
+           Case{"demo --svg /dev/full > /dev/null", "snooker demo: " + full},
+       }) {
+    SCOPED_TRACE(c.command);
+    const RunResult r = RunShell("timeout 120 " + cli + " " + c.command);
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_TRUE(Mentions(r.err, c.says)) << r.err;
+  }
+}
+
 // An allocation failure is reported, never an abort: a 15 MB id under a 60 MB
 // address-space limit (the command itself needs about 30 MB).
 TEST(CliInputFileTest, RunningOutOfMemoryIsReportedNotAnAbort) {

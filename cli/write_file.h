@@ -1,0 +1,15 @@
+// Writing an output file named on the command line: every byte reaches the file or
+// the command says why. A buffered stream checked before its buffer is flushed says
+// nothing of a full disk; this writes through and checks the close as well.
+#pragma once
+
+#include <string>
+
+namespace snooker::cli {
+
+/// Writes `text` to the file at `path` (created, or truncated) and closes it. On
+/// failure returns false and sets `why` to the system's reason ("No space left on
+/// device", "Permission denied", "Is a directory").
+bool WriteOutputFile(const std::string& path, const std::string& text, std::string* why);
+
+}  // namespace snooker::cli
