@@ -2,9 +2,15 @@
 // reflection) and, with --http, the same service over HTTP (the Connect protocol,
 // the web page, /healthz) until SIGINT or SIGTERM; then calls in flight may finish
 // for a bounded time and are cancelled after it.
+#include <grpc/support/log.h>
+#include <signal.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
+#include <atomic>
 #include <csignal>
+#include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <sstream>
 
@@ -39,6 +45,24 @@ void RaiseOpenFileLimit(std::ostream& err) {
         << " open files allowed (ulimit -Hn): each connection takes one, and the gRPC "
            "port stops accepting connections for good once they run out; raise it to "
         << kOpenFilesWanted << " or more\n";
+  }
+}
+
+// Set when gRPC says its listener failed to accept a connection ("Failed accept4",
+// for want of a descriptor or of memory): the listener then stops for good (gRPC 1.51,
+// tcp_server_posix.cc), and a server nobody can reach must not look healthy.
+std::atomic<bool> g_listener_lost{false};
+
+// gRPC's log on stderr as gRPC writes it (severity, file:line, message), watched
+// for the listener's end, which stops the server (SIGTERM to itself, with the reason
+// kept) so that whatever supervises it starts it again.
+void GrpcLog(gpr_log_func_args* args) {
+  const char* slash = std::strrchr(args->file, '/');
+  std::fprintf(stderr, "%s %s:%d] %s\n", gpr_log_severity_string(args->severity),
+               slash != nullptr ? slash + 1 : args->file, args->line, args->message);
+  if (args->severity == GPR_LOG_SEVERITY_ERROR && std::strncmp(args->message, "Failed accept4", 14) == 0 &&
+      !g_listener_lost.exchange(true)) {
+    kill(getpid(), SIGTERM);
   }
 }
 
@@ -251,6 +275,7 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   // process. Ignored, the write fails, the line is counted lost, the call answered.
   std::signal(SIGPIPE, SIG_IGN);
   RaiseOpenFileLimit(err);
+  gpr_set_log_function(&GrpcLog);
   std::string error;
   auto server = server::Server::Start(options, &error);
   if (!server) {
@@ -260,16 +285,24 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   PrintListening(*server, options, out);
   int signal = 0;
   sigwait(&stop, &signal);
+  const bool listener_lost = g_listener_lost.load();
   const server::CallCounts at_signal = server->counts();
-  out << "snooker: signal " << signal << ", shutting down: " << at_signal.in_flight()
-      << " calls in flight may finish for up to " << options.shutdown_grace.count() << " ms"
-      << std::endl;
+  out << "snooker: "
+      << (listener_lost ? std::string("the gRPC port stopped accepting connections")
+                        : "signal " + std::to_string(signal))
+      << ", shutting down: " << at_signal.in_flight() << " calls in flight may finish for up to "
+      << options.shutdown_grace.count() << " ms" << std::endl;
   server->Shutdown();
   const server::CallCounts done = server->counts();
   out << "snooker: stopped after " << done.finished << " calls (" << done.with(grpc::StatusCode::OK)
       << " OK, " << done.with(grpc::StatusCode::CANCELLED) << " cancelled)";
   if (done.log_lines_lost > 0) out << "; " << done.log_lines_lost << " of their log lines were lost";
   out << std::endl;
+  if (listener_lost) {
+    err << "snooker serve: gRPC stopped accepting connections on its port and does not start "
+           "again (its \"Failed accept4\" above); stopped, to be started again\n";
+    return kExitFailure;
+  }
   return kExitOk;
 }
 

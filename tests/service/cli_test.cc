@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -193,6 +194,31 @@ TEST(CliTest, ServeRaisesItsOpenFileLimitAndWarnsOfALowOne) {
     EXPECT_EQ(Mentions(r.err, "snooker serve: warning: only 1024 open files allowed"), warns) << r.err;
   }
   std::remove(out.c_str());
+}
+
+// gRPC stops accepting connections for good once accept4 fails for want of a
+// descriptor: serve then stops, exit 1, saying why, where it stayed up unreachable.
+TEST(CliTest, ServeStopsWhenGrpcStopsAcceptingConnections) {
+  const std::string cli = SNOOKER_CLI_PATH;
+  const std::string out = testing::TempDir() + std::to_string(getpid()) + "_serve_accept_out.txt";
+  const std::string err = testing::TempDir() + std::to_string(getpid()) + "_serve_accept_err.txt";
+  // 64 connections at once where 40 descriptors are allowed in all.
+  const RunResult r = cli_support::RunShell(
+      "{ prlimit --nofile=40 " + cli + " serve --address 127.0.0.1:0 > " + out + " 2> " + err +
+      " & pid=$!; " + cli_support::kWaitForPort(out) + cli +
+      " loadtest --target 127.0.0.1:$port --concurrency 64 --requests 200 --deadline-ms 5000 > /dev/null "
+      "2>&1; for i in $(seq 300); do kill -0 $pid 2>/dev/null || break; sleep 0.1; done; "
+      "if kill -0 $pid 2>/dev/null; then echo still-serving; kill -9 $pid; fi; wait $pid; echo rc=$?; }");
+  EXPECT_FALSE(Mentions(r.out, "still-serving")) << r.out;
+  EXPECT_TRUE(Mentions(r.out, "rc=1")) << r.out;
+  std::ifstream out_file(out), err_file(err);
+  const std::string said((std::istreambuf_iterator<char>(out_file)), {});
+  const std::string log((std::istreambuf_iterator<char>(err_file)), {});
+  EXPECT_TRUE(Mentions(said, "snooker: the gRPC port stopped accepting connections, shutting down:")) << said;
+  EXPECT_TRUE(Mentions(log, "Failed accept4: Too many open files")) << log.substr(0, 2000);
+  EXPECT_TRUE(Mentions(log, "snooker serve: gRPC stopped accepting connections on its port")) << log.substr(0, 2000);
+  std::remove(out.c_str());
+  std::remove(err.c_str());
 }
 
 TEST(CliTest, ServeOnABadAddressFails) {
