@@ -20,6 +20,7 @@
 #include "snooker/v1/service.grpc.pb.h"
 #include "tests/service/call_support.h"
 #include "tests/support/cli_support.h"
+#include "tests/support/sanitizers.h"
 #include "tests/service/requests.h"
 #include "tests/support/text.h"
 
@@ -196,11 +197,6 @@ TEST(CliJsonInputTest, AFolderOfTablesIsReadTheSameWay) {
   EXPECT_EQ(system(("rm -rf " + dir).c_str()), 0);
 }
 
-#if defined(__SANITIZE_ADDRESS__) || defined(__has_feature)
-#if defined(__SANITIZE_ADDRESS__) || __has_feature(address_sanitizer)
-#define SNOOKER_UNDER_ASAN 1
-#endif
-#endif
 
 // Output that cannot be written (here to /dev/full, a device always full) fails the
 // command with the system's reason. The file writers had checked their stream before

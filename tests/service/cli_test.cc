@@ -16,6 +16,7 @@
 
 #include "tests/physics/impact/paper_shots.h"
 #include "tests/support/cli_support.h"
+#include "tests/support/sanitizers.h"
 
 namespace snooker {
 namespace {
@@ -199,6 +200,10 @@ TEST(CliTest, ServeRaisesItsOpenFileLimitAndWarnsOfALowOne) {
 // gRPC stops accepting connections for good once accept4 fails for want of a
 // descriptor: serve then stops, exit 1, saying why, where it stayed up unreachable.
 TEST(CliTest, ServeStopsWhenGrpcStopsAcceptingConnections) {
+#ifdef SNOOKER_UNDER_ASAN
+  GTEST_SKIP() << "the sanitizers' runtime needs descriptors of its own (UBSan's vptr check opens a pipe to "
+                  "test memory), so with none left it reports errors that are not there";
+#endif
   const std::string cli = SNOOKER_CLI_PATH;
   const std::string out = testing::TempDir() + std::to_string(getpid()) + "_serve_accept_out.txt";
   const std::string err = testing::TempDir() + std::to_string(getpid()) + "_serve_accept_err.txt";
