@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <iterator>
+#include <numeric>
 #include <optional>
 
 #include "planner/geometry.h"
@@ -69,7 +71,7 @@ PocketModel::PocketModel(const physics::TableModel& table, const physics::SimPar
         Measure(*sim, c.corner ? kCornerSample : kMiddleSample, angle_at(c.corner, c.angle),
                 options_.arrival_speeds[c.speed], &counts[worker]);
   });
-  simulations_ = counts[0] + counts[1];
+  simulations_ = std::accumulate(std::begin(counts), std::end(counts), 0L);
 }
 
 const PocketModel& PocketModel::Default() {
