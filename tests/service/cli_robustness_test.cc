@@ -61,7 +61,7 @@ TEST(CliInputFileTest, ADirectoryIsRefused) {
 
 // A FIFO hung.
 TEST(CliInputFileTest, AFifoIsRefusedWithoutWaiting) {
-  const std::string fifo = testing::TempDir() + std::to_string(getpid()) + "_table.fifo";
+  const std::string fifo = cli_support::TempPath("table.fifo");
   std::remove(fifo.c_str());
   ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
   ExpectRefused(SimulateTable(fifo), fifo, "is a FIFO (named pipe), not a regular file");
@@ -69,7 +69,7 @@ TEST(CliInputFileTest, AFifoIsRefusedWithoutWaiting) {
 }
 
 TEST(CliInputFileTest, AFileOverSixteenMegabytesIsRefusedUnread) {
-  const std::string big = testing::TempDir() + std::to_string(getpid()) + "_big.json";
+  const std::string big = cli_support::TempPath("big.json");
   {
     std::ofstream f(big);
   }
@@ -269,7 +269,7 @@ class ServeProcess {
  public:
   enum class Log { kToFile, kToAPipeWithoutReader };
   explicit ServeProcess(const std::vector<std::string>& flags, Log log = Log::kToFile) {
-    err_path_ = testing::TempDir() + std::to_string(getpid()) + "_serve_stderr.txt";
+    err_path_ = cli_support::TempPath("serve_stderr.txt");
     std::vector<std::string> args = {SNOOKER_CLI_PATH, "serve", "--address", "127.0.0.1:0"};
     args.insert(args.end(), flags.begin(), flags.end());
     std::vector<char*> argv;
@@ -324,10 +324,7 @@ class ServeProcess {
     return -1;
   }
   pid_t pid() const { return pid_; }
-  std::string Stderr() const {
-    std::ifstream f(err_path_);
-    return std::string(std::istreambuf_iterator<char>(f), {});
-  }
+  std::string Stderr() const { return cli_support::ReadText(err_path_); }
 
  private:
   pid_t pid_ = -1;

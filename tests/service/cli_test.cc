@@ -8,7 +8,6 @@
 
 #include <cmath>
 #include <fstream>
-#include <iterator>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -181,7 +180,7 @@ TEST(CliTest, ServeRunsUntilSigtermAndShutsDownCleanly) {
 // Each connection takes a descriptor: serve raises its soft open-file limit to the
 // hard one, and warns of a hard limit too low for a busy server.
 TEST(CliTest, ServeRaisesItsOpenFileLimitAndWarnsOfALowOne) {
-  const std::string out = testing::TempDir() + std::to_string(getpid()) + "_serve_limit_out.txt";
+  const std::string out = cli_support::TempPath("serve_limit_out.txt");
   for (const auto& [limits, soft, warns] : {std::tuple{"512:8192", "8192", false},
                                             std::tuple{"256:1024", "1024", true}}) {
     SCOPED_TRACE(limits);
@@ -205,8 +204,8 @@ TEST(CliTest, ServeStopsWhenGrpcStopsAcceptingConnections) {
                   "test memory), so with none left it reports errors that are not there";
 #endif
   const std::string cli = SNOOKER_CLI_PATH;
-  const std::string out = testing::TempDir() + std::to_string(getpid()) + "_serve_accept_out.txt";
-  const std::string err = testing::TempDir() + std::to_string(getpid()) + "_serve_accept_err.txt";
+  const std::string out = cli_support::TempPath("serve_accept_out.txt");
+  const std::string err = cli_support::TempPath("serve_accept_err.txt");
   // 64 connections at once where 40 descriptors are allowed in all.
   const RunResult r = cli_support::RunShell(
       "{ prlimit --nofile=40 " + cli + " serve --address 127.0.0.1:0 > " + out + " 2> " + err +
@@ -216,9 +215,8 @@ TEST(CliTest, ServeStopsWhenGrpcStopsAcceptingConnections) {
       "if kill -0 $pid 2>/dev/null; then echo still-serving; kill -9 $pid; fi; wait $pid; echo rc=$?; }");
   EXPECT_FALSE(Mentions(r.out, "still-serving")) << r.out;
   EXPECT_TRUE(Mentions(r.out, "rc=1")) << r.out;
-  std::ifstream out_file(out), err_file(err);
-  const std::string said((std::istreambuf_iterator<char>(out_file)), {});
-  const std::string log((std::istreambuf_iterator<char>(err_file)), {});
+  const std::string said = cli_support::ReadText(out);
+  const std::string log = cli_support::ReadText(err);
   EXPECT_TRUE(Mentions(said, "snooker: the gRPC port stopped accepting connections, shutting down:")) << said;
   EXPECT_TRUE(Mentions(log, "Failed accept4: Too many open files")) << log.substr(0, 2000);
   EXPECT_TRUE(Mentions(log, "snooker serve: gRPC stopped accepting connections on its port")) << log.substr(0, 2000);
@@ -291,7 +289,7 @@ TEST(CliSimulateTest, NoImpactTablesIntegratesEveryImpact) {
 }
 
 TEST(CliSimulateTest, SvgDrawsTheTableAndPaths) {
-  const std::string svg = testing::TempDir() + std::to_string(getpid()) + "_shot.svg";
+  const std::string svg = cli_support::TempPath("shot.svg");
   const RunResult r = RunCli("simulate --table " + TempFile("t2.json", kTable) + " --shot " +
                              TempFile("s2.json", kRollingShot) + " --svg " + svg);
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -54,11 +55,23 @@ inline std::string kWaitForPort(const std::string& serve_out) {
          "sleep 0.1; done; port=$(grep -o 'port [0-9]*' " + serve_out + " | cut -d' ' -f2); ";
 }
 
+/// A path named `name` in the test temp folder, this process's own (ctest runs test
+/// cases in parallel processes).
+inline std::string TempPath(const std::string& name) {
+  return testing::TempDir() + std::to_string(getpid()) + "_" + name;
+}
+
 /// Writes `text` to a fresh file in the test temp folder and returns its path.
 inline std::string TempFile(const std::string& name, const std::string& text) {
-  const std::string path = testing::TempDir() + std::to_string(getpid()) + "_" + name;
+  const std::string path = TempPath(name);
   std::ofstream(path) << text;
   return path;
+}
+
+/// The whole text of the file at `path` ("" when it cannot be read).
+inline std::string ReadText(const std::string& path) {
+  std::ifstream f(path);
+  return std::string(std::istreambuf_iterator<char>(f), {});
 }
 
 }  // namespace snooker::cli_support
