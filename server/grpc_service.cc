@@ -16,6 +16,8 @@
 
 namespace snooker::server {
 
+namespace {
+
 grpc::StatusCode GrpcCodeOf(ApiStatus::Code code) noexcept {
   switch (code) {
     case ApiStatus::Code::kOk: return grpc::StatusCode::OK;
@@ -27,6 +29,8 @@ grpc::StatusCode GrpcCodeOf(ApiStatus::Code code) noexcept {
   }
   return grpc::StatusCode::UNKNOWN;
 }
+
+}  // namespace
 
 grpc::Status ToGrpcStatus(const ApiStatus& status) {
   if (status.code == ApiStatus::Code::kOk) return grpc::Status::OK;

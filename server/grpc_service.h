@@ -47,9 +47,8 @@
 
 namespace snooker::server {
 
-/// Maps an API status code to a gRPC status code (the only place that does), and an
-/// API status to a gRPC status with its message.
-grpc::StatusCode GrpcCodeOf(ApiStatus::Code code) noexcept;
+/// An API status as a gRPC status with its message (the only place that maps the
+/// codes).
 grpc::Status ToGrpcStatus(const ApiStatus& status);
 
 /// gRPC's name of a status code ("OK", "INVALID_ARGUMENT", ...; "UNKNOWN" for a
