@@ -15,6 +15,7 @@
 #include "physics/table/table.h"
 #include "server/convert.h"
 #include "tests/support/cli_support.h"
+#include "tests/support/own_user.h"
 #include "tests/service/server_support.h"
 #include "tests/support/text.h"
 
@@ -119,8 +120,8 @@ TEST(LoadTestTest, ErrorsAreCountedByStatusCodeAndFailTheRun) {
 // the run with a message that names the thread, where the client aborted.
 TEST(LoadTestTest, ClientThreadsTheSystemWillNotStartEndTheRunWithAMessage) {
   if (geteuid() != 0) GTEST_SKIP() << "needs root, to run the command as a user of its own";
-  // A user no other process has, so that the limit counts this command's threads alone.
-  const std::string uid = std::to_string(200000 + getpid());
+  // A user of its own, so that the limit counts this command's threads alone.
+  const std::string uid = std::to_string(test_support::OwnUserId());
   const std::string as_user = "setpriv --reuid=" + uid + " --regid=" + uid + " --clear-groups ";
   const RunResult probe = RunShell(as_user + SNOOKER_CLI_PATH + " help");
   if (probe.exit_code != 0) GTEST_SKIP() << "cannot run the command as uid " << uid << ": " << probe.err;

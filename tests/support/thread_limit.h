@@ -31,6 +31,8 @@
 #include <thread>
 #include <vector>
 
+#include "tests/support/own_user.h"
+
 extern char** environ;
 
 namespace snooker::test_support {
@@ -79,12 +81,11 @@ inline int StartableThreads(int most) {
 }
 
 // In the copy: become a user of its own, find the soft limit under which exactly
-// `spare` threads start, run `body` and end the process. The user is numbered from
-// the copy's process id, so that no other process, another test's copy run beside
-// it included, counts against its limit; only root can take such a user.
+// `spare` threads start, run `body` and end the process. The user is OwnUserId(),
+// numbered from the copy's process id (own_user.h); only root can take such a user.
 [[noreturn]] inline void RunLimited(int spare, int fd, const std::function<int(std::string*)>& body) {
   if (geteuid() != 0) Finish(fd, "needs root, to run the copy as a user of its own", kNotLimited);
-  const uid_t own = 200000 + static_cast<uid_t>(getpid());
+  const uid_t own = OwnUserId();
   if (setgroups(0, nullptr) != 0 || setgid(own) != 0 || setuid(own) != 0) {
     Finish(fd, "could not become a user of its own", kNotLimited);
   }
