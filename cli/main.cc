@@ -30,12 +30,29 @@ commands:
 'snooker <command> --help' explains a command's options.
 )";
 
-// Output that did not all reach the standard output (a full disk, a closed
-// descriptor) fails the command, with a word on stderr: a tool reading a truncated
-// answer must not be told it is whole. `serve`'s stdout only says where it listens, and
-// a clean stop stays a clean stop.
+using Runner = int (*)(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+
+// A command, and whether what it writes to the standard output is its answer. Such
+// output that did not all arrive (a full disk, a closed descriptor) fails the
+// command, with a word on stderr: a tool reading a truncated answer must not be told
+// it is whole. `serve`'s stdout only says where it listens, and a clean stop stays a
+// clean stop.
+struct Command {
+  const char* name;
+  Runner run;
+  bool answers_on_stdout;
+};
+
+constexpr Command kCommands[] = {
+    {"collide", snooker::cli::RunCollide, true},   {"simulate", snooker::cli::RunSimulate, true},
+    {"plan", snooker::cli::RunPlan, true},         {"selfplay", snooker::cli::RunSelfPlay, true},
+    {"match", snooker::cli::RunMatch, true},       {"model", snooker::cli::RunModel, true},
+    {"record", snooker::cli::RunRecord, true},     {"calibrate", snooker::cli::RunCalibrate, true},
+    {"serve", snooker::cli::RunServe, false},      {"loadtest", snooker::cli::RunLoadTest, true},
+    {"demo", snooker::cli::RunDemo, true},
+};
+
 int CheckOutput(const std::string& command, int status) {
-  if (command == "serve") return status;
   errno = 0;
   std::cout.flush();
   if (std::cout) return status;
@@ -45,36 +62,25 @@ int CheckOutput(const std::string& command, int status) {
   return status == snooker::cli::kExitOk ? snooker::cli::kExitFailure : status;
 }
 
-int Dispatch(int argc, char** argv) {
+int Run(int argc, char** argv) {
   using namespace snooker::cli;
   if (argc < 2) {
     std::cerr << kUsage;
     return kExitUsage;
   }
-  const std::string command = argv[1];
+  const std::string name = argv[1];
   const std::vector<std::string> args(argv + 2, argv + argc);
-  if (command == "collide") return RunCollide(args, std::cout, std::cerr);
-  if (command == "simulate") return RunSimulate(args, std::cout, std::cerr);
-  if (command == "plan") return RunPlan(args, std::cout, std::cerr);
-  if (command == "selfplay") return RunSelfPlay(args, std::cout, std::cerr);
-  if (command == "match") return RunMatch(args, std::cout, std::cerr);
-  if (command == "model") return RunModel(args, std::cout, std::cerr);
-  if (command == "record") return RunRecord(args, std::cout, std::cerr);
-  if (command == "calibrate") return RunCalibrate(args, std::cout, std::cerr);
-  if (command == "serve") return RunServe(args, std::cout, std::cerr);
-  if (command == "loadtest") return RunLoadTest(args, std::cout, std::cerr);
-  if (command == "demo") return RunDemo(args, std::cout, std::cerr);
-  if (command == "help" || command == "--help" || command == "-h") {
-    std::cout << kUsage;
-    return kExitOk;
+  for (const Command& command : kCommands) {
+    if (name != command.name) continue;
+    const int status = command.run(args, std::cout, std::cerr);
+    return command.answers_on_stdout ? CheckOutput(name, status) : status;
   }
-  std::cerr << "snooker: unknown command '" << command << "'\n\n" << kUsage;
+  if (name == "help" || name == "--help" || name == "-h") {
+    std::cout << kUsage;
+    return CheckOutput(name, kExitOk);
+  }
+  std::cerr << "snooker: unknown command '" << name << "'\n\n" << kUsage;
   return kExitUsage;
-}
-
-int Run(int argc, char** argv) {
-  const int status = Dispatch(argc, argv);
-  return argc < 2 ? status : CheckOutput(argv[1], status);
 }
 
 }  // namespace
