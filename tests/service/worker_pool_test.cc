@@ -88,7 +88,7 @@ TEST(WorkerPoolTest, APoolTheSystemCannotStartThrowsAndNamesTheThread) {
 // A pool that takes as many threads as the system starts: of four asked, with one to
 // spare it runs every job on that one; with none it runs each at once on the
 // submitter's thread. (The HTTP server's connections are served so.)
-std::string AsManyAsPossible(std::string* out) {
+std::string AsManyAsPossible() {
   WorkerPool pool(4, 1000, WorkerPool::Start::kAsManyAsPossible);
   std::atomic<int> done{0}, on_caller{0};
   const std::thread::id caller = std::this_thread::get_id();
@@ -100,14 +100,13 @@ std::string AsManyAsPossible(std::string* out) {
     });
   }
   pool.Stop();
-  *out = std::to_string(pool.threads()) + " threads, " + std::to_string(accepted) + " accepted, " +
+  return std::to_string(pool.threads()) + " threads, " + std::to_string(accepted) + " accepted, " +
          std::to_string(done.load()) + " done, " + std::to_string(on_caller.load()) + " on the caller";
-  return *out;
 }
 
 void ExpectAsManyAsPossible(int spare, const std::string& expected) {
   const test_support::LimitedRun run = test_support::RunWithSpareThreads(spare, [](std::string* out) {
-    AsManyAsPossible(out);
+    *out = AsManyAsPossible();
     return 0;
   });
   if (!run.limited) GTEST_SKIP() << run.output;
@@ -124,8 +123,7 @@ TEST(WorkerPoolTest, TakingAsManyAsPossibleWithNoThreadRunsJobsOnTheCaller) {
 }
 
 TEST(WorkerPoolTest, TakingAsManyAsPossibleWithoutALimitTakesAll) {
-  std::string out;
-  EXPECT_EQ(AsManyAsPossible(&out), "4 threads, 20 accepted, 20 done, 0 on the caller");
+  EXPECT_EQ(AsManyAsPossible(), "4 threads, 20 accepted, 20 done, 0 on the caller");
 }
 
 }  // namespace
