@@ -99,6 +99,9 @@ struct IdentifiabilityCase {
   std::vector<Truth> truth;
 };
 
+// gtest prints a parameter with this (not as bytes).
+void PrintTo(const IdentifiabilityCase& c, std::ostream* os) { *os << c.name; }
+
 Observations Tracked(const physics::Model& world, int shots) {
   Observations o;
   o.shots = Record(world, shots, 17, 1e-3);
@@ -349,6 +352,9 @@ struct RefusalCase {
   std::function<Observations()> data;
   const char* reason;  // a part of FitResult::error
 };
+
+// gtest prints a parameter with this (not as bytes).
+void PrintTo(const RefusalCase& c, std::ostream* os) { *os << c.name; }
 
 Observations Alciatore() {
   Observations o;

@@ -52,6 +52,9 @@ struct BadCase {
   const char* message;  // a part of Validate's answer
 };
 
+// gtest prints a parameter with this (not as bytes).
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
+
 const BadCase kBadCases[] = {
     {"ObjectBallSpeedNaN", [](Observations* o) { o->throws[3].object_ball_speed = kNaN; },
      "throw[3].object_ball_speed = nan (must be a finite number in (0, 10] m/s)"},

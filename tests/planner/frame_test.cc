@@ -134,6 +134,9 @@ struct FoulCase {
   int penalty;
 };
 
+// gtest prints a parameter with this (not as bytes).
+void PrintTo(const FoulCase& c, std::ostream* os) { *os << c.name; }
+
 class FrameFoulTest : public testing::TestWithParam<FoulCase> {};
 
 TEST_P(FrameFoulTest, TheOpponentScoresThePenaltyAndPlays) {

@@ -330,6 +330,9 @@ struct BadFlag {
   const char* message;
 };
 
+// gtest prints a parameter with this (not as bytes).
+void PrintTo(const BadFlag& c, std::ostream* os) { *os << "snooker " << c.args; }
+
 class CliMatchBadFlagTest : public testing::TestWithParam<BadFlag> {};
 
 TEST_P(CliMatchBadFlagTest, NamesTheValue) {

@@ -148,6 +148,9 @@ struct PenaltyCase {
   int penalty;
 };
 
+// gtest prints a parameter with this (not as bytes).
+void PrintTo(const PenaltyCase& c, std::ostream* os) { *os << c.name; }
+
 class PenaltyTest : public JudgeTest, public testing::WithParamInterface<PenaltyCase> {};
 
 TEST_P(PenaltyTest, TheFoulIsWorthTheHighestValueInvolved) {

@@ -111,6 +111,9 @@ struct TableReader {
   const char* args;  // TABLE: the table file; SHOT: a good shot file
 };
 
+// gtest prints a parameter with this (not as bytes).
+void PrintTo(const TableReader& c, std::ostream* os) { *os << "snooker " << c.args; }
+
 class CliJsonInputTest : public testing::TestWithParam<TableReader> {
  protected:
   RunResult Run(const std::string& table_text) {

@@ -32,6 +32,9 @@ struct ValidCase {
   std::string text;
 };
 
+// gtest prints a parameter with this (not as bytes).
+void PrintTo(const ValidCase& c, std::ostream* os) { *os << c.name; }
+
 class JsonSyntaxValidTest : public testing::TestWithParam<ValidCase> {};
 
 TEST_P(JsonSyntaxValidTest, HasNoError) {
@@ -58,6 +61,9 @@ struct ErrorCase {
   int line, column;
   const char* what;  // part of the message
 };
+
+// gtest prints a parameter with this (not as bytes).
+void PrintTo(const ErrorCase& c, std::ostream* os) { *os << c.name; }
 
 class JsonSyntaxErrorTest : public testing::TestWithParam<ErrorCase> {};
 

@@ -24,6 +24,9 @@ struct FreshRun {
   int requests;  ///< calls per run
 };
 
+// gtest prints a parameter with this (not as bytes).
+void PrintTo(const FreshRun& c, std::ostream* os) { *os << c.method << ", " << c.requests << " calls a run"; }
+
 constexpr int kRuns = 4;
 constexpr int kConcurrency = 8;
 
