@@ -32,9 +32,13 @@ grpc::StatusCode GrpcCodeOf(ApiStatus::Code code) noexcept {
 
 }  // namespace
 
-grpc::Status ToGrpcStatus(const ApiStatus& status) {
+grpc::Status ToGrpcStatus(const ApiStatus& status) noexcept {
   if (status.code == ApiStatus::Code::kOk) return grpc::Status::OK;
-  return {GrpcCodeOf(status.code), status.message};
+  try {
+    return {GrpcCodeOf(status.code), status.message};
+  } catch (...) {  // std::bad_alloc: an empty message is not allocated
+    return {GrpcCodeOf(status.code), std::string()};
+  }
 }
 
 const char* StatusCodeName(grpc::StatusCode code) {

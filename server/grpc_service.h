@@ -48,8 +48,9 @@
 namespace snooker::server {
 
 /// An API status as a gRPC status with its message (the only place that maps the
-/// codes).
-grpc::Status ToGrpcStatus(const ApiStatus& status);
+/// codes). Never throws, as a call must always be finished: when the message cannot
+/// be copied (no memory), the status goes without it.
+grpc::Status ToGrpcStatus(const ApiStatus& status) noexcept;
 
 /// gRPC's name of a status code ("OK", "INVALID_ARGUMENT", ...; "UNKNOWN" for a
 /// value out of range).

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "health.grpc.pb.h"
+#include "server/grpc_service.h"
 #include "server/server.h"
 #include "snooker/v1/service.grpc.pb.h"
 
@@ -27,6 +28,25 @@ class GrpcServiceTest : public testing::Test {
   std::shared_ptr<grpc::Channel> channel_;
   std::unique_ptr<v1::ShotPlanner::Stub> stub_;
 };
+
+// Each API code has its gRPC code and keeps its message. The mapping cannot throw: a
+// call must always be finished, and a message that cannot be copied is lost alone.
+TEST(ToGrpcStatusTest, EachCodeMapsWithItsMessageAndNothingCanThrow) {
+  const ApiStatus ok = ApiStatus::Ok();
+  static_assert(noexcept(ToGrpcStatus(ok)));
+  const std::pair<ApiStatus::Code, grpc::StatusCode> codes[] = {
+      {ApiStatus::Code::kInvalidArgument, grpc::StatusCode::INVALID_ARGUMENT},
+      {ApiStatus::Code::kResourceExhausted, grpc::StatusCode::RESOURCE_EXHAUSTED},
+      {ApiStatus::Code::kDeadlineExceeded, grpc::StatusCode::DEADLINE_EXCEEDED},
+      {ApiStatus::Code::kCancelled, grpc::StatusCode::CANCELLED},
+      {ApiStatus::Code::kInternal, grpc::StatusCode::INTERNAL}};
+  for (const auto& [api, grpc_code] : codes) {
+    const grpc::Status s = ToGrpcStatus({api, "the reason"});
+    EXPECT_EQ(s.error_code(), grpc_code) << StatusCodeName(grpc_code);
+    EXPECT_EQ(s.error_message(), "the reason") << StatusCodeName(grpc_code);
+  }
+  EXPECT_TRUE(ToGrpcStatus(ok).ok());
+}
 
 TEST_F(GrpcServiceTest, HealthReportsServing) {
   auto health = grpc::health::v1::Health::NewStub(channel_);
