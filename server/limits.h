@@ -53,6 +53,14 @@ inline constexpr std::size_t kMaxMessageBytes = 4096;
 /// comes first (`snooker serve --max-call-ms`).
 inline constexpr std::chrono::milliseconds kDefaultMaxCall{10'000};
 inline constexpr std::int64_t kMaxCallMsLimit = 3'600'000;
+/// A gRPC connection quiet for kKeepalive gets an HTTP/2 ping; one that does not
+/// answer within kKeepaliveTimeout is closed. So a client that vanished without
+/// closing (a robot that lost power or its network) frees its connection within
+/// 80 s rather than gRPC's default 2 h 20 s.
+inline constexpr std::chrono::milliseconds kKeepalive{60'000};
+inline constexpr std::chrono::milliseconds kKeepaliveTimeout{20'000};
+/// Either may be set from 1 ms to a day.
+inline constexpr std::chrono::milliseconds kMaxKeepalive{86'400'000};
 /// On SIGTERM/SIGINT, calls in flight may finish for this long, then are cancelled
 /// (`snooker serve --shutdown-grace-ms`).
 inline constexpr std::chrono::milliseconds kDefaultShutdownGrace{5'000};

@@ -45,6 +45,13 @@ std::unique_ptr<Server> Server::Start(const ServerOptions& options, std::string*
     return nullptr;
   };
   if (const std::string bad = ValidateServiceOptions(options); !bad.empty()) return fail(bad);
+  for (const auto& [name, value] : {std::pair{"keepalive", options.keepalive},
+                                    std::pair{"keepalive_timeout", options.keepalive_timeout}}) {
+    if (value.count() < 1 || value > limits::kMaxKeepalive) {
+      return fail(std::string(name) + " " + std::to_string(value.count()) + " ms is outside [1, " +
+                  std::to_string(limits::kMaxKeepalive.count()) + "] ms");
+    }
+  }
   if (const std::string bad = CheckListenAddress(options.address); !bad.empty()) return fail(bad);
   if (const std::string refusal =
           PlaintextRefusal(options.address, options.tls.has_value(), options.allow_insecure, "listen");
@@ -75,6 +82,12 @@ std::unique_ptr<Server> Server::Start(const ServerOptions& options, std::string*
   builder.AddListeningPort(options.address, Credentials(options), &s->port_);
   builder.AddChannelArgument(GRPC_ARG_MAX_CONCURRENT_STREAMS, kMaxStreamsPerConnection);
   builder.AddChannelArgument(GRPC_ARG_MAX_METADATA_SIZE, kMaxMetadataBytes);
+  // Pings on quiet connections, with or without calls, as often as they fall due
+  // (gRPC's own default stops after two pings without data).
+  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIME_MS, static_cast<int>(options.keepalive.count()));
+  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIMEOUT_MS, static_cast<int>(options.keepalive_timeout.count()));
+  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_PERMIT_WITHOUT_CALLS, 1);
+  builder.AddChannelArgument(GRPC_ARG_HTTP2_MAX_PINGS_WITHOUT_DATA, 0);
   builder.RegisterService(&s->service_);
   builder.SetMaxReceiveMessageSize(static_cast<int>(limits::kMaxRequestBytes));
   // The API bounds its answers below this (limits::kMaxResponseBytes); this is the backstop.

@@ -47,6 +47,10 @@ struct ServerOptions : ServiceOptions {
   bool allow_insecure = false;
   /// Shutdown(): how long calls in flight may finish before they are cancelled.
   std::chrono::milliseconds shutdown_grace = limits::kDefaultShutdownGrace;
+  /// How long a gRPC connection may be quiet before the server pings it, and how long
+  /// it then waits for the answer before closing the connection.
+  std::chrono::milliseconds keepalive = limits::kKeepalive;
+  std::chrono::milliseconds keepalive_timeout = limits::kKeepaliveTimeout;
   /// Also serve HTTP (Connect, the web page, /healthz) on this "host:port" (`--http`);
   /// empty: no HTTP. The same TLS (then HTTPS) and plaintext rule as `address`.
   std::string http_address;

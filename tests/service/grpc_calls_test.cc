@@ -6,17 +6,25 @@
 // No test here asserts a duration tighter than a generous sanity bound: where a test
 // shows that the server stopped working early, the work it was given would take at
 // least call_support::kWork (from one call's measured cost), and the bound is half that.
+#include <arpa/inet.h>
 #include <grpcpp/generic/generic_stub.h>
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <future>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <vector>
 
 #include "server/api.h"
@@ -310,6 +318,77 @@ TEST_F(CallsTest, ShutdownCancelsWhatIsLeftAfterItsGrace) {
   EXPECT_GE(shutdown_took, milliseconds(100));  // the grace was given
   EXPECT_LT(shutdown_took, kWork / 2);
   EXPECT_EQ(server_->counts().in_flight(), 0);
+}
+
+// A peer that opens an HTTP/2 connection to `port` and then answers nothing, though
+// it reads what comes (a client that vanished without closing: a robot that lost
+// power or its network). How long the server took to close the connection, or
+// nullopt when it was still open after `wait`.
+std::optional<Clock::duration> SilentPeerClosedAfter(int port, Clock::duration wait) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  if (fd < 0) return Clock::duration::zero();
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(static_cast<std::uint16_t>(port));
+  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  const auto start = Clock::now();
+  std::optional<Clock::duration> closed = Clock::duration::zero();
+  // The client's connection preface, then an empty SETTINGS frame.
+  static constexpr char kHello[] = "PRI * HTTP/2.0\r\n\r\nSM\r\n\r\n\0\0\0\x04\0\0\0\0\0";
+  if (connect(fd, reinterpret_cast<const sockaddr*>(&to), sizeof(to)) == 0 &&
+      write(fd, kHello, sizeof(kHello) - 1) == static_cast<ssize_t>(sizeof(kHello) - 1)) {
+    closed.reset();
+    char buf[4096];
+    for (auto left = wait; left > Clock::duration::zero(); left = wait - (Clock::now() - start)) {
+      pollfd p{fd, POLLIN, 0};
+      const auto ms = std::chrono::duration_cast<milliseconds>(left).count() + 1;
+      if (poll(&p, 1, static_cast<int>(ms)) <= 0) continue;
+      if (read(fd, buf, sizeof(buf)) <= 0) {
+        closed = Clock::now() - start;
+        break;
+      }
+    }
+  }
+  close(fd);
+  return closed;
+}
+
+// The server pings a quiet connection and closes it when the ping goes unanswered; a
+// client that answers keeps its connection. With gRPC's own defaults the silent
+// peer would hold its connection (and a descriptor) for over two hours.
+TEST_F(CallsTest, AConnectionThatStopsAnsweringIsClosedByTheKeepalive) {
+  ServerOptions options;
+  options.keepalive = milliseconds(200);
+  options.keepalive_timeout = milliseconds(200);
+  StartServer(options);
+  const std::optional<Clock::duration> closed = SilentPeerClosedAfter(server_->port(), std::chrono::seconds(20));
+  ASSERT_TRUE(closed.has_value()) << "the silent connection was still open after 20 s";
+  EXPECT_GE(*closed, milliseconds(400));  // a ping, then its timeout
+  // A client that answers the pings keeps its connection through many of them.
+  WarmUp();
+  std::this_thread::sleep_for(milliseconds(1500));
+  EXPECT_EQ(channel_->GetState(false), GRPC_CHANNEL_READY);
+  WarmUp();
+}
+
+TEST_F(CallsTest, WithTheDefaultKeepaliveASilentConnectionIsLeftForNow) {
+  StartServer({});
+  EXPECT_FALSE(SilentPeerClosedAfter(server_->port(), std::chrono::seconds(2)).has_value());
+}
+
+TEST(KeepaliveTest, OutOfRangeSettingsAreRefusedByName) {
+  for (const auto& [keepalive, timeout, message] :
+       {std::tuple{0, 20'000, "keepalive 0 ms is outside [1, 86400000] ms"},
+        std::tuple{60'000, -1, "keepalive_timeout -1 ms is outside [1, 86400000] ms"},
+        std::tuple{86'400'001, 20'000, "keepalive 86400001 ms is outside [1, 86400000] ms"}}) {
+    ServerOptions options;
+    options.address = "127.0.0.1:0";
+    options.keepalive = milliseconds(keepalive);
+    options.keepalive_timeout = milliseconds(timeout);
+    std::string error;
+    EXPECT_EQ(Server::Start(options, &error), nullptr) << message;
+    EXPECT_EQ(error, message);
+  }
 }
 
 }  // namespace
