@@ -1,6 +1,6 @@
 // snooker serve: the gRPC service (snooker.v1.ShotPlanner, grpc.health.v1.Health,
 // reflection) and, with --http, the same service over HTTP (the Connect protocol,
-// the web page, /healthz) until SIGINT or SIGTERM; then calls in flight may finish
+// the web page, /healthz, /metrics) until SIGINT or SIGTERM; then calls in flight may finish
 // for a bounded time and are cancelled after it.
 #include <grpc/support/log.h>
 #include <signal.h>
@@ -87,8 +87,9 @@ std::string Help() {
        "  --http HOST:PORT         also serve HTTP/1.1 here (port 0 picks a free port,\n"
        "                           printed on start): the Connect protocol (POST\n"
        "                           /snooker.v1.ShotPlanner/Plan with a JSON body, ...),\n"
-       "                           the web page at / and GET /healthz. HTTPS with the\n"
-       "                           TLS flags; plaintext off loopback only with --insecure\n"
+       "                           the web page at /, GET /healthz and GET /metrics\n"
+       "                           (Prometheus). HTTPS with the TLS flags; plaintext off\n"
+       "                           loopback only with --insecure\n"
        "  --cors-origin ORIGIN     let pages of this one origin (https://host[:port]) call\n"
        "                           the HTTP service from a browser (default: no CORS)\n"
        "  --tls-cert CERT.pem      serve TLS with this certificate (chain), PEM\n"
@@ -177,7 +178,7 @@ bool HttpFlagsOk(const std::string& http, const std::string& cors_origin, bool t
 void PrintListening(const server::Server& server, const server::ServerOptions& options, std::ostream& out) {
   if (server.http_port() != 0) {
     const std::string& http = options.http_address;
-    out << "snooker: serving HTTP (Connect protocol, web page, /healthz) at " << server.http_scheme() << "://"
+    out << "snooker: serving HTTP (Connect protocol, web page, /healthz, /metrics) at " << server.http_scheme() << "://"
         << http.substr(0, http.rfind(':')) << ":" << server.http_port() << "/" << std::endl;
   }
   out << "snooker: serving snooker.v1.ShotPlanner on port " << server.port() << " (" << options.address << ", "

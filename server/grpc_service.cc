@@ -336,6 +336,9 @@ void ShotPlannerService::Record(const char* method, const std::string& peer, Clo
                                 const ApiStatus& status, std::size_t request_bytes,
                                 std::size_t response_bytes, const Work& work, const std::string& extra) noexcept {
   const double latency_ms = std::chrono::duration<double, std::milli>(Clock::now() - arrival).count();
+  // Observed before it is counted as finished: a reader that sees it finished sees
+  // it in its method's counts too.
+  metrics_.Observe(MethodIndex(method), static_cast<int>(GrpcCodeOf(status.code)), latency_ms * 1e-3);
   Count(status);
   if (options_.log == nullptr) return;
   // The call is answered after this, whatever becomes of its line.
@@ -357,6 +360,7 @@ CallCounts ShotPlannerService::counts() const {
   c.progress_messages = progress_messages_.load();
   c.progress_dropped = progress_dropped_.load();
   c.log_lines_lost = log_lines_lost_.load();
+  c.methods = metrics_.Read();
   c.received = received_.load();
   return c;
 }

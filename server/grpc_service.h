@@ -40,6 +40,7 @@
 #include "server/api.h"
 #include "server/api_status.h"
 #include "server/limits.h"
+#include "server/metrics.h"
 #include "server/plan_api.h"
 #include "server/worker_pool.h"
 #include "snooker/v1/plan.pb.h"
@@ -91,7 +92,9 @@ struct CallCounts {
   std::int64_t progress_dropped = 0;   ///< ... and replaced by newer ones before a write
   std::int64_t log_lines_lost = 0;     ///< call log lines the log stream refused (the calls still finished)
   /// Finished calls by grpc::StatusCode (0 OK ... 16 UNAUTHENTICATED).
-  std::array<std::int64_t, 17> by_status{};
+  std::array<std::int64_t, kStatusCodeCount> by_status{};
+  /// Answered calls by method (kMethodNames): statuses and latencies.
+  std::array<MethodCounts, kMethodCount> methods{};
   std::int64_t in_flight() const { return received - finished; }
   std::int64_t with(grpc::StatusCode code) const { return by_status[static_cast<size_t>(code)]; }
 };
@@ -222,7 +225,8 @@ class ShotPlannerService final : public ShotPlannerRawService {
   const physics::Model* model() const { return options_.model ? &*options_.model : nullptr; }
   std::atomic<std::int64_t> received_{0}, finished_{0}, running_{0}, plans_{0};
   std::atomic<std::int64_t> progress_messages_{0}, progress_dropped_{0}, log_lines_lost_{0};
-  std::array<std::atomic<std::int64_t>, 17> by_status_{};
+  std::array<std::atomic<std::int64_t>, kStatusCodeCount> by_status_{};
+  MethodMetrics metrics_;
   std::mutex log_mu_;
   WorkerPool pool_;  // last: its threads use the members above
 };

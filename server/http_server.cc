@@ -20,6 +20,7 @@
 #include "server/connect.h"
 #include "server/limits.h"
 #include "server/log_line.h"
+#include "server/metrics.h"
 #include "server/server.h"
 #include "server/web_files.h"
 #include "server/worker_pool.h"
@@ -405,6 +406,12 @@ void HttpServer::Impl::OnGet(const httplib::Request& req, httplib::Response& res
     ReplyText(res, shutting_down ? 503 : 200, shutting_down ? "NOT_SERVING" : "SERVING");
     return;
   }
+  if (req.path == "/metrics") {
+    res.status = 200;
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(MetricsText(service->counts()), "text/plain; version=0.0.4; charset=utf-8");
+    return;
+  }
   if (req.path.starts_with(connect::kServicePath)) return ReplyNotAllowed(res, "POST, OPTIONS", true);
   const std::string_view name = req.path == "/" ? std::string_view("index.html") : std::string_view(req.path).substr(1);
   const WebFile* file = name.find('/') == std::string_view::npos ? FindWebFile(name) : nullptr;
@@ -433,7 +440,8 @@ void HttpServer::Impl::OnBody(const httplib::Request& req, httplib::Response& re
       ReadBody(req, res, reader, limits::kMaxRequestBytes + connect::kEnvelopePrefixBytes, &body);
   if (!req.path.starts_with(connect::kServicePath)) {
     const std::string_view name = std::string_view(req.path).substr(1);
-    const bool known = req.path == "/" || req.path == "/healthz" || FindWebFile(name) != nullptr;
+    const bool known =
+        req.path == "/" || req.path == "/healthz" || req.path == "/metrics" || FindWebFile(name) != nullptr;
     return known ? ReplyNotAllowed(res, "GET, HEAD, OPTIONS", false) : ReplyText(res, 404, "not found");
   }
   if (req.method != "POST") return ReplyNotAllowed(res, "POST, OPTIONS", true);

@@ -194,6 +194,35 @@ TEST_F(HttpTest, GetModelAnswersTheServersModelInJson) {
   }
 }
 
+// GET /metrics counts the calls of both transports by method and status, and times
+// them; it is not itself a call.
+TEST_F(HttpTest, MetricsCountTheCallsOfBothTransports) {
+  StartServer();
+  v1::CollideResponse grpc_answer;
+  grpc::ClientContext ctx;
+  ASSERT_TRUE(test_server_->stub->Collide(&ctx, testing_requests::PaperCollide(), &grpc_answer).ok());
+  ASSERT_EQ(Call("Collide", Json(testing_requests::PaperCollide()))->status, 200);
+  v1::CollideRequest bad = testing_requests::PaperCollide();
+  bad.set_speed(-1);
+  ASSERT_EQ(Call("Collide", Json(bad))->status, 400);
+  Log();  // every call answered
+  const auto res = Client().Get("/metrics");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 200);
+  EXPECT_EQ(res->get_header_value("Content-Type"), "text/plain; version=0.0.4; charset=utf-8");
+  EXPECT_EQ(res->get_header_value("Cache-Control"), "no-store");
+  const std::string& text = res->body;
+  EXPECT_TRUE(Mentions(text, "\nsnooker_calls_received_total 3\n")) << text;
+  EXPECT_TRUE(Mentions(text, "\nsnooker_calls_in_flight 0\n")) << text;
+  EXPECT_TRUE(Mentions(text, "\nsnooker_calls_total{method=\"Collide\",code=\"OK\"} 2\n")) << text;
+  EXPECT_TRUE(Mentions(text, "\nsnooker_calls_total{method=\"Collide\",code=\"INVALID_ARGUMENT\"} 1\n")) << text;
+  EXPECT_TRUE(Mentions(text, "\nsnooker_call_latency_seconds_count{method=\"Collide\"} 3\n")) << text;
+  EXPECT_TRUE(Mentions(text, "\nsnooker_call_latency_seconds_count{method=\"Plan\"} 0\n")) << text;
+  // Scraping is not a call: the count stands.
+  EXPECT_TRUE(Mentions(Client().Get("/metrics")->body, "\nsnooker_calls_received_total 3\n"));
+  EXPECT_EQ(Client().Post("/metrics", "", "text/plain")->status, 405);
+}
+
 TEST_F(HttpTest, ABadValueIsInvalidArgumentNamingTheField) {
   StartServer();
   v1::CollideRequest request = testing_requests::PaperCollide();
