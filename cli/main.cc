@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "server/build_info.h"
 
 namespace {
 
@@ -25,6 +26,7 @@ commands:
   serve      run the gRPC service (snooker.v1.ShotPlanner)
   loadtest   load-test a server on this machine: throughput, latency, errors
   demo       start the service and use it on built-in examples
+  version    which build this is: version and commit (also --version)
   help       this text
 
 'snooker <command> --help' explains a command's options.
@@ -74,6 +76,11 @@ int Run(int argc, char** argv) {
     if (name != command.name) continue;
     const int status = command.run(args, std::cout, std::cerr);
     return command.answers_on_stdout ? CheckOutput(name, status) : status;
+  }
+  if (name == "--version" || name == "version") {
+    std::cout << "snooker " << snooker::server::kBuildVersion << " (commit " << snooker::server::kBuildCommit
+              << ")\n";
+    return CheckOutput(name, kExitOk);
   }
   if (name == "help" || name == "--help" || name == "-h") {
     std::cout << kUsage;

@@ -11,6 +11,7 @@
 #include "physics/impact/ball_ball.h"
 #include "physics/motion/slip_phase.h"
 #include "physics/sim/paths.h"
+#include "server/build_info.h"
 #include "server/convert.h"
 #include "server/plan_convert.h"
 
@@ -288,6 +289,8 @@ ApiStatus GetModel(const v1::GetModelRequest& /*request*/, v1::GetModelResponse*
   ToProto(table, response->mutable_table());
   ModelToProto(limits.physics_model(), table, kDefaultPathSampleS, response);  // what Simulate uses for unset options
   BuiltinTablesToProto(response);
+  response->mutable_build()->set_version(kBuildVersion);
+  response->mutable_build()->set_commit(kBuildCommit);
   *response->mutable_service() =
       limits.service != nullptr ? *limits.service : DefaultServiceLimits(limits);
   return ApiStatus::Ok();

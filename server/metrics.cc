@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "server/build_info.h"
 #include "server/grpc_service.h"
 
 namespace snooker::server {
@@ -56,6 +57,8 @@ std::string MetricsText(const CallCounts& counts) {
     Head(out, name, type, help);
     out << name << ' ' << value << '\n';
   };
+  Head(out, "snooker_build_info", "gauge", "Which build serves: its version and commit (always 1).");
+  out << "snooker_build_info{version=\"" << kBuildVersion << "\",commit=\"" << kBuildCommit << "\"} 1\n";
   single("snooker_calls_received_total", "counter", "Calls that reached a method.", counts.received);
   single("snooker_calls_in_flight", "gauge", "Calls received and not yet answered.", counts.in_flight());
   single("snooker_calls_running", "gauge", "Calls on a worker now.", counts.running);

@@ -52,7 +52,7 @@ class MethodMetrics {
 
 struct CallCounts;
 
-/// `counts` in Prometheus's text format (version 0.0.4): the calls received, in flight,
+/// `counts` in Prometheus's text format (version 0.0.4): the build, the calls received, in flight,
 /// running and answered by method and status, the plans in the server, the progress
 /// messages written and dropped, the log lines lost, and each method's latency
 /// histogram (snooker_call_latency_seconds).

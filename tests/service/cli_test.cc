@@ -13,6 +13,7 @@
 #include <tuple>
 #include <vector>
 
+#include "server/build_info.h"
 #include "tests/physics/impact/paper_shots.h"
 #include "tests/support/cli_support.h"
 #include "tests/support/sanitizers.h"
@@ -150,6 +151,14 @@ TEST(CliCollideTest, HelpExplainsEveryOptionWithItsUnit) {
                         "--cut-deg THETA", "degrees", "--steps N", "--tolerance X", "--mu-bb X",
                         "--restitution E", "--mu-s X", "--json"}) {
     EXPECT_NE(r.out.find(s), std::string::npos) << s;
+  }
+}
+
+TEST(CliTest, VersionNamesTheBuildsVersionAndCommit) {
+  for (const char* flag : {"--version", "version"}) {
+    const RunResult r = RunCli(flag);
+    EXPECT_EQ(r.exit_code, 0) << flag;
+    EXPECT_EQ(r.out, std::string("snooker ") + SNOOKER_VERSION + " (commit " + server::kBuildCommit + ")\n") << flag;
   }
 }
 

@@ -3,10 +3,15 @@
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 
+#include <regex>
+#include <string>
+
 #include "health.grpc.pb.h"
+#include "server/build_info.h"
 #include "server/grpc_service.h"
 #include "server/server.h"
 #include "snooker/v1/service.grpc.pb.h"
+#include "tests/support/cli_support.h"
 
 namespace snooker::server {
 namespace {
@@ -60,6 +65,21 @@ TEST_F(GrpcServiceTest, HealthReportsServing) {
 
 // A service the server does not know is NOT_FOUND (gRPC's health semantics); the
 // server as a whole ("") is SERVING.
+// GetModel says which build answers: the project's version and the commit of the
+// checkout it was built from (with "-dirty" for changes), as git tells it.
+TEST_F(GrpcServiceTest, GetModelSaysWhichBuildAnswers) {
+  v1::GetModelResponse model;
+  grpc::ClientContext ctx;
+  ASSERT_TRUE(stub_->GetModel(&ctx, v1::GetModelRequest(), &model).ok());
+  EXPECT_EQ(model.build().version(), SNOOKER_VERSION);
+  const std::string& commit = model.build().commit();
+  EXPECT_TRUE(std::regex_match(commit, std::regex("[0-9a-f]{12}(-dirty)?|unknown"))) << commit;
+  const cli_support::RunResult head =
+      cli_support::RunShell("git -C '" SNOOKER_SOURCE_DIR "' rev-parse --short=12 HEAD 2>/dev/null");
+  if (head.exit_code != 0) GTEST_SKIP() << "not a git checkout: the commit is " << commit;
+  EXPECT_EQ(commit.substr(0, 12), head.out.substr(0, 12)) << "built from another commit: build again";
+}
+
 TEST_F(GrpcServiceTest, HealthKnowsOnlyItsServices) {
   auto health = grpc::health::v1::Health::NewStub(channel_);
   grpc::health::v1::HealthCheckRequest req;

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "cli/load_tables.h"
+#include "server/build_info.h"
 #include "server/connect.h"
 #include "server/server.h"
 #include "server/web_files.h"
@@ -212,6 +213,9 @@ TEST_F(HttpTest, MetricsCountTheCallsOfBothTransports) {
   EXPECT_EQ(res->get_header_value("Content-Type"), "text/plain; version=0.0.4; charset=utf-8");
   EXPECT_EQ(res->get_header_value("Cache-Control"), "no-store");
   const std::string& text = res->body;
+  EXPECT_TRUE(Mentions(text, std::string("\nsnooker_build_info{version=\"") + kBuildVersion + "\",commit=\"" +
+                                 kBuildCommit + "\"} 1\n"))
+      << text;
   EXPECT_TRUE(Mentions(text, "\nsnooker_calls_received_total 3\n")) << text;
   EXPECT_TRUE(Mentions(text, "\nsnooker_calls_in_flight 0\n")) << text;
   EXPECT_TRUE(Mentions(text, "\nsnooker_calls_total{method=\"Collide\",code=\"OK\"} 2\n")) << text;
