@@ -1079,6 +1079,8 @@ function start() {
     state.radius = num(model.ball && model.ball.radiusM) || state.radius;
     drawTable();
     useBuiltinTables(model.builtinTables || []);
+    const build = model.build || {};
+    if (build.version) $('build').textContent = `server ${build.version}, commit ${build.commit}`;
     const s = model.service || {};
     const budget = $('budget');
     budget.placeholder = String(num(s.defaultPlanBudgetMs));

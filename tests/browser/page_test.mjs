@@ -227,6 +227,11 @@ async function main() {
       .concat([{ value: 'custom', text: '(your table)' }]);
     check('the menu offers GetModel\'s built-in tables in its order, then your table',
       listed.length > 1 && JSON.stringify(offered) === JSON.stringify(listed), offered.map((o) => o.value).join(', '));
+    const build = model.build || {};
+    const buildText = await page.$eval('#build', (e) => e.textContent);
+    check('the header names the server\'s build from GetModel',
+      /^[0-9a-f]{12}(-dirty)?$|^unknown$/.test(build.commit || '') &&
+      buildText === `server ${build.version}, commit ${build.commit}`, buildText);
     const firstTable = (model.builtinTables || [])[0] || { state: { balls: [] } };
     const loadedBalls = first.request.table.balls.map((b) => `${b.id}@${b.position.x},${b.position.y}`).join(' ');
     const firstBalls = firstTable.state.balls.map((b) => `${b.id}@${b.position.x},${b.position.y}`).join(' ');
