@@ -130,12 +130,7 @@ bool WriteJson(const google::protobuf::Message& m, const std::string& path, cons
     err << command << ": cannot write JSON\n";
     return false;
   }
-  std::string why;
-  if (!WriteOutputFile(path, json, &why)) {
-    err << command << ": cannot write '" << path << "': " << why << "\n";
-    return false;
-  }
-  return true;
+  return WriteOutputFile(path, json, command, err);
 }
 
 }  // namespace

@@ -109,10 +109,8 @@ int RunDemo(const std::vector<std::string>& argv, std::ostream& out, std::ostrea
     }
   }
   if (!svg_path->empty()) {
-    std::string why;
     if (!WriteOutputFile(*svg_path, ShotSvg(physics::DefaultTable(), sim.table(), s, physics::BallParams{}.radius),
-                         &why)) {
-      err << "snooker demo: cannot write '" << *svg_path << "': " << why << "\n";
+                         "snooker demo", err)) {
       server->Shutdown();
       return kExitFailure;
     }

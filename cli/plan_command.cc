@@ -228,16 +228,6 @@ void PrintProgress(const v1::PlanResponse& r, bool json, std::ostream& out, std:
   out << std::flush;
 }
 
-// `doc` in `path`. False after saying why on `err`.
-bool WriteFile(const std::string& path, const std::string& doc, std::ostream& err) {
-  std::string why;
-  if (!WriteOutputFile(path, doc, &why)) {
-    err << "snooker plan: cannot write '" << path << "': " << why << "\n";
-    return false;
-  }
-  return true;
-}
-
 // What the flags ask for: the request (its table read later) and how to run it.
 struct PlanSettings {
   v1::PlanRequest request;
@@ -518,7 +508,7 @@ int WriteAnswer(const PlanSettings& s, const v1::PlanResponse& resp, std::ostrea
       err << "snooker plan: " << why << "\n";
       return kExitFailure;
     }
-    if (!WriteFile(s.svg_path, doc, err)) return kExitFailure;
+    if (!WriteOutputFile(s.svg_path, doc, "snooker plan", err)) return kExitFailure;
   }
   if (s.json) {
     if (!PrintJson(resp, "snooker plan", out, err)) return kExitFailure;
@@ -536,8 +526,9 @@ void DrawFailure(const PlanSettings& s, const std::string& said, std::ostream& e
   constexpr std::string_view kPrefix = "snooker plan: ";
   if (why.compare(0, kPrefix.size(), kPrefix) == 0) why.erase(0, kPrefix.size());
   while (!why.empty() && why.back() == '\n') why.pop_back();
-  WriteFile(s.svg_path,
-            TableSvg(physics::DefaultTable(), s.request.table(), DrawnBallRadius(s), "no shot: " + why), err);
+  WriteOutputFile(s.svg_path,
+                  TableSvg(physics::DefaultTable(), s.request.table(), DrawnBallRadius(s), "no shot: " + why),
+                  "snooker plan", err);
 }
 
 }  // namespace

@@ -121,11 +121,7 @@ int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::os
         << ", \"attempts\": " << rec.attempts << ", \"pots\": " << rec.pots << ", \"end\": \""
         << rec.end << "\"}\n";
     }
-    std::string why;
-    if (!WriteOutputFile(*records, f.str(), &why)) {
-      err << "snooker selfplay: cannot write '" << *records << "': " << why << "\n";
-      return kExitFailure;
-    }
+    if (!WriteOutputFile(*records, f.str(), "snooker selfplay", err)) return kExitFailure;
   }
   if (args.Switch("json")) {
     std::ostringstream j;

@@ -201,12 +201,10 @@ int RunSimulate(const std::vector<std::string>& argv, std::ostream& out, std::os
         if (b.id() == w.ball_id()) *b.mutable_position() = w.to();
       }
     }
-    std::string why;
     if (!WriteOutputFile(*svg_path,
                          ShotSvg(physics::DefaultTable(), drawn, resp,
                                  model ? model->ball.radius : physics::BallParams{}.radius),
-                         &why)) {
-      err << "snooker simulate: cannot write '" << *svg_path << "': " << why << "\n";
+                         "snooker simulate", err)) {
       return kExitFailure;
     }
   }

@@ -36,4 +36,12 @@ bool WriteOutputFile(const std::string& path, const std::string& text, std::stri
   return true;
 }
 
+bool WriteOutputFile(const std::string& path, const std::string& text, const std::string& command,
+                     std::ostream& err) {
+  std::string why;
+  if (WriteOutputFile(path, text, &why)) return true;
+  err << command << ": cannot write '" << path << "': " << why << "\n";
+  return false;
+}
+
 }  // namespace snooker::cli

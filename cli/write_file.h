@@ -3,6 +3,7 @@
 // nothing of a full disk; this writes through and checks the close as well.
 #pragma once
 
+#include <ostream>
 #include <string>
 
 namespace snooker::cli {
@@ -11,5 +12,10 @@ namespace snooker::cli {
 /// failure returns false and sets `why` to the system's reason ("No space left on
 /// device", "Permission denied", "Is a directory").
 bool WriteOutputFile(const std::string& path, const std::string& text, std::string* why);
+
+/// The same for `command` ("snooker plan"): on failure says on `err`
+/// "<command>: cannot write '<path>': <reason>" and returns false.
+bool WriteOutputFile(const std::string& path, const std::string& text, const std::string& command,
+                     std::ostream& err);
 
 }  // namespace snooker::cli
