@@ -113,7 +113,7 @@ TEST(CliPlanTest, JsonHasExactlyTheContractedNames) {
 
 TEST(CliPlanTest, ReadableAnswerAndSvg) {
   const std::string table = WriteFile("plan_table2", kTable);
-  const std::string svg = testing::TempDir() + "plan_" + std::to_string(getpid()) + ".svg";
+  const std::string svg = cli_support::TempPath("plan.svg");
   const RunResult r = RunCli("plan --table " + table + " --svg " + svg + " --max-simulations 300 --budget-ms 30000");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("#1  red-1 into top-right"), std::string::npos) << r.out;
@@ -157,7 +157,7 @@ TEST(CliPlanTest, WithNoShotTheSvgShowsTheTableAndWhy) {
   // The cue ball alone: no ball on, so no shot.
   const std::string table = WriteFile("plan_alone", R"({"balls": [
     {"id": "cue", "kind": "CUE", "position": {"x": 0.9, "y": 0.6}}]})");
-  const std::string svg = testing::TempDir() + "plan_none_" + std::to_string(getpid()) + ".svg";
+  const std::string svg = cli_support::TempPath("plan_none.svg");
   const RunResult r = RunCli("plan --table " + table + " --json --svg " + svg + " --max-simulations 300");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   Struct json;
@@ -210,7 +210,7 @@ constexpr const char* kTableInHand = R"({"balls": [
 // assertions on shots hold for whatever shots there are.
 TEST(CliPlanTest, WithTheCueBallInHandEachShotSaysWhereToPlaceIt) {
   const std::string table = WriteFile("plan_in_hand", kTableInHand);
-  const std::string svg = testing::TempDir() + "plan_in_hand_" + std::to_string(getpid()) + ".svg";
+  const std::string svg = cli_support::TempPath("plan_in_hand.svg");
   const std::string flags = " --cue-in-hand --max-simulations 300 --budget-ms 30000 --shots 2";
   const RunResult r = RunCli("plan --table " + table + flags + " --json --svg " + svg);
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -518,7 +518,7 @@ INSTANTIATE_TEST_SUITE_P(
     });
 
 TEST(CliSelfPlayTest, JsonHasExactlyTheContractedNames) {
-  const std::string records = testing::TempDir() + "frames_" + std::to_string(getpid()) + ".jsonl";
+  const std::string records = cli_support::TempPath("frames.jsonl");
   const RunResult r = RunCli("selfplay --frames 1 --seed 4 --json --max-simulations 100 --budget-ms 30000 --samples 8 --records " + records);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   Struct json;

@@ -177,7 +177,7 @@ TEST(CliJsonInputTest, AShotFilesSyntaxErrorIsGivenByLineAndColumn) {
 
 // The load test's folder of tables is read the same way.
 TEST(CliJsonInputTest, AFolderOfTablesIsReadTheSameWay) {
-  const std::string dir = testing::TempDir() + "json_input_tables_" + std::to_string(getpid());
+  const std::string dir = cli_support::TempPath("json_input_tables");
   ASSERT_EQ(system(("rm -rf " + dir + " && mkdir -p " + dir).c_str()), 0);
   std::ofstream(dir + "/a.json") << R"({"balls": [
       {"id": "cue", "kind": "Cue", "position": {"x": 0.9, "y": 0.6}},

@@ -102,7 +102,7 @@ TEST(LoadTestTest, SendsEveryCallAndChecksEveryAnswer) {
 // the run fails, and says how many calls ended with which status and why.
 TEST(LoadTestTest, ErrorsAreCountedByStatusCodeAndFailTheRun) {
   TestServer s;
-  const std::string dir = testing::TempDir() + "loadtest_errors_" + std::to_string(getpid());
+  const std::string dir = cli_support::TempPath("loadtest_errors");
   ASSERT_EQ(system(("mkdir -p " + dir).c_str()), 0);
   std::ofstream(dir + "/good.json") << kServerTable;
   std::ofstream(dir + "/overlap.json")
@@ -154,7 +154,7 @@ TEST(LoadTestTest, CountAndConcurrencyAreBounded) {
 
 TEST(LoadTestTest, TakesTablesFromAFolder) {
   TestServer s;
-  const std::string dir = testing::TempDir() + "loadtest_tables_" + std::to_string(getpid());
+  const std::string dir = cli_support::TempPath("loadtest_tables");
   // A fresh folder: one left by an earlier run with the same process id holds its
   // broken c.json.
   ASSERT_EQ(system(("rm -rf " + dir + " && mkdir -p " + dir).c_str()), 0);
@@ -215,7 +215,7 @@ TEST(PlanServerTest, PrintsWhatTheLocalCommandPrints) {
   EXPECT_TRUE(Mentions(remote.out, "#1  red-1 into top-right")) << remote.out;
   EXPECT_EQ(WithoutWorkLine(remote.out), WithoutWorkLine(local.out));
   // JSON: the same shots; and an SVG of them.
-  const std::string svg = testing::TempDir() + "plan_remote_" + std::to_string(getpid()) + ".svg";
+  const std::string svg = cli_support::TempPath("plan_remote.svg");
   const RunResult local_json = RunCli(std::string(kPlanFlags) + " --json");
   const RunResult remote_json = RunCli(std::string(kPlanFlags) + " --json --svg " + svg + " --server " + s.target);
   ASSERT_EQ(remote_json.exit_code, 0) << remote_json.err;

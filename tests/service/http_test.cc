@@ -498,7 +498,7 @@ TEST(ConnectTest, EnvelopesTimeoutsAndCodes) {
 class HttpTlsTest : public HttpTest {
  protected:
   static void SetUpTestSuite() {
-    dir_ = testing::TempDir() + "snooker_http_certs_" + std::to_string(getpid());
+    dir_ = cli_support::TempPath("snooker_http_certs");
     const std::string cmd = std::string(SNOOKER_DEV_CERTS) + " " + dir_ + " >/dev/null";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
   }

@@ -34,8 +34,8 @@ constexpr int kConcurrency = 8;
 // answer on stdout), SIGTERM to the server; then "exits: LOADTEST SERVER".
 RunResult OneFreshRun(const FreshRun& run, int index) {
   const std::string cli = SNOOKER_CLI_PATH;
-  const std::string dir = testing::TempDir() + "loadtest_fresh_" + std::to_string(getpid()) + "_" +
-                          run.method + "_" + std::to_string(index);
+  const std::string dir =
+      cli_support::TempPath(std::string("loadtest_fresh_") + run.method + "_" + std::to_string(index));
   return RunShell(
       "rm -rf " + dir + " && mkdir -p " + dir + " && "
       "timeout -s KILL 120 " + cli + " serve --address 127.0.0.1:0 >" + dir + "/serve.out 2>" + dir +

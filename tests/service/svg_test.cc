@@ -154,7 +154,7 @@ std::string PageY(double y) {
 class PlanPictureTest : public testing::Test {
  protected:
   static void SetUpTestSuite() {
-    path_ = new std::string(testing::TempDir() + "plan_picture_" + std::to_string(getpid()) + ".svg");
+    path_ = new std::string(cli_support::TempPath("plan_picture.svg"));
     const RunResult r = RunCli("plan --table builtin:black --shots 5 --max-simulations 400 --samples 8 "
                                "--budget-ms 30000 --json --svg " + *path_);
     ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -295,7 +295,7 @@ TEST_F(PlanPictureTest, EveryPathReadsOnTheCloth) { ExpectPathsReadOnTheCloth(*s
 TEST(PlanPictureNoShotTest, TheTableItsBallsAndWhy) {
   const std::string table = cli_support::TempFile("picture_alone.json", R"({"balls": [
     {"id": "cue", "kind": "CUE", "position": {"x": 0.9, "y": 0.6}}]})");
-  const std::string svg = testing::TempDir() + "picture_none_" + std::to_string(getpid()) + ".svg";
+  const std::string svg = cli_support::TempPath("picture_none.svg");
   const RunResult r = RunCli("plan --table " + table + " --json --svg " + svg + " --max-simulations 50");
   const RunResult without = RunCli("plan --table " + table + " --json --max-simulations 50");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -318,7 +318,7 @@ TEST(PlanPictureNoShotTest, TheTableItsBallsAndWhy) {
 // A safety's leave is the opponent's: the panel, the text and the ring's label say
 // so, with the position value and ball the JSON gives.
 TEST(PlanPictureSafetyTest, ASafetyLeavesTheOpponentsPosition) {
-  const std::string svg = testing::TempDir() + "picture_safety_" + std::to_string(getpid()) + ".svg";
+  const std::string svg = cli_support::TempPath("picture_safety.svg");
   const std::string flags = " --table builtin:red --kinds SAFETY --shots 1 --max-simulations 600 --budget-ms 30000";
   const RunResult r = RunCli("plan --json --svg " + svg + flags);
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -350,7 +350,7 @@ TEST(PlanPictureSafetyTest, ASafetyLeavesTheOpponentsPosition) {
 // A plan that fails (no pink on the table) keeps its exit status and message, and
 // still draws the table with the message.
 TEST(PlanPictureNoShotTest, AFailedPlanIsDrawnWithItsMessage) {
-  const std::string svg = testing::TempDir() + "picture_failed_" + std::to_string(getpid()) + ".svg";
+  const std::string svg = cli_support::TempPath("picture_failed.svg");
   const RunResult r = RunCli("plan --table builtin:red --on PINK --max-simulations 50 --svg " + svg);
   const RunResult without = RunCli("plan --table builtin:red --on PINK --max-simulations 50");
   EXPECT_NE(r.exit_code, 0);

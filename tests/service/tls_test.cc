@@ -55,7 +55,7 @@ std::string Read(const std::string& path) {
 class TlsTest : public testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = testing::TempDir() + "snooker_certs_" + std::to_string(getpid());
+    dir_ = cli_support::TempPath("snooker_certs");
     const std::string cmd = std::string(SNOOKER_DEV_CERTS) + " " + dir_ + " >/dev/null";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
   }

@@ -20,12 +20,17 @@ struct RunResult {
   std::string out, err;
 };
 
+/// A path named `name` in the test temp folder, this process's own (ctest runs test
+/// cases in parallel processes).
+inline std::string TempPath(const std::string& name) {
+  return testing::TempDir() + std::to_string(getpid()) + "_" + name;
+}
+
 /// Runs `command` with /bin/sh; stdout and stderr captured apart.
 inline RunResult RunShell(const std::string& command) {
-  // Unique per process and call: ctest runs test cases in parallel processes.
+  // Unique per process and call.
   static int calls = 0;
-  const std::string err_file = testing::TempDir() + "snooker_cli_stderr_" +
-                               std::to_string(getpid()) + "_" + std::to_string(++calls) + ".txt";
+  const std::string err_file = TempPath("snooker_cli_stderr_" + std::to_string(++calls) + ".txt");
   const std::string cmd = command + " 2>" + err_file;
   RunResult r;
   FILE* p = popen(cmd.c_str(), "r");
@@ -53,12 +58,6 @@ inline RunResult RunCli(const std::string& args) {
 inline std::string kWaitForPort(const std::string& serve_out) {
   return "for i in $(seq 200); do grep -q 'on port' " + serve_out + " 2>/dev/null && break; "
          "sleep 0.1; done; port=$(grep -o 'port [0-9]*' " + serve_out + " | cut -d' ' -f2); ";
-}
-
-/// A path named `name` in the test temp folder, this process's own (ctest runs test
-/// cases in parallel processes).
-inline std::string TempPath(const std::string& name) {
-  return testing::TempDir() + std::to_string(getpid()) + "_" + name;
 }
 
 /// Writes `text` to a fresh file in the test temp folder and returns its path.
