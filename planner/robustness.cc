@@ -142,6 +142,10 @@ SampleWorth HandedOver(double score, const Outlook& o) {
 
 SampleWorth MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std::span<const Vec2> finals,
                             const PotContext& after_ctx, const SearchSettings& settings, LeaveScratch* scratch) {
+  if (scratch == nullptr) {  // buffers of its own, cleared only here: 25 kB, most of it the line cache
+    LeaveScratch own;
+    return MonteCarloScore(setup, out, finals, after_ctx, settings, &own);
+  }
   const TableState& table = *setup.table;
   if (out.success && setup.kind == ShotKind::kPot) {
     return SampleWorth{ScoreLeave(table, setup.on, setup.object, finals, out.potted, 1.0, after_ctx, settings, scratch).score};
@@ -155,8 +159,7 @@ SampleWorth MonteCarloScore(const ShotSetup& setup, const ShotOutcome& out, std:
       named >= 0 ? std::optional<BallKind>(table.balls[static_cast<size_t>(named)].kind) : std::nullopt;
   const int penalty = FoulPenalty(table, setup.on, nominated, out.first_hit, out.potted);
   // The opponent plays the table left, from the D when the cue ball went down.
-  LeaveScratch own;
-  LeaveScratch& buf = scratch != nullptr ? *scratch : own;
+  LeaveScratch& buf = *scratch;
   ApplyShotInto(table, setup.on, finals, out.potted, true, *after_ctx.table, &buf.after, nullptr);
   const TableState& after = buf.after;
   if (const auto opponent_on = OpeningBallOn(after)) {

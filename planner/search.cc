@@ -606,8 +606,11 @@ PositionValue MeanOverSpread(TableState& after, int cue, BallOn next_on, const V
 Leave ScoreLeave(const TableState& table, BallOn on, int object, std::span<const Vec2> finals,
                  std::span<const int> potted, double pot_probability, const PotContext& after_ctx,
                  const SearchSettings& settings, LeaveScratch* scratch, const Vec2& cue_spread) {
-  LeaveScratch own;
-  LeaveScratch& buf = TableLeft(table, on, finals, potted, after_ctx, scratch != nullptr ? *scratch : own);
+  if (scratch == nullptr) {  // buffers of its own, cleared only here: 25 kB, most of it the line cache
+    LeaveScratch own;
+    return ScoreLeave(table, on, object, finals, potted, pot_probability, after_ctx, settings, &own, cue_spread);
+  }
+  LeaveScratch& buf = TableLeft(table, on, finals, potted, after_ctx, *scratch);
   TableState& after = buf.after;
   const std::vector<int>& origin = buf.origin;
   const BallKind object_kind = table.balls[static_cast<size_t>(object)].kind;
@@ -642,8 +645,11 @@ Outlook OpponentOutlook(const TableState& after, BallOn on, const PotContext& af
 Leave ScoreSafety(const TableState& table, BallOn on, int first_hit, std::span<const Vec2> finals,
                   std::span<const int> potted, const PotContext& after_ctx, const SearchSettings& settings,
                   LeaveScratch* scratch) {
-  LeaveScratch own;
-  LeaveScratch& work = scratch != nullptr ? *scratch : own;
+  if (scratch == nullptr) {  // as ScoreLeave
+    LeaveScratch own;
+    return ScoreSafety(table, on, first_hit, finals, potted, after_ctx, settings, &own);
+  }
+  LeaveScratch& work = *scratch;
   const LeaveScratch& buf = TableLeft(table, on, finals, potted, after_ctx, work);
   const TableState& after = buf.after;
   const std::vector<int>& origin = buf.origin;
