@@ -360,6 +360,12 @@ class ConnectionThreads : public httplib::TaskQueue {
   WorkerPool pool_;
 };
 
+// The page's file a GET of `path` serves ("/" is index.html), or nullptr.
+const WebFile* WebFileAt(std::string_view path) {
+  if (path == "/") return FindWebFile("index.html");
+  return path.size() > 1 && path.find('/', 1) == std::string_view::npos ? FindWebFile(path.substr(1)) : nullptr;
+}
+
 }  // namespace
 
 void HttpServer::Impl::Configure() {
@@ -413,8 +419,7 @@ void HttpServer::Impl::OnGet(const httplib::Request& req, httplib::Response& res
     return;
   }
   if (req.path.starts_with(connect::kServicePath)) return ReplyNotAllowed(res, "POST, OPTIONS", true);
-  const std::string_view name = req.path == "/" ? std::string_view("index.html") : std::string_view(req.path).substr(1);
-  const WebFile* file = name.find('/') == std::string_view::npos ? FindWebFile(name) : nullptr;
+  const WebFile* file = WebFileAt(req.path);
   if (file == nullptr) return ReplyText(res, 404, "not found");
   res.status = 200;
   res.set_content(std::string(file->bytes), std::string(file->content_type));
@@ -439,9 +444,7 @@ void HttpServer::Impl::OnBody(const httplib::Request& req, httplib::Response& re
   const ApiStatus read =
       ReadBody(req, res, reader, limits::kMaxRequestBytes + connect::kEnvelopePrefixBytes, &body);
   if (!req.path.starts_with(connect::kServicePath)) {
-    const std::string_view name = std::string_view(req.path).substr(1);
-    const bool known =
-        req.path == "/" || req.path == "/healthz" || req.path == "/metrics" || FindWebFile(name) != nullptr;
+    const bool known = req.path == "/healthz" || req.path == "/metrics" || WebFileAt(req.path) != nullptr;
     return known ? ReplyNotAllowed(res, "GET, HEAD, OPTIONS", false) : ReplyText(res, 404, "not found");
   }
   if (req.method != "POST") return ReplyNotAllowed(res, "POST, OPTIONS", true);

@@ -419,6 +419,19 @@ TEST_F(HttpTest, ThePageTheHealthCheckAndNoCorsByDefault) {
   res = Client().Get("/no-such-file.js");
   ASSERT_TRUE(res);
   EXPECT_EQ(res->status, 404);
+  res = Client().Get("/nested/index.html");  // the page's files are all at the top
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 404);
+  // What GET serves is refused other ways with what it allows; anything else is not there.
+  for (const std::string path : {"/", "/index.html", "/healthz", "/metrics"}) {
+    res = Client().Post(path.c_str(), "", "text/plain");
+    ASSERT_TRUE(res) << path;
+    EXPECT_EQ(res->status, 405) << path;
+    EXPECT_EQ(res->get_header_value("Allow"), "GET, HEAD, OPTIONS") << path;
+  }
+  res = Client().Post("/no-such-file.js", "", "text/plain");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 404);
   res = Client().Get("/healthz");
   ASSERT_TRUE(res);
   EXPECT_EQ(res->status, 200);
