@@ -130,7 +130,7 @@ TEST(CliMatchTest, TheSameSeedPlaysTheSameMatch) {
 // a pot; a path that cannot be written fails before
 // any frame is played.
 TEST(CliMatchTest, TheStrokeLogHasALinePerStroke) {
-  const std::string path = testing::TempDir() + "match_strokes.jsonl";
+  const std::string path = cli_support::TempPath("match_strokes.jsonl");
   const RunResult r = RunCli(std::string(kShortMatch) + " --strokes " + path);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   Struct json;
@@ -240,7 +240,7 @@ TEST_P(CliMatchReplayTest, AStrokeTableReplaysTheTurnThroughSnookerPlan) {
       " --noise-heading-deg 0.02 --noise-speed 0.01 --noise-spin 2 --noise-aim-deg 0 --noise-cue-speed 0"
       " --noise-tip-mm 0 --noise-elevation-deg 0 --noise-position-mm 0.2";
   const std::string caps = " --max-simulations 60 --samples 8 --budget-ms 30000";
-  const std::string path = testing::TempDir() + "match_stroke_tables_" + c.name + ".jsonl";
+  const std::string path = cli_support::TempPath(std::string("match_stroke_tables_") + c.name + ".jsonl");
   const RunResult r = RunCli("match --frames 1 --seed " + std::to_string(c.seed) + " --max-shots 10 " + c.players + " --strokes " +
                              path + " --stroke-tables" + noise + caps);
   ASSERT_EQ(r.exit_code, 0) << r.err;

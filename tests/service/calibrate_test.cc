@@ -512,8 +512,8 @@ ThrowFiles WriteThrowFiles() {
 }
 
 TEST(RecordCommandTest, TheSameArgumentsGiveTheSameFileAndAnotherSeedAnother) {
-  const std::string a = testing::TempDir() + "record_a.json", b = testing::TempDir() + "record_b.json",
-                    c = testing::TempDir() + "record_c.json";
+  const std::string a = cli_support::TempPath("record_a.json"), b = cli_support::TempPath("record_b.json"),
+                    c = cli_support::TempPath("record_c.json");
   const std::string args = "record --world default --shots 3 --vision-noise-mm 1 --seed ";
   const cli_support::RunResult ra = RunCli(args + "5 --out " + a);
   ASSERT_EQ(ra.exit_code, 0) << ra.err;
@@ -530,7 +530,7 @@ TEST(RecordCommandTest, TheSameArgumentsGiveTheSameFileAndAnotherSeedAnother) {
 }
 
 TEST(RecordCommandTest, ABadWorldOrNoiseIsAUsageErrorNamingIt) {
-  const std::string out = testing::TempDir() + "record_bad.json";
+  const std::string out = cli_support::TempPath("record_bad.json");
   const std::string bad = TempFile("bad_world.json", R"({"cloth": {"muS": 2}})");
   cli_support::RunResult r = RunCli("record --world " + bad + " --shots 1 --seed 1 --out " + out);
   EXPECT_EQ(r.exit_code, 2);
@@ -545,7 +545,7 @@ TEST(CalibrateCommandTest, MergesDataFilesAndPrintsTheContractedJson) {
   const ThrowFiles files = WriteThrowFiles();
   const cli_support::RunResult whole = RunCli("calibrate --data " + files.whole + " --fit ball-ball --json");
   ASSERT_EQ(whole.exit_code, 0) << whole.err;
-  const std::string model = testing::TempDir() + "calibrated_throw_model.json";
+  const std::string model = cli_support::TempPath("calibrated_throw_model.json");
   const cli_support::RunResult split =
       RunCli("calibrate --data " + files.first + " " + files.second + " --fit ball-ball --json --out " + model);
   ASSERT_EQ(split.exit_code, 0) << split.err;
