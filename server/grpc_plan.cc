@@ -193,7 +193,6 @@ std::shared_ptr<ShotPlannerService::PlanCall> ShotPlannerService::AdmitPlan(
   if (plans_.fetch_add(1) >= options_.max_plans) {
     plans_.fetch_sub(1);
     *refusal = TooManyPlans();
-    return nullptr;
   }
   return call;
 }
@@ -240,9 +239,9 @@ grpc::ServerUnaryReactor* ShotPlannerService::Plan(grpc::CallbackServerContext* 
   try {
     ApiStatus refusal;
     std::shared_ptr<PlanCall> call = AdmitPlan("Plan", context, request, &refusal);
-    if (call == nullptr) {
+    if (!refusal.ok()) {
       grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
-      Record("Plan", context->peer(), Clock::now(), refusal, request->Length(), 0, {});
+      Record("Plan", call->peer, call->request_id, call->arrival, refusal, call->request_bytes, 0, {});
       reactor->Finish(ToGrpcStatus(refusal));
       return reactor;
     }
@@ -260,13 +259,13 @@ grpc::ServerUnaryReactor* ShotPlannerService::Plan(grpc::CallbackServerContext* 
       });
       running_.fetch_sub(1);
       plans_.fetch_sub(1);
-      Record(call->method, call->peer, call->arrival, status, call->request_bytes, response_bytes, work);
+      Record(call->method, call->peer, call->request_id, call->arrival, status, call->request_bytes, response_bytes, work);
       reactor->Finish(ToGrpcStatus(status));  // the last use of the reactor and the buffers
     };
     if (!pool_.TrySubmit(job)) {
       plans_.fetch_sub(1);
       const ApiStatus busy = Busy();
-      Record("Plan", call->peer, call->arrival, busy, call->request_bytes, 0, {});
+      Record("Plan", call->peer, call->request_id, call->arrival, busy, call->request_bytes, 0, {});
       reactor->Finish(ToGrpcStatus(busy));
     }
     return reactor;
@@ -287,11 +286,17 @@ grpc::ServerWriteReactor<grpc::ByteBuffer>* ShotPlannerService::PlanStream(
   } catch (const std::exception& e) {
     refusal = service_detail::CannotTake(e);
   }
-  if (call == nullptr) {
-    // A reactor that only finishes (it needs a PlanCall for its OnCancel).
-    auto placeholder = std::make_shared<PlanCall>();
-    auto* reactor = new PlanStreamReactor(this, placeholder);
-    Record("PlanStream", context->peer(), Clock::now(), refusal, request->Length(), 0, {});
+  if (!refusal.ok()) {
+    // A reactor that only finishes. It needs a PlanCall for its OnCancel: the call's,
+    // or one of its own when not even that could be made.
+    if (call == nullptr) {
+      call = std::make_shared<PlanCall>();
+      call->peer = context->peer();
+      call->arrival = Clock::now();
+      call->request_bytes = request->Length();
+    }
+    auto* reactor = new PlanStreamReactor(this, call);
+    Record("PlanStream", call->peer, call->request_id, call->arrival, refusal, call->request_bytes, 0, {});
     reactor->Complete(refusal, std::nullopt);
     return reactor;
   }
@@ -314,13 +319,13 @@ grpc::ServerWriteReactor<grpc::ByteBuffer>* ShotPlannerService::PlanStream(
     });
     running_.fetch_sub(1);
     plans_.fetch_sub(1);
-    Record(call->method, call->peer, call->arrival, status, call->request_bytes, response_bytes, work);
+    Record(call->method, call->peer, call->request_id, call->arrival, status, call->request_bytes, response_bytes, work);
     reactor->Complete(status, status.ok() ? std::move(final_bytes) : std::nullopt);
   };
   if (!pool_.TrySubmit(job)) {
     plans_.fetch_sub(1);
     const ApiStatus busy = Busy();
-    Record("PlanStream", call->peer, call->arrival, busy, call->request_bytes, 0, {});
+    Record("PlanStream", call->peer, call->request_id, call->arrival, busy, call->request_bytes, 0, {});
     reactor->Complete(busy, std::nullopt);
   }
   return reactor;

@@ -12,6 +12,7 @@
 #include "server/convert.h"
 #include "server/decode.h"
 #include "server/log_line.h"
+#include "server/request_id.h"
 #include "server/service_detail.h"
 
 namespace snooker::server {
@@ -124,6 +125,11 @@ void Arrived(grpc::CallbackServerContext* context, const grpc::ByteBuffer* reque
   info->context = context;
   info->request = request;
   info->peer = context->peer();
+  const auto& metadata = context->client_metadata();
+  const auto given = metadata.find(grpc::string_ref(kRequestIdMetadata.data(), kRequestIdMetadata.size()));
+  info->request_id =
+      RequestIdFor(given == metadata.end() ? std::string_view() : std::string_view(given->second.data(), given->second.size()));
+  context->AddInitialMetadata(std::string(kRequestIdMetadata), info->request_id);
   info->arrival = Clock::now();
   info->client_deadline = context->deadline();
   info->deadline = CallDeadline(info->client_deadline, info->arrival, max_call);
@@ -316,7 +322,7 @@ ApiStatus ShotPlannerService::Busy() const {
 void ShotPlannerService::Finish(Call& call, const ApiStatus& status, std::size_t response_bytes,
                                 const Work& work) {
   // Counted and logged first: a client that has its answer sees it counted.
-  Record(call.method->name, call.peer, call.arrival, status, call.request_bytes, response_bytes, work);
+  Record(call.method->name, call.peer, call.request_id, call.arrival, status, call.request_bytes, response_bytes, work);
   // The context and buffers belong to gRPC once Finish is called: nothing of them
   // is touched after it.
   call.reactor->Finish(ToGrpcStatus(status));
@@ -332,7 +338,8 @@ void ShotPlannerService::Count(const ApiStatus& status) noexcept {
   finished_.fetch_add(1);
 }
 
-void ShotPlannerService::Record(const char* method, const std::string& peer, Clock::time_point arrival,
+void ShotPlannerService::Record(const char* method, const std::string& peer, const std::string& request_id,
+                                Clock::time_point arrival,
                                 const ApiStatus& status, std::size_t request_bytes,
                                 std::size_t response_bytes, const Work& work, const std::string& extra) noexcept {
   const double latency_ms = std::chrono::duration<double, std::milli>(Clock::now() - arrival).count();
@@ -343,7 +350,8 @@ void ShotPlannerService::Record(const char* method, const std::string& peer, Clo
   if (options_.log == nullptr) return;
   // The call is answered after this, whatever becomes of its line.
   const bool written = WriteLogLine(*options_.log, log_mu_, [&](std::ostream& line) {
-    line << "snooker: call method=" << method << " peer=" << peer << " status=" << ToString(status.code)
+    line << "snooker: call method=" << method << " peer=" << peer << " request_id=" << request_id
+         << " status=" << ToString(status.code)
          << " latency_ms=" << latency_ms << " simulations=" << work.simulations
          << " request_bytes=" << request_bytes << " response_bytes=" << response_bytes << extra << "\n";
   });

@@ -10,8 +10,8 @@
 //    whichever is first; it and the client's cancellation (ServerContext::
 //    IsCancelled) are checked before a call starts and inside long runs
 //    (physics::Interrupt). Stopped calls answer DEADLINE_EXCEEDED or CANCELLED.
-//  * One log line per call (method, peer, status, latency, simulations, bytes) and
-//    counters.
+//  * One log line per call (method, peer, request id, status, latency, simulations,
+//    bytes) and counters; the request id (request_id.h) also goes back to the client.
 //  * Plans (Plan, PlanStream; grpc_plan.cc) run on the same workers, at most
 //    max_plans in the server at once (more are refused with RESOURCE_EXHAUSTED at
 //    once). Their reactors turn gRPC's cancellation (the client's, its deadline's, a
@@ -142,6 +142,7 @@ class ShotPlannerService final : public ShotPlannerRawService {
   struct TransportCall {
     std::string method;  ///< the procedure ("Plan"), for the log
     std::string peer;    ///< who sent it ("ipv4:127.0.0.1:51000"), for the log
+    std::string request_id;  ///< its name in the log and the answer (request_id.h)
     std::chrono::steady_clock::time_point arrival;
     std::chrono::steady_clock::time_point deadline;  ///< when it must end (DeadlineOf)
     std::size_t request_bytes = 0;
@@ -208,11 +209,12 @@ class ShotPlannerService final : public ShotPlannerRawService {
   void Count(const ApiStatus& status) noexcept;
   /// Counts a finished call and writes its log line (a line the log refuses is
   /// counted in log_lines_lost, never thrown: the call's answer comes after this).
-  void Record(const char* method, const std::string& peer, std::chrono::steady_clock::time_point arrival,
+  void Record(const char* method, const std::string& peer, const std::string& request_id,
+              std::chrono::steady_clock::time_point arrival,
               const ApiStatus& status, std::size_t request_bytes, std::size_t response_bytes,
               const Work& work, const std::string& extra = "") noexcept;
-  /// Plans: a new PlanCall for a call that arrived (nullptr with `refusal` set when
-  /// max_plans are in the server), the plan itself on a worker, and its status.
+  /// Plans: a new PlanCall for a call that arrived (with `refusal` set when max_plans
+  /// are in the server), the plan itself on a worker, and its status.
   std::shared_ptr<PlanCall> AdmitPlan(const char* method, grpc::CallbackServerContext* context,
                                       const grpc::ByteBuffer* request, ApiStatus* refusal);
   ApiStatus RunPlan(PlanCall& call, v1::PlanResponse* response, Work* work,

@@ -21,6 +21,7 @@
 #include "server/limits.h"
 #include "server/log_line.h"
 #include "server/metrics.h"
+#include "server/request_id.h"
 #include "server/server.h"
 #include "server/web_files.h"
 #include "server/worker_pool.h"
@@ -38,6 +39,8 @@ using connect::Codec;
 // whether its call wrote its own log line (the service's, as a gRPC call's).
 thread_local Clock::time_point t_arrival;
 thread_local bool t_logged = false;
+// Its request id (request_id.h), empty before the router has seen it.
+thread_local std::string t_request_id;
 
 // Paths longer than this are refused before routing (the router's regular
 // expressions then only see short ones).
@@ -383,11 +386,16 @@ void HttpServer::Impl::Configure() {
   s.set_read_timeout(limits::kHttpIoTimeoutSeconds);
   s.set_write_timeout(limits::kHttpIoTimeoutSeconds);
   httplib::Headers headers{{"X-Content-Type-Options", "nosniff"}};
-  if (!cors_origin.empty()) headers.emplace("Access-Control-Allow-Origin", cors_origin);
+  if (!cors_origin.empty()) {
+    headers.emplace("Access-Control-Allow-Origin", cors_origin);
+    headers.emplace("Access-Control-Expose-Headers", std::string(kRequestIdHeader));
+  }
   s.set_default_headers(headers);
   s.set_pre_routing_handler([](const httplib::Request& req, httplib::Response& res) {
     t_arrival = Clock::now();
     t_logged = false;
+    t_request_id = RequestIdFor(req.get_header_value(std::string(kRequestIdHeader).c_str()));
+    res.set_header(std::string(kRequestIdHeader), t_request_id);
     if (req.path.size() <= kMaxPathBytes) return httplib::Server::HandlerResponse::Unhandled;
     res.set_header("Connection", "close");
     ReplyText(res, 404, "not found");
@@ -434,7 +442,8 @@ void HttpServer::Impl::OnOptions(const httplib::Request& req, httplib::Response&
   if (!rpc || cors_origin.empty()) return;
   // A preflight: what the page of the origin (named in every answer) may send.
   res.set_header("Access-Control-Allow-Methods", "POST");
-  res.set_header("Access-Control-Allow-Headers", "Content-Type, Connect-Protocol-Version, Connect-Timeout-Ms");
+  res.set_header("Access-Control-Allow-Headers",
+                 "Content-Type, Connect-Protocol-Version, Connect-Timeout-Ms, " + std::string(kRequestIdHeader));
   res.set_header("Access-Control-Max-Age", "7200");
 }
 
@@ -464,6 +473,7 @@ std::shared_ptr<ShotPlannerService::TransportCall> HttpServer::Impl::NewCall(
   auto call = std::make_shared<ShotPlannerService::TransportCall>();
   call->method = std::string(method);
   call->peer = PeerOf(req);
+  call->request_id = t_request_id;
   call->arrival = t_arrival;
   call->deadline = service->DeadlineOf(t_arrival, timeout);
   call->request_bytes = request_bytes;
@@ -574,10 +584,13 @@ void HttpServer::Impl::Stream(const httplib::Request& req, httplib::Response& re
 
 void HttpServer::Impl::Log(const httplib::Request& req, const httplib::Response& res) {
   const Clock::time_point arrival = std::exchange(t_arrival, Clock::time_point{});
+  const std::string request_id = std::exchange(t_request_id, std::string());
   if (std::exchange(t_logged, false) || log == nullptr) return;
   WriteLogLine(*log, log_mu, [&](std::ostream& line) {
     line << "snooker: http method=" << Printable(req.method, 16) << " path=" << Printable(req.path)
-         << " peer=" << PeerOf(req) << " status=" << res.status;
+         << " peer=" << PeerOf(req);
+    if (!request_id.empty()) line << " request_id=" << request_id;
+    line << " status=" << res.status;
     // A request that did not parse never reached the router, which notes the arrival.
     if (arrival != Clock::time_point{}) {
       line << " latency_ms=" << std::chrono::duration<double, std::milli>(Clock::now() - arrival).count();

@@ -34,12 +34,14 @@ struct CallInfo {
   grpc::CallbackServerContext* context = nullptr;
   const grpc::ByteBuffer* request = nullptr;
   std::string peer;
+  std::string request_id;  ///< the call's name in the log and the answer (request_id.h)
   std::chrono::steady_clock::time_point arrival;
   std::chrono::steady_clock::time_point deadline;
   std::chrono::system_clock::time_point client_deadline;
   std::size_t request_bytes = 0;
 };
-/// Fills `info` for a call that just arrived.
+/// Fills `info` for a call that just arrived, and names it in the answer's initial
+/// metadata with its request id (the client's, or a new one).
 void Arrived(grpc::CallbackServerContext* context, const grpc::ByteBuffer* request,
              std::chrono::milliseconds max_call, CallInfo* info);
 

@@ -30,7 +30,7 @@ void ShotPlannerService::Submit(std::shared_ptr<TransportCall> call, TransportWo
                                 std::function<void(const ApiStatus&)> done) {
   received_.fetch_add(1);
   auto refuse = [&](const ApiStatus& status) {
-    Record(call->method.c_str(), call->peer, call->arrival, status, call->request_bytes, 0, {},
+    Record(call->method.c_str(), call->peer, call->request_id, call->arrival, status, call->request_bytes, 0, {},
            call->log_extra);
     done(status);
   };
@@ -66,7 +66,7 @@ void ShotPlannerService::Submit(std::shared_ptr<TransportCall> call, TransportWo
       }
       running_.fetch_sub(1);
       if (call->is_plan) plans_.fetch_sub(1);
-      Record(call->method.c_str(), call->peer, call->arrival, status, call->request_bytes,
+      Record(call->method.c_str(), call->peer, call->request_id, call->arrival, status, call->request_bytes,
              status.ok() ? response_bytes : 0, did, call->log_extra);
       done(status);
     };

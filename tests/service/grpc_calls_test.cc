@@ -22,6 +22,7 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <regex>
 #include <string>
 #include <thread>
 #include <tuple>
@@ -293,6 +294,61 @@ TEST_F(CallsTest, EveryCallIsLoggedOnOneLine) {
   EXPECT_TRUE(Mentions(log, "method=Simulate")) << log;
   EXPECT_TRUE(Mentions(log, "status=INVALID_ARGUMENT")) << log;
   EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 2) << log;
+}
+
+// A call goes by the client's request id, or one the server makes: in its log line
+// and in the answer's initial metadata, for calls answered on a gRPC thread and on a
+// worker, OK or not.
+TEST_F(CallsTest, EachCallIsNamedByItsRequestIdInTheLogAndTheAnswer) {
+  StartServer({});
+  auto id_sent_back = [](const grpc::ClientContext& ctx) {
+    const auto& md = ctx.GetServerInitialMetadata();
+    const auto it = md.find("x-request-id");
+    return it == md.end() ? std::string("(none)") : std::string(it->second.data(), it->second.size());
+  };
+  grpc::ClientContext given;
+  given.AddMetadata("x-request-id", "robot-3:shot-412");
+  v1::CollideResponse collide;
+  ASSERT_TRUE(stub_->Collide(&given, req::PaperCollide(), &collide).ok());
+  EXPECT_EQ(id_sent_back(given), "robot-3:shot-412");
+
+  grpc::ClientContext none;  // a refused call, without an id
+  v1::SimulateResponse simulate;
+  ASSERT_FALSE(stub_->Simulate(&none, v1::SimulateRequest(), &simulate).ok());
+  const std::string made = id_sent_back(none);
+  EXPECT_TRUE(std::regex_match(made, std::regex("[0-9a-f]{16}"))) << made;
+
+  grpc::ClientContext unprintable;  // an id the log could not carry is replaced
+  unprintable.AddMetadata("x-request-id", "shot 412");
+  v1::GetModelResponse model;
+  ASSERT_TRUE(stub_->GetModel(&unprintable, v1::GetModelRequest(), &model).ok());
+  const std::string replaced = id_sent_back(unprintable);
+  EXPECT_TRUE(std::regex_match(replaced, std::regex("[0-9a-f]{16}"))) << replaced;
+  EXPECT_NE(replaced, made);
+
+  grpc::ClientContext plan;  // the plans' own path
+  plan.AddMetadata("x-request-id", "plan-1");
+  v1::PlanResponse planned;
+  EXPECT_EQ(stub_->Plan(&plan, v1::PlanRequest(), &planned).error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(id_sent_back(plan), "plan-1");
+  grpc::ClientContext stream;
+  stream.AddMetadata("x-request-id", "stream-1");
+  auto reader = stub_->PlanStream(&stream, v1::PlanRequest());
+  while (reader->Read(&planned)) {
+  }
+  EXPECT_EQ(reader->Finish().error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(id_sent_back(stream), "stream-1");
+
+  WaitUntilIdle(Clock::now());
+  server_->Shutdown(milliseconds(0));
+  const std::string log = log_.str();
+  for (const char* line : {"method=Collide peer=ipv4:127.0.0.1:", "request_id=robot-3:shot-412 status=OK"}) {
+    EXPECT_TRUE(Mentions(log, line)) << log;
+  }
+  for (const std::string& id : {made, replaced, std::string("plan-1"), std::string("stream-1")}) {
+    EXPECT_TRUE(Mentions(log, "request_id=" + id + " status=")) << id << "\n" << log;
+  }
+  EXPECT_FALSE(Mentions(log, "shot 412")) << log;
 }
 
 // Shutdown lets calls in flight finish for its grace, then cancels the rest.

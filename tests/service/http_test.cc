@@ -21,6 +21,7 @@
 #include "cli/load_tables.h"
 #include "server/build_info.h"
 #include "server/connect.h"
+#include "server/request_id.h"
 #include "server/server.h"
 #include "server/web_files.h"
 #include "tests/service/requests.h"
@@ -447,6 +448,30 @@ TEST_F(HttpTest, ThePageTheHealthCheckAndNoCorsByDefault) {
   EXPECT_FALSE(res->has_header("Access-Control-Allow-Methods"));
 }
 
+// As over gRPC: a call goes by the client's X-Request-Id or one the server makes, in
+// its log line and in the answer's header; so does a request of the page.
+TEST_F(HttpTest, EachRequestIsNamedByItsRequestIdInTheLogAndTheAnswer) {
+  StartServer();
+  auto res = Call("GetModel", "{}", "application/json", {{"X-Request-Id", "trainer-9"}});
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 200);
+  EXPECT_EQ(res->get_header_value("X-Request-Id"), "trainer-9");
+  res = Call("Simulate", "{\"table\": 1}", "application/json", {{"x-request-id", "bad id"}});
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 400);
+  const std::string made = res->get_header_value("X-Request-Id");
+  EXPECT_TRUE(IsPrintableRequestId(made) && made.size() == 16 && made != "bad id") << made;
+  res = Client().Get("/healthz", {{"X-Request-Id", "probe-1"}});
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->get_header_value("X-Request-Id"), "probe-1");
+  const std::string log = Log();
+  EXPECT_TRUE(Mentions(log, "method=GetModel peer=ipv4:127.0.0.1:")) << log;
+  EXPECT_TRUE(Mentions(log, "request_id=trainer-9 status=OK")) << log;
+  EXPECT_TRUE(Mentions(log, "request_id=" + made + " status=INVALID_ARGUMENT")) << log;
+  EXPECT_TRUE(Mentions(log, "path=/healthz peer=ipv4:127.0.0.1:")) << log;
+  EXPECT_TRUE(Mentions(log, "request_id=probe-1 status=200")) << log;
+}
+
 TEST_F(HttpTest, CorsNamesTheOneOriginGiven) {
   ServerOptions options;
   options.cors_origin = "https://planner.example:8443";
@@ -464,6 +489,9 @@ TEST_F(HttpTest, CorsNamesTheOneOriginGiven) {
   EXPECT_EQ(res->get_header_value("Access-Control-Allow-Origin"), "https://planner.example:8443");
   EXPECT_EQ(res->get_header_value("Access-Control-Allow-Methods"), "POST");
   EXPECT_TRUE(Mentions(res->get_header_value("Access-Control-Allow-Headers"), "Connect-Timeout-Ms"));
+  // The page of that origin may send a request id and read the one it gets back.
+  EXPECT_TRUE(Mentions(res->get_header_value("Access-Control-Allow-Headers"), "X-Request-Id"));
+  EXPECT_EQ(res->get_header_value("Access-Control-Expose-Headers"), "X-Request-Id");
 
   // What is not one origin is refused.
   for (const char* bad : {"*", "planner.example", "https://planner.example/app", "https://a.example\r\nX: 1"}) {
