@@ -9,6 +9,7 @@
 #include "cli/commands.h"
 #include "cli/read_file.h"
 #include "server/limits.h"
+#include "server/request_id.h"
 
 namespace snooker::cli {
 
@@ -149,10 +150,16 @@ grpc::Status CheckHealth(const std::shared_ptr<grpc::Channel>& channel, const st
   return st;
 }
 
-int ReportCallError(const std::string& command, const std::string& target,
-                    const grpc::Status& status, std::ostream& err) {
+std::string NameCall(grpc::ClientContext* context) {
+  std::string id = server::NewRequestId();
+  context->AddMetadata(std::string(server::kRequestIdMetadata), id);
+  return id;
+}
+
+int ReportCallError(const std::string& command, const std::string& target, const grpc::Status& status,
+                    const std::string& request_id, std::ostream& err) {
   err << command << ": " << StatusCodeName(status.error_code()) << " from " << target << ": "
-      << status.error_message() << "\n";
+      << status.error_message() << " (request id " << request_id << ")\n";
   return status.error_code() == grpc::StatusCode::INVALID_ARGUMENT ? kExitUsage : kExitFailure;
 }
 

@@ -54,10 +54,15 @@ std::shared_ptr<grpc::Channel> MakeChannel(const ClientOptions& options, bool ow
 grpc::Status CheckHealth(const std::shared_ptr<grpc::Channel>& channel, const std::string& service,
                          std::chrono::milliseconds deadline, std::string* status);
 
-/// Prints a failed call as "<command>: <CODE>: <message>" and returns the exit code
-/// (kExitUsage for INVALID_ARGUMENT, as the local command; kExitFailure otherwise).
-int ReportCallError(const std::string& command, const std::string& target,
-                    const grpc::Status& status, std::ostream& err);
+/// Names a call for the server's log with a new request id (server/request_id.h) and
+/// returns it, for the command to name the call by too.
+std::string NameCall(grpc::ClientContext* context);
+
+/// Prints a failed call as "<command>: <CODE> from <target>: <message> (request id
+/// <id>)" and returns the exit code (kExitUsage for INVALID_ARGUMENT, as the local
+/// command; kExitFailure otherwise).
+int ReportCallError(const std::string& command, const std::string& target, const grpc::Status& status,
+                    const std::string& request_id, std::ostream& err);
 
 /// gRPC's name of a status code (the server's, server/grpc_service.h).
 using server::StatusCodeName;

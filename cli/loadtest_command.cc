@@ -314,8 +314,9 @@ int ReadServer(const std::shared_ptr<grpc::Channel>& channel, const ClientOption
   v1::GetModelResponse model;
   grpc::ClientContext context;
   context.set_deadline(std::chrono::system_clock::now() + client.deadline);
+  const std::string request_id = NameCall(&context);
   const grpc::Status st = v1::ShotPlanner::NewStub(channel)->GetModel(&context, {}, &model);
-  if (!st.ok()) return ReportCallError(kCommand, client.target, st, err);
+  if (!st.ok()) return ReportCallError(kCommand, client.target, st, request_id, err);
   expect->width = model.table().width_m();
   expect->length = model.table().length_m();
   expect->vision_tolerance_mm = model.service().vision_tolerance_mm();

@@ -417,9 +417,10 @@ int PlanOnServer(const PlanSettings& s, v1::PlanResponse* resp, std::ostream& ou
   auto stub = v1::ShotPlanner::NewStub(MakeChannel(s.client));
   grpc::ClientContext context;
   context.set_deadline(std::chrono::system_clock::now() + s.client.deadline);
+  const std::string request_id = NameCall(&context);
   if (!s.stream) {
     const grpc::Status st = stub->Plan(&context, req, resp);
-    return st.ok() ? kExitOk : ReportCallError("snooker plan", s.client.target, st, err);
+    return st.ok() ? kExitOk : ReportCallError("snooker plan", s.client.target, st, request_id, err);
   }
   auto reader = stub->PlanStream(&context, req);
   v1::PlanResponse message;
@@ -435,7 +436,7 @@ int PlanOnServer(const PlanSettings& s, v1::PlanResponse* resp, std::ostream& ou
     }
   }
   const grpc::Status st = reader->Finish();
-  if (!st.ok()) return ReportCallError("snooker plan", s.client.target, st, err);
+  if (!st.ok()) return ReportCallError("snooker plan", s.client.target, st, request_id, err);
   if (!final_seen) {
     err << "snooker plan: " << s.client.target << " ended the stream without a final answer\n";
     return kExitFailure;

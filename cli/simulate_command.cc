@@ -181,8 +181,9 @@ int RunSimulate(const std::vector<std::string>& argv, std::ostream& out, std::os
     auto stub = v1::ShotPlanner::NewStub(MakeChannel(client));
     grpc::ClientContext context;
     context.set_deadline(std::chrono::system_clock::now() + client.deadline);
+    const std::string request_id = NameCall(&context);
     const grpc::Status st = stub->Simulate(&context, req, &resp);
-    if (!st.ok()) return ReportCallError("snooker simulate", client.target, st, err);
+    if (!st.ok()) return ReportCallError("snooker simulate", client.target, st, request_id, err);
   } else {
     server::CallLimits limits;
     limits.vision_tolerance_mm = *vision;

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <fstream>
+#include <regex>
 #include <string>
 
 #include "cli/load_tables.h"
@@ -57,12 +58,18 @@ TEST(SimulateServerTest, TheServersErrorsExitAsTheLocalOnes) {
   EXPECT_TRUE(Mentions(bad.err, "snooker simulate: INVALID_ARGUMENT from " + s.target +
                                     ": shot.speed = -3"))
       << bad.err;
+  // The command names the call by the request id the server's log line has.
+  std::smatch id;
+  ASSERT_TRUE(std::regex_search(bad.err, id, std::regex("\\(request id ([0-9a-f]{16})\\)\n$"))) << bad.err;
+  server_support::WaitUntilAnswered(*s.server, 0, std::chrono::seconds(20));
+  EXPECT_TRUE(Mentions(s.log.str(), "request_id=" + id[1].str() + " status=INVALID_ARGUMENT")) << s.log.str();
   s.server->Shutdown(std::chrono::milliseconds(0));
   const RunResult gone = RunCli("simulate --server " + s.target + " --deadline-ms 3000 --table " +
                                 TempFile("remote_t2.json", kServerTable) + " --shot " +
                                 TempFile("remote_s2.json", kServerShot));
   EXPECT_EQ(gone.exit_code, 1);
   EXPECT_TRUE(Mentions(gone.err, "snooker simulate: UNAVAILABLE from ")) << gone.err;
+  EXPECT_TRUE(Mentions(gone.err, "(request id ")) << gone.err;  // its own, though no server saw it
 }
 
 google::protobuf::Struct ParseJson(const std::string& text) {
