@@ -39,23 +39,26 @@ const NOISE_PRESETS = {
 // ---------------------------------------------------------------------------
 // The Connect protocol (unary and server streaming, JSON).
 
+// `requestId`: the X-Request-Id the server named the call by (its log line has it).
 class ConnectError extends Error {
-  constructor(code, message) {
+  constructor(code, message, requestId = '') {
     super(message);
     this.name = 'ConnectError';
     this.code = code;
+    this.requestId = requestId || '';
   }
 }
 
-function errorOf(status, statusText, text) {
+function errorOf(response, text) {
+  const id = response.headers.get('X-Request-Id');
   let body = null;
   try { body = JSON.parse(text); } catch (_) { /* not JSON: said below */ }
   if (body && typeof body.message === 'string' && body.message) {
-    return new ConnectError(body.code || 'unknown', body.message);
+    return new ConnectError(body.code || 'unknown', body.message, id);
   }
-  if (body && typeof body.code === 'string') return new ConnectError(body.code, body.code.replace(/_/g, ' '));
+  if (body && typeof body.code === 'string') return new ConnectError(body.code, body.code.replace(/_/g, ' '), id);
   const tail = text ? ': ' + text.slice(0, 300) : '';
-  return new ConnectError('unknown', `the server answered HTTP ${status} ${statusText}${tail}`);
+  return new ConnectError('unknown', `the server answered HTTP ${response.status} ${response.statusText}${tail}`, id);
 }
 
 async function callUnary(method, request, signal) {
@@ -66,11 +69,12 @@ async function callUnary(method, request, signal) {
     signal,
   });
   const text = await response.text();
-  if (!response.ok) throw errorOf(response.status, response.statusText, text);
+  if (!response.ok) throw errorOf(response, text);
   try {
     return JSON.parse(text);
   } catch (_) {
-    throw new ConnectError('internal', `${method}'s answer is not JSON: ${text.slice(0, 200)}`);
+    throw new ConnectError('internal', `${method}'s answer is not JSON: ${text.slice(0, 200)}`,
+      response.headers.get('X-Request-Id'));
   }
 }
 
@@ -88,7 +92,8 @@ async function callStream(method, request, signal, onMessage) {
     body,
     signal,
   });
-  if (!response.ok) throw errorOf(response.status, response.statusText, await response.text());
+  if (!response.ok) throw errorOf(response, await response.text());
+  const id = response.headers.get('X-Request-Id');
   const reader = response.body.getReader();
   const decoder = new TextDecoder();
   let buffer = new Uint8Array(0);
@@ -106,18 +111,18 @@ async function callStream(method, request, signal, onMessage) {
       if (buffer.length < 5 + length) break;
       const text = decoder.decode(buffer.subarray(5, 5 + length));
       buffer = buffer.slice(5 + length);
-      if (flags & 1) throw new ConnectError('internal', 'the server sent a compressed message');
+      if (flags & 1) throw new ConnectError('internal', 'the server sent a compressed message', id);
       let message;
       try {
         message = JSON.parse(text);
       } catch (_) {
-        throw new ConnectError('internal', `${method} sent a message that is not JSON: ${text.slice(0, 200)}`);
+        throw new ConnectError('internal', `${method} sent a message that is not JSON: ${text.slice(0, 200)}`, id);
       }
       if (flags & 2) {  // end of stream
         reader.cancel().catch(() => {});
         if (message && message.error) {
           const e = message.error;
-          throw new ConnectError(e.code || 'unknown', e.message || (e.code || 'unknown error').replace(/_/g, ' '));
+          throw new ConnectError(e.code || 'unknown', e.message || (e.code || 'unknown error').replace(/_/g, ' '), id);
         }
         return;
       }
@@ -125,7 +130,7 @@ async function callStream(method, request, signal, onMessage) {
     }
     if (done) break;
   }
-  throw new ConnectError('unavailable', `${method}'s stream ended without its end message`);
+  throw new ConnectError('unavailable', `${method}'s stream ended without its end message`, id);
 }
 
 // ---------------------------------------------------------------------------
@@ -242,7 +247,9 @@ function clearError() {
 }
 
 function errorText(e) {
-  if (e instanceof ConnectError) return `${e.code.replace(/_/g, ' ')}: ${e.message}`;
+  if (e instanceof ConnectError) {
+    return `${e.code.replace(/_/g, ' ')}: ${e.message}` + (e.requestId ? ` (request id ${e.requestId})` : '');
+  }
   if (e instanceof TypeError) return `cannot reach the server: ${e.message}`;
   return String(e && e.message ? e.message : e);
 }

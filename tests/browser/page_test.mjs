@@ -431,6 +431,8 @@ async function main() {
     check('a bad table shows the service\'s error',
       /overlap/.test(errorText) && serviceMessage !== '' && errorText.includes(serviceMessage),
       `page: "${errorText}"; Plan: ${directBad.status} "${serviceMessage}"`);
+    check('the error names the call\'s request id (its X-Request-Id)',
+      /\(request id [0-9a-f]{16}\)$/.test(errorText), `page: "${errorText}"`);
     check('no plan answered for the bad table', (await page.evaluate(() => window.snookerPage.planSeq)) === seqBefore);
 
     // 5. Back to a built-in table: the page recovers from the error.
