@@ -87,15 +87,18 @@ def main():
     expect(all(math.isfinite(b.position.x) and math.isfinite(b.position.y) for b in answer.final_balls),
            "every final position is finite")
 
-    # 4. Bad input: INVALID_ARGUMENT naming the field and the value.
+    # 4. Bad input: INVALID_ARGUMENT naming the field and the value. The call is named
+    #    with a request id, which the server's log line and its answer carry.
     try:
         stub.Simulate(simulate_pb2.SimulateRequest(table=table, shot=table_pb2.Shot(speed=-1)),
-                      timeout=args.timeout)
+                      timeout=args.timeout, metadata=(("x-request-id", "example-bad-shot"),))
         expect(False, "a negative speed is refused")
     except grpc.RpcError as e:
-        print("bad request:", e.code().name, "-", e.details())
+        request_id = dict(e.initial_metadata() or ()).get("x-request-id")
+        print("bad request:", e.code().name, "-", e.details(), "(request id %s)" % request_id)
         expect(e.code() == grpc.StatusCode.INVALID_ARGUMENT and "shot.speed = -1" in e.details(),
                "a negative speed is INVALID_ARGUMENT naming shot.speed")
+        expect(request_id == "example-bad-shot", "the answer carries the call's request id")
 
     # 5. A plan on the same table: the robot's limits, a fixed seed and a simulation
     #    cap (so the answer does not depend on the machine's speed).
