@@ -452,11 +452,11 @@ TEST_F(HttpTest, ThePageTheHealthCheckAndNoCorsByDefault) {
 // its log line and in the answer's header; so does a request of the page.
 TEST_F(HttpTest, EachRequestIsNamedByItsRequestIdInTheLogAndTheAnswer) {
   StartServer();
-  auto res = Call("GetModel", "{}", "application/json", {{"X-Request-Id", "trainer-9"}});
+  auto res = Call("GetModel", "{}", "application/json", {{"x-request-id", "trainer-9"}});  // any case
   ASSERT_TRUE(res);
   EXPECT_EQ(res->status, 200);
   EXPECT_EQ(res->get_header_value("X-Request-Id"), "trainer-9");
-  res = Call("Simulate", "{\"table\": 1}", "application/json", {{"x-request-id", "bad id"}});
+  res = Call("Simulate", "{\"table\": 1}", "application/json", {{"X-Request-Id", "bad id"}});
   ASSERT_TRUE(res);
   EXPECT_EQ(res->status, 400);
   const std::string made = res->get_header_value("X-Request-Id");
