@@ -63,8 +63,6 @@ TEST_F(GrpcServiceTest, HealthReportsServing) {
   EXPECT_EQ(resp.status(), grpc::health::v1::HealthCheckResponse::SERVING);
 }
 
-// A service the server does not know is NOT_FOUND (gRPC's health semantics); the
-// server as a whole ("") is SERVING.
 // GetModel says which build answers: the project's version and the commit of the
 // checkout it was built from (with "-dirty" for changes), as git tells it.
 TEST_F(GrpcServiceTest, GetModelSaysWhichBuildAnswers) {
@@ -80,6 +78,8 @@ TEST_F(GrpcServiceTest, GetModelSaysWhichBuildAnswers) {
   EXPECT_EQ(commit.substr(0, 12), head.out.substr(0, 12)) << "built from another commit: build again";
 }
 
+// A service the server does not know is NOT_FOUND (gRPC's health semantics); the
+// server as a whole ("") is SERVING.
 TEST_F(GrpcServiceTest, HealthKnowsOnlyItsServices) {
   auto health = grpc::health::v1::Health::NewStub(channel_);
   grpc::health::v1::HealthCheckRequest req;
