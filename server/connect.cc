@@ -10,6 +10,7 @@
 #include "server/decode.h"
 #include "server/json_input.h"
 #include "server/limits.h"
+#include "server/metrics.h"
 
 namespace snooker::server::connect {
 namespace {
@@ -257,7 +258,14 @@ const UnaryProcedure* FindUnary(std::string_view name) {
   return nullptr;
 }
 
-const char* ProcedureNames() { return "Collide, Simulate, GetModel, Plan, PlanStream, Calibrate"; }
+const std::string& ProcedureNames() {
+  static const std::string names = [] {
+    std::string joined;
+    for (const char* name : kMethodNames) joined += (joined.empty() ? "" : ", ") + std::string(name);
+    return joined;
+  }();
+  return names;
+}
 
 ApiStatus PlanStream(std::string_view bytes, Codec codec, PlanControl control,
                      const std::function<void(std::string envelope)>& progress,

@@ -104,8 +104,9 @@ struct UnaryProcedure {
 const UnaryProcedure* FindUnary(std::string_view name);
 /// The name of the server-streaming procedure.
 inline constexpr std::string_view kPlanStream = "PlanStream";
-/// Every procedure's name, comma-separated (for a message about an unknown one).
-const char* ProcedureNames();
+/// Every procedure's name, comma-separated (for a message about an unknown one): the
+/// service's methods, metrics.h's kMethodNames.
+const std::string& ProcedureNames();
 
 /// PlanStream's work: decodes the request, plans with `control` (whose on_progress
 /// it sets: each progress message goes to `progress` in an envelope) and writes the

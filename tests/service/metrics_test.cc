@@ -6,12 +6,16 @@
 
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <regex>
 #include <sstream>
 #include <string>
+#include <vector>
 
+#include "server/connect.h"
 #include "server/grpc_service.h"
 
 namespace snooker::server {
@@ -51,6 +55,29 @@ TEST(MethodMetricsTest, AnotherMethodOrStatusIsNotLostInAnother) {
   }
   EXPECT_EQ(calls, 1);
   EXPECT_EQ(all[0].by_status[2], 1);
+}
+
+// The methods counted are the service's own, in its order (proto/ is the API's one
+// source): a method added there and not here would go uncounted. The HTTP side names
+// the same list to a client that asks for another procedure.
+TEST(MethodMetricsTest, TheMethodsAreTheServicesOwn) {
+  std::ifstream proto(SNOOKER_SOURCE_DIR "/proto/snooker/v1/service.proto");
+  ASSERT_TRUE(proto) << "cannot read service.proto";
+  const std::string text((std::istreambuf_iterator<char>(proto)), std::istreambuf_iterator<char>());
+  std::vector<std::string> rpcs;
+  const std::regex rpc(R"(\n\s*rpc\s+(\w+)\s*\()");
+  for (auto m = std::sregex_iterator(text.begin(), text.end(), rpc); m != std::sregex_iterator(); ++m) {
+    rpcs.push_back((*m)[1].str());
+  }
+  ASSERT_EQ(rpcs.size(), kMethodCount);
+  std::string listed;
+  for (std::size_t i = 0; i < kMethodCount; ++i) {
+    EXPECT_EQ(rpcs[i], kMethodNames[i]);
+    EXPECT_EQ(MethodIndex(kMethodNames[i]), static_cast<int>(i));
+    listed += (i == 0 ? "" : ", ") + std::string(kMethodNames[i]);
+  }
+  EXPECT_EQ(MethodIndex("Teleport"), -1);
+  EXPECT_EQ(connect::ProcedureNames(), listed);
 }
 
 // Every line is a comment or `name{labels} value`; each metric has its HELP and TYPE;
