@@ -7,8 +7,10 @@
 #include <cstring>
 
 namespace snooker::cli {
+namespace {
 
-bool WriteOutputFile(const std::string& path, const std::string& text, std::string* why) {
+// The write itself: false with the system's reason in `why`.
+bool WriteThrough(const std::string& path, const std::string& text, std::string* why) {
   const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) {
     *why = std::strerror(errno);
@@ -36,10 +38,12 @@ bool WriteOutputFile(const std::string& path, const std::string& text, std::stri
   return true;
 }
 
+}  // namespace
+
 bool WriteOutputFile(const std::string& path, const std::string& text, const std::string& command,
                      std::ostream& err) {
   std::string why;
-  if (WriteOutputFile(path, text, &why)) return true;
+  if (WriteThrough(path, text, &why)) return true;
   err << command << ": cannot write '" << path << "': " << why << "\n";
   return false;
 }

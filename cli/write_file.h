@@ -9,12 +9,9 @@
 namespace snooker::cli {
 
 /// Writes `text` to the file at `path` (created, or truncated) and closes it. On
-/// failure returns false and sets `why` to the system's reason ("No space left on
-/// device", "Permission denied", "Is a directory").
-bool WriteOutputFile(const std::string& path, const std::string& text, std::string* why);
-
-/// The same for `command` ("snooker plan"): on failure says on `err`
-/// "<command>: cannot write '<path>': <reason>" and returns false.
+/// failure says on `err` "<command>: cannot write '<path>': <reason>", the system's
+/// reason ("No space left on device", "Permission denied", "Is a directory"), and
+/// returns false. `command` is the command's name ("snooker plan").
 bool WriteOutputFile(const std::string& path, const std::string& text, const std::string& command,
                      std::ostream& err);
 
