@@ -68,8 +68,33 @@ struct Schedule {
   double search_simulations = 0;
   double lookahead_simulations = 0;
   double monte_carlo_simulations = 0;
+  std::int64_t simulation_cap = 0;
   // The caller's deadline, not the budget, is what ends the work.
   bool deadline_binds = false;
+};
+
+// Whether the clock or a cancel stopped any of a plan's work before its simulation
+// caps did. Each piece of work bounded by a deadline says when it ended: one that
+// ended before its deadline, uncancelled, never saw either (every check it made came
+// before its end), so it did what the caps alone would have had it do.
+class CutWatch {
+ public:
+  explicit CutWatch(const std::atomic<bool>* cancel) : cancel_(cancel) {}
+  // Work bounded by `deadline` ends now. True (and noted) when the deadline has passed
+  // or the plan is cancelled: StopControl::Due, remembered.
+  bool Ended(Clock::time_point deadline) {
+    const bool cancelled = cancel_ != nullptr && cancel_->load(std::memory_order_relaxed);
+    if (!cancelled && (deadline == Clock::time_point::max() || Clock::now() < deadline)) return false;
+    Cut();
+    return true;
+  }
+  bool Ended(const StopControl& stop) { return Ended(stop.deadline); }
+  void Cut() { cut_.store(true, std::memory_order_relaxed); }
+  bool cut() const { return cut_.load(std::memory_order_relaxed); }
+
+ private:
+  const std::atomic<bool>* cancel_;
+  std::atomic<bool> cut_{false};
 };
 
 Schedule MakeSchedule(const PlannerConfig& config, const PlanRequest& request, Clock::time_point start) {
@@ -92,9 +117,13 @@ Schedule MakeSchedule(const PlannerConfig& config, const PlanRequest& request, C
   s.monte_carlo = {at(config.search_share + config.monte_carlo_share), request.cancel};
   s.final = {end, request.cancel};
   s.deadline_binds = request.deadline < budget_end;
-  const double total = request.max_simulations > 0
-                           ? static_cast<double>(request.max_simulations)
-                           : config.simulations_per_ms * request.time_budget * 1e3 * request.threads;
+  // Whole simulations, so that a request whose max_simulations is this plan's cap
+  // shares the work out exactly as this one does.
+  s.simulation_cap = request.max_simulations > 0
+                         ? request.max_simulations
+                         : std::max<std::int64_t>(1, std::llround(config.simulations_per_ms * request.time_budget *
+                                                                  1e3 * request.threads));
+  const double total = static_cast<double>(s.simulation_cap);
   s.search_simulations = total * (config.search_share - lookahead);
   s.lookahead_simulations = total * lookahead;
   s.monte_carlo_simulations = total * config.monte_carlo_share;
@@ -180,6 +209,8 @@ class PlanRun {
       RankByMonteCarlo();
       Conclude();
     }
+    answer_.simulation_cap = schedule_.simulation_cap;
+    answer_.cut_short = cut_.cut();
     answer_.elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
     return std::move(answer_);
   }
@@ -229,6 +260,7 @@ class PlanRun {
   PotContext after_ctx_;  // the next shot's: vision sees the moved balls afresh
   SearchSettings settings_;
   Schedule schedule_;
+  CutWatch cut_{request_.cancel};
   // The tables candidates play on: the request's first, then one per placement of
   // the cue ball in hand (the cue ball last).
   std::vector<TableState> tables_;
@@ -633,14 +665,17 @@ void PlanRun::SearchAndVerify() {
     s.local_evaluations = evaluations_[t] - s.global_evaluations;
     const SearchResult r = SearchCandidate(tables_[static_cast<size_t>(cand.table)], on_, cand, ctx_, s, w.search,
                                            schedule_.search, &w.leave);
+    if (r.status == SearchStatus::kInterrupted) cut_.Cut();  // NLopt's own clock too (search.h)
+    cut_.Ended(schedule_.search);
     w.evaluations += r.evaluations;
     search_simulations[t] = r.simulations;
     interrupted[t] = r.status == SearchStatus::kInterrupted;
-    if (!r.best || schedule_.final.Due()) return;
+    if (!r.best || cut_.Ended(schedule_.final)) return;
     for (const ShotCandidate* sc : Alternatives(cand, r)) {
       ++verifications[t];
       if (auto ps = Verify(w, cand, *sc, t, schedule_.final.AsInterrupt())) found_[t].push_back(std::move(*ps));
     }
+    cut_.Ended(schedule_.final);
     if (found_[t].empty() || request_.progress == nullptr) return;
     std::lock_guard<std::mutex> lock(progress_mutex);
     if (found_[t].front().score > best_reported) {
@@ -672,7 +707,7 @@ void PlanRun::SearchAndVerify() {
 void PlanRun::Fallback() {
   const bool cancelled = request_.cancel != nullptr && request_.cancel->load();
   if (!shots_.empty() || cancelled || !FallbackAllowed()) return;
-  if (Clock::now() >= request_.deadline) {
+  if (cut_.Ended(request_.deadline)) {
     answer_.deadline_hit = true;  // no time for the scan: the deadline, not the table, left no shot
     return;
   }
@@ -687,6 +722,7 @@ void PlanRun::Fallback() {
   FallbackOptions options;
   options.allow_foul = request_.kinds.Has(ShotKind::kFoul);
   const auto found = FindLegalStroke(table, table.cue_index(), on_, ctx_, settings_, w.full, interrupt, options);
+  cut_.Ended(request_.deadline);
   if (!found) {
     answer_.deadline_hit = answer_.deadline_hit || interrupt.Due();
     fallback_scanned_ = !interrupt.Due();
@@ -714,8 +750,9 @@ void PlanRun::Fallback() {
   ++answer_.simulations;
   if (auto ps = Verify(w, candidates_.back(), sc, failed_verification_.size() - 1, interrupt)) {
     shots_.push_back(std::move(*ps));
-    fallback_past_budget_ = schedule_.final.Due();
+    fallback_past_budget_ = cut_.Ended(schedule_.final);
   }
+  cut_.Ended(request_.deadline);
   answer_.verified = static_cast<int>(shots_.size());
 }
 
@@ -754,7 +791,7 @@ double PlanRun::NextShotValue(Worker& w, const PlannedShot& ps, int evaluations,
 // (NextShotValue) replaces the position's estimate in their scores; the Monte Carlo
 // then ranks with that correction.
 void PlanRun::LookAhead() {
-  if (!request_.lookahead || !request_.position_play || schedule_.lookahead.Due()) return;
+  if (!request_.lookahead || !request_.position_play || cut_.Ended(schedule_.lookahead)) return;
   std::vector<PlannedShot*> pots;
   for (PlannedShot& ps : shots_) {
     if (ps.kind == ShotKind::kPot && static_cast<int>(pots.size()) < config_.lookahead_shots) pots.push_back(&ps);
@@ -770,6 +807,7 @@ void PlanRun::LookAhead() {
     const size_t t = static_cast<size_t>(task);
     value[t] = NextShotValue(*workers_[static_cast<size_t>(worker)], *pots[t], evaluations, &simulations[t]);
   });
+  cut_.Ended(schedule_.lookahead);
   for (size_t i = 0; i < pots.size(); ++i) {
     answer_.simulations += simulations[i];
     PlannedShot& ps = *pots[i];
@@ -804,7 +842,7 @@ void PlanRun::RankByMonteCarlo() {
   int blocks = (request_.monte_carlo_samples + kBlock - 1) / kBlock;
   if (n > 0) blocks = std::min(blocks, static_cast<int>(schedule_.monte_carlo_simulations / (n * kBlock)));
   blocks = std::max(blocks, request_.monte_carlo_samples > 0 ? 1 : 0);
-  if (n == 0 || blocks == 0 || schedule_.monte_carlo.Due()) return;
+  if (n == 0 || blocks == 0 || cut_.Ended(schedule_.monte_carlo)) return;
   AddWorkers(std::min(request_.threads, n * blocks));
   const bool tail_fit = config_.pot_tail_min_samples > 0;
   std::vector<MonteCarloTally> tallies(static_cast<size_t>(n * blocks));
@@ -821,6 +859,7 @@ void PlanRun::RankByMonteCarlo() {
                    DeriveSeed(request_.seed, key, static_cast<std::uint64_t>(b)), kBlock,
                    tail_fit && ps.kind == ShotKind::kPot && ps.route == PotRoute::kDirect, &w.samples);
   });
+  cut_.Ended(schedule_.monte_carlo);
   for (int s = 0; s < n; ++s) {
     MonteCarloTally t;
     for (int b = 0; b < blocks; ++b) t.Add(tallies[static_cast<size_t>(s * blocks + b)]);

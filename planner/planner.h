@@ -253,6 +253,15 @@ struct PlanAnswer {
   std::int64_t simulations = 0;
   std::int64_t evaluations = 0;
   double elapsed = 0;
+  /// The simulations the plan could run: the request's max_simulations, or what its
+  /// time budget buys (PlannerConfig::simulations_per_ms, whole simulations). The
+  /// stages' shares of the work follow from it alone.
+  std::int64_t simulation_cap = 0;
+  /// The clock (the budget's stage ends, the caller's deadline) or the cancel flag
+  /// stopped some of the work before the caps did, so another run may differ. When
+  /// false, the same request with max_simulations set to simulation_cap gives this
+  /// answer again on any machine, given the time (a budget large enough).
+  bool cut_short = false;
   // For reports.
   int candidate_pairs = 0;
   int candidates = 0;

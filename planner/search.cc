@@ -198,6 +198,9 @@ class Search {
     try {
       const nlopt::result r = opt.optimize(x, f);
       what += " " + std::to_string(static_cast<int>(r));
+      // NLopt keeps its own clock for the time left (Configure): it may see the
+      // deadline pass a moment before Stopped() does.
+      if (r == nlopt::MAXTIME_REACHED) interrupted_ = true;
     } catch (const nlopt::forced_stop&) {
       what += " stopped";
     } catch (const nlopt::roundoff_limited&) {

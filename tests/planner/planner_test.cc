@@ -175,6 +175,19 @@ INSTANTIATE_TEST_SUITE_P(SeededFrames, PlannerTableTest, testing::Range(0, 6),
                            return "frame_" + std::to_string(param.param);
                          });
 
+// The same shots, to the bit, and the same work.
+void ExpectSameAnswer(const PlanAnswer& a, const PlanAnswer& b) {
+  ASSERT_EQ(a.shots.size(), b.shots.size());
+  EXPECT_EQ(a.simulations, b.simulations);
+  for (size_t i = 0; i < a.shots.size(); ++i) {
+    EXPECT_EQ(a.shots[i].shot.speed, b.shots[i].shot.speed);
+    EXPECT_EQ(a.shots[i].shot.heading, b.shots[i].shot.heading);
+    EXPECT_EQ(a.shots[i].shot.topspin, b.shots[i].shot.topspin);
+    EXPECT_EQ(a.shots[i].shot.sidespin, b.shots[i].shot.sidespin);
+    EXPECT_EQ(a.shots[i].pot_probability, b.shots[i].pot_probability);
+  }
+}
+
 TEST(PlannerTest, TheSameSeedGivesTheSameAnswer) {
   Rng rng(77);
   const TableState t = RandomFrame(rng, 8, Table());
@@ -185,17 +198,40 @@ TEST(PlannerTest, TheSameSeedGivesTheSameAnswer) {
   r.threads = 1;  // the work partition does not depend on the threads
   const PlanAnswer c = Planner::Default().Plan(r);
   ASSERT_FALSE(a.shots.empty());
-  for (const PlanAnswer* other : {&b, &c}) {
-    ASSERT_EQ(a.shots.size(), other->shots.size());
-    EXPECT_EQ(a.simulations, other->simulations);
-    for (size_t i = 0; i < a.shots.size(); ++i) {
-      EXPECT_EQ(a.shots[i].shot.speed, other->shots[i].shot.speed);
-      EXPECT_EQ(a.shots[i].shot.heading, other->shots[i].shot.heading);
-      EXPECT_EQ(a.shots[i].shot.topspin, other->shots[i].shot.topspin);
-      EXPECT_EQ(a.shots[i].shot.sidespin, other->shots[i].shot.sidespin);
-      EXPECT_EQ(a.shots[i].pot_probability, other->shots[i].pot_probability);
-    }
-  }
+  EXPECT_EQ(a.simulation_cap, 300);
+  for (const PlanAnswer* other : {&a, &b, &c}) EXPECT_FALSE(other->cut_short);
+  ExpectSameAnswer(a, b);
+  ExpectSameAnswer(a, c);
+}
+
+// A plan whose budget buys its simulations, and which the clock did not cut short, is
+// the answer of the same request capped at its simulation_cap instead, whatever the
+// budget: how a client replays a plan it was given. A budget too small for its work
+// says that it cut it.
+TEST(PlannerTest, AnAnswerNotCutShortComesAgainFromItsSimulationCap) {
+  Planner::Config slow;  // a budget that buys few simulations, so 20 s hold them
+  slow.simulations_per_ms = 0.0201;
+  Rng rng(77);
+  PlanRequest r;
+  r.table = RandomFrame(rng, 8, Table());
+  r.monte_carlo_samples = 16;
+  r.time_budget = 20;
+  const PlanAnswer a = Planner(slow).Plan(r);
+  ASSERT_FALSE(a.shots.empty()) << a.reason;
+  EXPECT_EQ(a.simulation_cap, 804);  // 0.0201 a ms x 20 000 ms x 2 threads, rounded
+  EXPECT_FALSE(a.cut_short);
+  r.max_simulations = a.simulation_cap;
+  r.time_budget = 30;
+  const PlanAnswer b = Planner::Default().Plan(r);
+  EXPECT_EQ(b.simulation_cap, a.simulation_cap);
+  EXPECT_FALSE(b.cut_short);
+  EXPECT_EQ(b.evaluations, a.evaluations);
+  ExpectSameAnswer(a, b);
+  r.max_simulations = 1'000'000;
+  r.time_budget = 1e-3;
+  const PlanAnswer c = Planner::Default().Plan(r);
+  EXPECT_EQ(c.simulation_cap, 1'000'000);
+  EXPECT_TRUE(c.cut_short);
 }
 
 struct Progress {
@@ -238,6 +274,7 @@ TEST(PlannerTest, CancellingStopsThePlan) {
   stopper.join();
   EXPECT_EQ(a.status, PlanStatus::kCancelled) << a.reason;
   EXPECT_LT(a.elapsed, 10.0);  // far below the budget: it stopped
+  EXPECT_TRUE(a.cut_short);
 }
 
 TEST(PlannerTest, ADeadlineInThePastReturnsAtOnce) {
@@ -247,6 +284,7 @@ TEST(PlannerTest, ADeadlineInThePastReturnsAtOnce) {
   EXPECT_TRUE(a.shots.empty());
   EXPECT_EQ(a.status, PlanStatus::kDeadline) << a.reason;
   EXPECT_LT(a.elapsed, 5.0);
+  EXPECT_TRUE(a.cut_short);
 }
 
 TEST(PlannerTest, PotOnlyAndColoursOn) {
