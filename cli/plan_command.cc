@@ -89,8 +89,10 @@ with its route (direct, plant, double, kick).
                    "expectedPoints", "snookered", "foulProbability",
                    "penaltyPoints"}, "handovers": {"runs", "snookeredRuns",
                    "meanPotProbability", "meanExpectedPoints"}}], "reason",
-                   "simulations", "evaluations", "elapsedMs", "final", "warnings"};
-                   a shot's first four fields are a simulate shot file
+                   "simulations", "evaluations", "elapsedMs", "final", "warnings",
+                   "simulationCap", "cutShort"}; a shot's first four fields are a
+                   simulate shot file; an answer not cut short (by the clock) comes
+                   again from --max-simulations simulationCap
   --svg out.svg    draw the plan (docs/plan-pictures.md): every ball's path of the
                    best shot (simulated again with the model in use), its ghost
                    ball, aim point, target pocket with P(pot) and next ball; each
@@ -207,8 +209,11 @@ void PrintReadable(const v1::PlanResponse& r, std::ostream& out) {
         << s.cue_ball_end().x() << ", " << s.cue_ball_end().y() << ") m; " << s.events_size()
         << " events\n";
   }
-  out << std::setprecision(1) << r.simulations() << " simulations, " << r.evaluations()
-      << " NLopt evaluations, " << r.elapsed_ms() << " ms\n";
+  out << std::setprecision(1) << r.simulations() << " simulations of " << r.simulation_cap() << ", "
+      << r.evaluations() << " NLopt evaluations, " << r.elapsed_ms() << " ms; "
+      << (r.cut_short() ? "cut short by the clock: another run may differ"
+                        : "--max-simulations " + std::to_string(r.simulation_cap()) + " repeats it")
+      << "\n";
 }
 
 // A progress message of --stream: the best verified shot so far.

@@ -448,6 +448,8 @@ void ToProto(const planner::PlanAnswer& a, const v1::TableState& table,
   out->set_simulations(static_cast<std::int32_t>(std::min<std::int64_t>(a.simulations, INT32_MAX)));
   out->set_evaluations(static_cast<std::int32_t>(std::min<std::int64_t>(a.evaluations, INT32_MAX)));
   out->set_elapsed_ms(a.elapsed * 1e3);
+  out->set_simulation_cap(static_cast<std::int32_t>(std::min<std::int64_t>(a.simulation_cap, INT32_MAX)));
+  out->set_cut_short(a.cut_short);
 }
 
 void ToProto(const std::vector<planner::NamedBall>& balls, v1::TableState* out) {

@@ -64,8 +64,10 @@ TEST(CliPlanTest, JsonHasExactlyTheContractedNames) {
   Struct json;
   ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &json).ok()) << r.out;
   EXPECT_EQ(Keys(json), (std::set<std::string>{"shots", "reason", "simulations", "evaluations", "elapsedMs",
-                                               "final", "warnings"}));
+                                               "final", "warnings", "simulationCap", "cutShort"}));
   EXPECT_TRUE(json.fields().at("final").bool_value());
+  EXPECT_EQ(json.fields().at("simulationCap").number_value(), 300);
+  EXPECT_FALSE(json.fields().at("cutShort").bool_value());
   const auto& shots = json.fields().at("shots").list_value();
   ASSERT_GT(shots.values_size(), 0);
   const Struct& s = shots.values(0).struct_value();

@@ -221,6 +221,11 @@ TEST(PlanServerTest, PrintsWhatTheLocalCommandPrints) {
   ASSERT_EQ(remote.exit_code, 0) << remote.err;
   EXPECT_TRUE(Mentions(remote.out, "#1  red-1 into top-right")) << remote.out;
   EXPECT_EQ(WithoutWorkLine(remote.out), WithoutWorkLine(local.out));
+  // The work line names the cap that repeats the answer, the server's as the command's.
+  for (const RunResult* r : {&local, &remote}) {
+    EXPECT_TRUE(Mentions(r->out, " simulations of 300, ")) << r->out;
+    EXPECT_TRUE(Mentions(r->out, " ms; --max-simulations 300 repeats it\n")) << r->out;
+  }
   // JSON: the same shots; and an SVG of them.
   const std::string svg = cli_support::TempPath("plan_remote.svg");
   const RunResult local_json = RunCli(std::string(kPlanFlags) + " --json");
@@ -279,6 +284,9 @@ TEST(LoadTestTest, PlansAreCheckedAgainstTheirLimits) {
   EXPECT_EQ(NumberField(j, "badAnswers"), 0);
   EXPECT_EQ(NumberField(j, "budgetMs"), 20);
   EXPECT_GT(NumberField(j, "plansWithShots"), 0);
+  // The answers cut short by the clock, as the server counted them (each counted
+  // before it is answered).
+  EXPECT_EQ(NumberField(j, "plansCutShort"), static_cast<double>(s.server->counts().plans_cut_short));
   EXPECT_GT(NumberField(j, "ballsMoved"), 0);  // every fourth table is repaired
   EXPECT_EQ(j.fields().at("statuses").struct_value().fields().at("OK").number_value(), 40);
   EXPECT_EQ(s.server->counts().with(grpc::StatusCode::OK), 40 + 1);  // and GetModel
