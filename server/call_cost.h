@@ -1,5 +1,6 @@
-// What a call's answer says it cost, for the call log: simulations run (a fit's
-// model evaluations for Calibrate), the same count whichever transport carried it.
+// What a call's answer says it cost, for the call log and the metrics: simulations
+// run (a fit's model evaluations for Calibrate) and whether a plan was cut short, the
+// same whichever transport carried it.
 #pragma once
 
 #include <cstdint>
@@ -12,10 +13,17 @@
 
 namespace snooker::server {
 
-inline std::int64_t SimulationsOf(const v1::CollideResponse&) { return 0; }
-inline std::int64_t SimulationsOf(const v1::SimulateResponse&) { return 1; }
-inline std::int64_t SimulationsOf(const v1::GetModelResponse&) { return 0; }
-inline std::int64_t SimulationsOf(const v1::CalibrateResponse& r) { return r.evaluations(); }
-inline std::int64_t SimulationsOf(const v1::PlanResponse& r) { return r.simulations(); }
+struct CallCost {
+  std::int64_t simulations = 0;  ///< whole-table simulations run
+  /// A plan that the clock or a cancel stopped before its cap (PlanResponse.cut_short),
+  /// or refused as its deadline passed before it started.
+  bool cut_short = false;
+};
+
+inline CallCost CostOf(const v1::CollideResponse&) { return {}; }
+inline CallCost CostOf(const v1::SimulateResponse&) { return {1}; }
+inline CallCost CostOf(const v1::GetModelResponse&) { return {}; }
+inline CallCost CostOf(const v1::CalibrateResponse& r) { return {r.evaluations()}; }
+inline CallCost CostOf(const v1::PlanResponse& r) { return {r.simulations(), r.cut_short()}; }
 
 }  // namespace snooker::server

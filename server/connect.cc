@@ -83,22 +83,22 @@ std::string OneLine(std::string text) {
 template <typename Request, typename Response,
           ApiStatus (*Operation)(const Request&, Response*, const CallLimits&)>
 ApiStatus RunUnary(std::string_view bytes, Codec codec, const CallLimits& limits, const PlanControl&,
-                   std::string* out, std::int64_t* simulations) {
+                   std::string* out, CallCost* cost) {
   Request request;
   if (ApiStatus st = DecodeRequest(bytes, codec, &request); !st.ok()) return st;
   Response response;
   if (ApiStatus st = Operation(request, &response, limits); !st.ok()) return st;
-  *simulations = SimulationsOf(response);
+  *cost = CostOf(response);
   return EncodeResponse(response, codec, out);
 }
 
 ApiStatus RunPlan(std::string_view bytes, Codec codec, const CallLimits&, const PlanControl& control,
-                  std::string* out, std::int64_t* simulations) {
+                  std::string* out, CallCost* cost) {
   v1::PlanRequest request;
   if (ApiStatus st = DecodeRequest(bytes, codec, &request); !st.ok()) return st;
   v1::PlanResponse response;
   ApiStatus st = server::Plan(request, &response, control);
-  *simulations = SimulationsOf(response);
+  *cost = CostOf(response);
   if (!st.ok()) return st;
   return EncodeResponse(response, codec, out);
 }
@@ -269,7 +269,7 @@ const std::string& ProcedureNames() {
 
 ApiStatus PlanStream(std::string_view bytes, Codec codec, PlanControl control,
                      const std::function<void(std::string envelope)>& progress,
-                     std::string* final_envelope, std::int64_t* simulations) {
+                     std::string* final_envelope, CallCost* cost) {
   v1::PlanRequest request;
   if (ApiStatus st = DecodeRequest(bytes, codec, &request); !st.ok()) return st;
   control.on_progress = [&](const v1::PlanResponse& best) {
@@ -278,7 +278,7 @@ ApiStatus PlanStream(std::string_view bytes, Codec codec, PlanControl control,
   };
   v1::PlanResponse response;
   ApiStatus st = server::Plan(request, &response, control);
-  *simulations = SimulationsOf(response);
+  *cost = CostOf(response);
   if (!st.ok()) return st;
   std::string message;
   if (st = EncodeResponse(response, codec, &message); !st.ok()) return st;

@@ -26,6 +26,7 @@
 
 #include "server/api.h"
 #include "server/api_status.h"
+#include "server/call_cost.h"
 #include "server/plan_api.h"
 
 namespace snooker::server::connect {
@@ -93,12 +94,12 @@ ApiStatus DecodeRequest(std::string_view bytes, Codec codec, google::protobuf::M
 ApiStatus EncodeResponse(const google::protobuf::Message& message, Codec codec, std::string* out);
 
 /// One unary procedure: decode, one operation, encode. `plan` is set (and used) for
-/// Plan only; `simulations` gets the work done, for the log.
+/// Plan only; `cost` gets the work done, for the log.
 struct UnaryProcedure {
   std::string_view name;  ///< "Collide", ...
   bool is_plan = false;   ///< counted among the server's plans (--max-plans)
   ApiStatus (*run)(std::string_view request, Codec codec, const CallLimits& limits,
-                   const PlanControl& plan, std::string* response, std::int64_t* simulations);
+                   const PlanControl& plan, std::string* response, CallCost* cost);
 };
 /// The unary procedure of this name ("Plan"), or null.
 const UnaryProcedure* FindUnary(std::string_view name);
@@ -113,6 +114,6 @@ const std::string& ProcedureNames();
 /// final answer's envelope into `final_envelope` when the status is OK.
 ApiStatus PlanStream(std::string_view request, Codec codec, PlanControl control,
                      const std::function<void(std::string envelope)>& progress,
-                     std::string* final_envelope, std::int64_t* simulations);
+                     std::string* final_envelope, CallCost* cost);
 
 }  // namespace snooker::server::connect

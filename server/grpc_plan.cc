@@ -26,6 +26,7 @@
 #include <optional>
 #include <string>
 
+#include "server/call_cost.h"
 #include "server/decode.h"
 #include "server/grpc_service.h"
 #include "server/plan_api.h"
@@ -218,6 +219,7 @@ ApiStatus ShotPlannerService::RunPlan(PlanCall& call, v1::PlanResponse* response
                                       const std::function<void(const v1::PlanResponse&)>& on_progress) {
   if (auto late = service_detail::RefuseLateStart(call, call.cancel.load() || call.context->IsCancelled(),
                                                   "the plan")) {
+    work->cut_short = true;  // the clock (or a cancel) stopped all of its work
     return *late;
   }
   std::string bytes;
@@ -227,7 +229,7 @@ ApiStatus ShotPlannerService::RunPlan(PlanCall& call, v1::PlanResponse* response
   PlanControl control = PlanControlOf(call.arrival, call.deadline, &call.cancel);
   control.on_progress = on_progress;
   ApiStatus st = server::Plan(request, response, control);
-  work->simulations = response->simulations();
+  *work = CostOf(*response);
   return service_detail::DeadlineIfClientLate(std::move(st), call);
 }
 

@@ -153,7 +153,7 @@ ApiStatus RunMethod(std::string_view bytes, const CallLimits& limits, grpc::Byte
   if (ApiStatus st = ParseRequest(bytes, &request); !st.ok()) return st;
   Response response;
   if (ApiStatus st = Operation(request, &response, limits); !st.ok()) return st;
-  work->simulations = SimulationsOf(response);
+  *work = CostOf(response);
   bool own = false;
   const grpc::Status st = grpc::SerializationTraits<Response>::Serialize(response, out, &own);
   if (!st.ok()) return {ApiStatus::Code::kInternal, "cannot serialise the response: " + st.error_message()};
@@ -346,6 +346,7 @@ void ShotPlannerService::Record(const char* method, const std::string& peer, con
   // Observed before it is counted as finished: a reader that sees it finished sees
   // it in its method's counts too.
   metrics_.Observe(MethodIndex(method), static_cast<int>(GrpcCodeOf(status.code)), latency_ms * 1e-3);
+  if (work.cut_short) plans_cut_short_.fetch_add(1);
   Count(status);
   if (options_.log == nullptr) return;
   // The call is answered after this, whatever becomes of its line.
@@ -353,7 +354,8 @@ void ShotPlannerService::Record(const char* method, const std::string& peer, con
     line << "snooker: call method=" << method << " peer=" << peer << " request_id=" << request_id
          << " status=" << ToString(status.code)
          << " latency_ms=" << latency_ms << " simulations=" << work.simulations
-         << " request_bytes=" << request_bytes << " response_bytes=" << response_bytes << extra << "\n";
+         << " request_bytes=" << request_bytes << " response_bytes=" << response_bytes
+         << (work.cut_short ? " cut_short=1" : "") << extra << "\n";
   });
   if (!written) log_lines_lost_.fetch_add(1);
 }
@@ -368,6 +370,7 @@ CallCounts ShotPlannerService::counts() const {
   c.progress_messages = progress_messages_.load();
   c.progress_dropped = progress_dropped_.load();
   c.log_lines_lost = log_lines_lost_.load();
+  c.plans_cut_short = plans_cut_short_.load();
   c.methods = metrics_.Read();
   c.received = received_.load();
   return c;

@@ -39,6 +39,7 @@
 
 #include "server/api.h"
 #include "server/api_status.h"
+#include "server/call_cost.h"
 #include "server/limits.h"
 #include "server/metrics.h"
 #include "server/plan_api.h"
@@ -91,6 +92,7 @@ struct CallCounts {
   std::int64_t progress_messages = 0;  ///< PlanStream progress messages written
   std::int64_t progress_dropped = 0;   ///< ... and replaced by newer ones before a write
   std::int64_t log_lines_lost = 0;     ///< call log lines the log stream refused (the calls still finished)
+  std::int64_t plans_cut_short = 0;    ///< plans the clock or a cancel stopped before their cap (CallCost)
   /// Finished calls by grpc::StatusCode (0 OK ... 16 UNAUTHENTICATED).
   std::array<std::int64_t, kStatusCodeCount> by_status{};
   /// Answered calls by method (kMethodNames): statuses and latencies.
@@ -131,10 +133,8 @@ class ShotPlannerService final : public ShotPlannerRawService {
   /// returned (every call then has an answer).
   void StopWorkers() { pool_.Stop(); }
 
-  /// What a call did, for its log line.
-  struct Work {
-    std::int64_t simulations = 0;  ///< whole-table simulations run
-  };
+  /// What a call did, for its log line and the metrics.
+  using Work = CallCost;
 
   // --- Calls of another transport in this process (the HTTP adapter, http_server.h):
   // the same workers, admission, limits, counters and log as the gRPC methods. ------
@@ -226,7 +226,8 @@ class ShotPlannerService final : public ShotPlannerRawService {
   std::unique_ptr<planner::Planner> planner_;
   const physics::Model* model() const { return options_.model ? &*options_.model : nullptr; }
   std::atomic<std::int64_t> received_{0}, finished_{0}, running_{0}, plans_{0};
-  std::atomic<std::int64_t> progress_messages_{0}, progress_dropped_{0}, log_lines_lost_{0};
+  std::atomic<std::int64_t> progress_messages_{0}, progress_dropped_{0}, log_lines_lost_{0},
+      plans_cut_short_{0};
   std::array<std::atomic<std::int64_t>, kStatusCodeCount> by_status_{};
   MethodMetrics metrics_;
   std::mutex log_mu_;

@@ -515,7 +515,7 @@ void HttpServer::Impl::Unary(const connect::UnaryProcedure& procedure, const htt
       call,
       [&procedure, codec, body = std::move(body), result](const CallLimits& limits, const PlanControl& plan,
                                                           ShotPlannerService::Work* work, std::size_t* bytes) {
-        const ApiStatus st = procedure.run(body, *codec, limits, plan, &result->body, &work->simulations);
+        const ApiStatus st = procedure.run(body, *codec, limits, plan, &result->body, work);
         *bytes = result->body.size();
         return st;
       },
@@ -564,7 +564,7 @@ void HttpServer::Impl::Stream(const httplib::Request& req, httplib::Response& re
         std::string final_envelope;
         const ApiStatus status = connect::PlanStream(
             request, *codec, plan, [&state](std::string envelope) { state->Progress(std::move(envelope)); },
-            &final_envelope, &work->simulations);
+            &final_envelope, work);
         *bytes = final_envelope.size();
         std::lock_guard<std::mutex> lock(state->mu);
         state->final_envelope = std::move(final_envelope);

@@ -68,6 +68,10 @@ std::string MetricsText(const CallCounts& counts) {
   single("snooker_plan_progress_dropped_total", "counter",
          "PlanStream progress messages replaced by a newer one before they were written.",
          counts.progress_dropped);
+  single("snooker_plans_cut_short_total", "counter",
+         "Plans the clock (budget or deadline) or a cancel stopped before their simulation cap: "
+         "answered cut_short, or refused as their deadline passed before they started.",
+         counts.plans_cut_short);
   single("snooker_log_lines_lost_total", "counter", "Call log lines the log refused (the calls were answered).",
          counts.log_lines_lost);
   Head(out, "snooker_calls_total", "counter", "Calls answered, by method and gRPC status.");

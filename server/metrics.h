@@ -54,7 +54,7 @@ struct CallCounts;
 
 /// `counts` in Prometheus's text format (version 0.0.4): the build, the calls received, in flight,
 /// running and answered by method and status, the plans in the server, the progress
-/// messages written and dropped, the log lines lost, and each method's latency
+/// messages written and dropped, the plans cut short, the log lines lost, and each method's latency
 /// histogram (snooker_call_latency_seconds).
 std::string MetricsText(const CallCounts& counts);
 

@@ -56,6 +56,7 @@ void ShotPlannerService::Submit(std::shared_ptr<TransportCall> call, TransportWo
       ApiStatus status;
       if (auto late = service_detail::RefuseLateStart(info, call->cancel.load(), call->is_plan ? "the plan" : "it")) {
         status = std::move(*late);
+        did.cut_short = call->is_plan;  // the clock (or a cancel) stopped all of its work
       } else {
         status = service_detail::Guarded([&] {
           CallLimits limits = LimitsOf(call->deadline);

@@ -144,7 +144,10 @@ TEST_F(HttpTest, PlanOfABuiltinTableEqualsTheGrpcAnswer) {
   EXPECT_EQ(ShotsOf(http_answer), ShotsOf(grpc_answer));
   EXPECT_EQ(http_answer.simulations(), grpc_answer.simulations());
   EXPECT_TRUE(http_answer.final());
+  EXPECT_EQ(http_answer.simulation_cap(), 300);
+  EXPECT_FALSE(http_answer.cut_short());
   EXPECT_TRUE(Mentions(res->body, "\"headingDeg\"")) << "lowerCamelCase names";
+  EXPECT_TRUE(Mentions(res->body, "\"cutShort\"")) << "every field, false ones too";
 
   // The binary form gives the same answer.
   const auto binary = Call("Plan", request.SerializeAsString(), "application/proto");
@@ -223,6 +226,7 @@ TEST_F(HttpTest, MetricsCountTheCallsOfBothTransports) {
   EXPECT_TRUE(Mentions(text, "\nsnooker_calls_total{method=\"Collide\",code=\"INVALID_ARGUMENT\"} 1\n")) << text;
   EXPECT_TRUE(Mentions(text, "\nsnooker_call_latency_seconds_count{method=\"Collide\"} 3\n")) << text;
   EXPECT_TRUE(Mentions(text, "\nsnooker_call_latency_seconds_count{method=\"Plan\"} 0\n")) << text;
+  EXPECT_TRUE(Mentions(text, "\nsnooker_plans_cut_short_total 0\n")) << text;
   // Scraping is not a call: the count stands.
   EXPECT_TRUE(Mentions(Client().Get("/metrics")->body, "\nsnooker_calls_received_total 3\n"));
   EXPECT_EQ(Client().Post("/metrics", "", "text/plain")->status, 405);
@@ -310,10 +314,15 @@ TEST_F(HttpTest, AOneMillisecondTimeoutEndsABigPlanAsGrpcsDeadlineDoes) {
   EXPECT_LT(seconds, 5.0);
   if (res->status == 200) {  // OK only with the shots verified by then
     EXPECT_GT(FromJson<v1::PlanResponse>(res->body).shots_size(), 0);
+    EXPECT_TRUE(FromJson<v1::PlanResponse>(res->body).cut_short());
   } else {
     EXPECT_EQ(res->status, 504) << res->body;
     EXPECT_TRUE(Mentions(res->body, "\"code\": \"deadline_exceeded\"")) << res->body;
   }
+  // Either way the clock stopped its work: the log line and the metrics say so.
+  const std::string log = Log();
+  EXPECT_TRUE(Mentions(log, "cut_short=1")) << log;
+  EXPECT_TRUE(Mentions(Client().Get("/metrics")->body, "\nsnooker_plans_cut_short_total 1\n"));
 }
 
 TEST_F(HttpTest, PlansOverHttpAndGrpcShareOneAdmission) {

@@ -181,6 +181,8 @@ TEST_F(PlanRpcTest, PlansShotsWithinTheLimitsTheSameForTheSameSeed) {
   EXPECT_TRUE(a.final());
   EXPECT_EQ(a.warnings_size(), 0);
   EXPECT_GT(a.simulations(), 0);
+  EXPECT_EQ(a.simulation_cap(), 300);  // the request's max_simulations
+  EXPECT_FALSE(a.cut_short());
   ExpectWithinLimits(request, a);
   ASSERT_TRUE(Plan(request, &b).ok());
   EXPECT_EQ(ShotsOf(a), ShotsOf(b));
@@ -189,6 +191,8 @@ TEST_F(PlanRpcTest, PlansShotsWithinTheLimitsTheSameForTheSameSeed) {
   EXPECT_TRUE(Mentions(log, "method=Plan peer=ipv4:127.0.0.1:")) << log;
   EXPECT_TRUE(Mentions(log, "status=OK")) << log;
   EXPECT_TRUE(Mentions(log, "simulations=" + std::to_string(a.simulations()))) << log;
+  EXPECT_FALSE(Mentions(log, "cut_short")) << log;
+  EXPECT_EQ(server_->counts().plans_cut_short, 0);
 }
 
 TEST_F(PlanRpcTest, PlanStreamSendsProgressThenTheFinalAnswerAsPlanGivesIt) {
@@ -420,11 +424,15 @@ TEST_F(PlanRpcTest, ADeadlineShorterThanTheBudgetEndsThePlan) {
         << deadline_ms << ": " << st.error_code() << " " << st.error_message();
     if (st.ok()) {
       EXPECT_GT(response.shots_size(), 0) << response.reason();
+      EXPECT_TRUE(response.cut_short());
       ExpectWithinLimits(request, response);
     }
     EXPECT_LT(took, milliseconds(deadline_ms) + std::chrono::seconds(2)) << deadline_ms;
   }
   WaitUntilIdle();
+  // Both plans, answered or not, were cut short by their deadlines; the warm-up, capped, was not.
+  EXPECT_EQ(server_->counts().plans_cut_short, 2);
+  EXPECT_EQ(Occurrences(Log(), "cut_short=1"), 2);
 }
 
 // The server's own maximum ends a plan without a client deadline the same way.
