@@ -70,7 +70,9 @@ was sent, answered OK and checked without a problem; 1 otherwise; 2 for bad usag
   --seed S             seed of the built-in tables and of the shots (default 1)
   --max-seconds S      no call is sent after S seconds (default 600, at most 3600)
   --json               one JSON object: {"target", "method", "concurrency",
-                       "requests", "completed", "elapsedS", "throughputPerS", "budgetMs" and "plansWithShots" (plan),
+                       "requests", "completed", "elapsedS", "throughputPerS", "budgetMs",
+                       "plansWithShots" and "plansCutShort" (plan: OK answers with
+                       a shot, and those the clock cut short),
                        "latencyMs": {"p50", "p90", "p99", "max", "mean"}, "statuses":
                        {"OK": n, ...}, "errors", "badAnswers", "problems": [...],
                        "ballsMoved", "healthBefore", "healthAfter", "timeBoundHit"}
@@ -92,6 +94,7 @@ struct Outcome {
   std::string problem;  // empty: the answer checked out (or the call failed)
   int balls_moved = 0;
   int shots = 0;  // plan: shots in the answer
+  bool cut_short = false;  // plan: the clock stopped some of its work (PlanResponse.cut_short)
 };
 
 std::string Num(double x) { return server::FormatNumber(x); }
@@ -362,6 +365,7 @@ Outcome CallOnce(v1::ShotPlanner::Stub& stub, const Settings& s, const v1::Table
       o.problem = CheckPlan(request, response, expect);
       o.balls_moved = response.warnings_size();
       o.shots = response.shots_size();
+      o.cut_short = response.cut_short();
     }
   } else {
     v1::SimulateRequest request;
@@ -434,7 +438,7 @@ Load SendLoad(const Settings& s, const std::vector<v1::TableState>& tables, cons
 
 // The outcomes summed up for the report.
 struct Summary {
-  std::size_t completed = 0, errors = 0, bad = 0, moved = 0, with_shots = 0;
+  std::size_t completed = 0, errors = 0, bad = 0, moved = 0, with_shots = 0, cut_short = 0;
   std::map<std::string, std::size_t> statuses;  // by status code name
   std::vector<double> latencies;                // ms, sorted
   std::vector<std::string> problems;            // the first five
@@ -452,6 +456,7 @@ Summary Summarize(const Load& load) {
     ++sum.statuses[StatusCodeName(o.code)];
     sum.moved += static_cast<std::size_t>(o.balls_moved);
     if (o.code == grpc::StatusCode::OK && o.shots > 0) ++sum.with_shots;
+    if (o.code == grpc::StatusCode::OK && o.cut_short) ++sum.cut_short;
     if (o.code != grpc::StatusCode::OK) ++sum.errors;
     else if (!o.problem.empty()) ++sum.bad;
     if (!o.problem.empty() && sum.problems.size() < 5) {
@@ -499,6 +504,7 @@ void PrintJsonReport(const Settings& s, std::size_t table_count, const Load& loa
   if (s.plan) {
     f["budgetMs"].set_number_value(s.budget_ms);
     f["plansWithShots"].set_number_value(static_cast<double>(sum.with_shots));
+    f["plansCutShort"].set_number_value(static_cast<double>(sum.cut_short));
   }
   f["healthBefore"].set_string_value(health.before);
   f["healthAfter"].set_string_value(health.after);
@@ -528,7 +534,7 @@ void PrintReadableReport(const Settings& s, std::size_t table_count, const Load&
       << "\n";
   if (s.plan) {
     out << "  plans: budget " << Num(s.budget_ms) << " ms each; " << sum.with_shots
-        << " answers with at least one shot\n";
+        << " answers with at least one shot, " << sum.cut_short << " cut short by the clock\n";
   }
   for (const std::string& p : sum.problems) out << "  problem: " << p << "\n";
 }
