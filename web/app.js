@@ -686,8 +686,11 @@ function finishPlan(request, balls, response, info) {
   showWarnings(response.warnings);
   renderShots(response, balls);
   const n = (response.shots || []).length;
+  // The work, and whether the clock cut it short (then another run may differ).
+  const work = `${num(response.simulations)} of ${num(response.simulationCap)} simulations` +
+    (response.cutShort ? ', cut short' : '');
   $('progress').textContent = n
-    ? `${n} shot${n > 1 ? 's' : ''} in ${fixed(response.elapsedMs, 0)} ms (${num(response.simulations)} simulations)`
+    ? `${n} shot${n > 1 ? 's' : ''} in ${fixed(response.elapsedMs, 0)} ms (${work})`
     : '';
   if (n) {
     selectShot(0);

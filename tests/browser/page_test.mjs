@@ -272,6 +272,11 @@ async function main() {
       check('capped plan: the rows\' P(pot) and points equal a direct Plan call\'s, best first',
         texts.length > 0 && JSON.stringify(texts) === JSON.stringify(expected) && ranked,
         `page ${texts.join(', ')}; Plan ${expected.join(', ')} (${capped.shots} shots, maxSimulations ${request.maxSimulations})`);
+      const work = await page.$eval('#progress', (e) => e.textContent);
+      check('capped plan: the page shows the work of its cap, not cut short, as Plan answers',
+        work.endsWith(' of 2000 simulations)') && (answer.body || {}).simulationCap === 2000 &&
+          (answer.body || {}).cutShort === false,
+        `page "${work}"; Plan ${JSON.stringify({ simulationCap: (answer.body || {}).simulationCap, cutShort: (answer.body || {}).cutShort })}`);
       await page.$eval('#budget', (e) => { e.value = ''; });
       await page.$eval('#max-simulations', (e) => { e.value = ''; });
       const seq2 = await page.evaluate(() => window.snookerPage.planSeq);
