@@ -296,11 +296,12 @@ struct PlannerConfig {
   SearchSettings search_settings;
   /// The robot's cue: how its strikes become the cue ball's motion.
   physics::CueParams cue;
-  /// Simulations per millisecond per thread that the budget buys: measured on the
-  /// 2-core development machine (Release, the impact tables on) at about 80 a
-  /// millisecond per thread for a mid-frame table's search and Monte Carlo, so that
-  /// with margin the default budget's plan ends by its simulations (deterministic
-  /// for a seed) in about half its time; slower builds end by the time instead.
+  /// Simulations per millisecond per thread that the budget buys (the answer's
+  /// simulation_cap). A plan whose searches NLopt's tolerances end early ends by its
+  /// cap, the same answer for a seed whatever the timing (the demo's table: 2363 of
+  /// 4800 at 80 ms). One whose searches all run to their caps simulates about 22 a
+  /// millisecond a thread (BM_PlanWork, docs/planner.md), fewer than this, so the
+  /// clock ends it and says so (PlanAnswer::cut_short; how often: operations.md §4).
   double simulations_per_ms = 30.0;
   /// Shares of the budget (time and simulations): the search ends at
   /// search_share, the Monte Carlo at search_share + monte_carlo_share.

@@ -10,6 +10,7 @@ REVISION, the git commit whose code was measured, is named in the document.
 """
 import json
 import os
+import re
 import sys
 
 import matplotlib
@@ -186,6 +187,21 @@ def bench_rows(bench):
     return sorted(rows)
 
 
+def schedule(header="planner/planner.h"):
+    """PlannerConfig's budget shares and the simulations a millisecond buys, as the
+    planner's header sets them (the document describes the code, not a copy of it)."""
+    with open(header) as f:
+        text = f.read()
+    names = ["simulations_per_ms", "search_share", "lookahead_share", "monte_carlo_share", "end_share"]
+    values = {}
+    for name in names:
+        m = re.search(r"\bdouble %s = ([0-9.]+);" % name, text)
+        if m is None:
+            sys.exit("planner_report: no PlannerConfig::%s in %s" % (name, header))
+        values[name] = float(m.group(1))
+    return values
+
+
 def main():
     data, docs, command = sys.argv[1], sys.argv[2], sys.argv[3]
     revision = sys.argv[4] if len(sys.argv) > 4 else "?"
@@ -308,6 +324,10 @@ def main():
     p99_10 = max((b["elapsed_p99"] for budget, _, b in rows if budget == 10), default=float("nan"))
     p99_rest = max((b["elapsed_p99"] for budget, _, b in rows if budget > 10), default=float("nan"))
     ctx = bench["context"]
+    sched = schedule()
+    pct = lambda share: "%.0f %%" % (100 * share)  # noqa: E731
+    # What a thread simulates a millisecond when the cap binds (two threads).
+    work_rate = 1e3 / work["wall_us_per_simulation"] / 2 if work else float("nan")
 
     sweep = ("| budget (ms) | mean break | largest | pots dropped | plan p50 (ms) | plan p99 (ms) |\n"
              "|---:|---:|---:|---:|---:|---:|\n")
@@ -375,13 +395,18 @@ break ends at a miss, a foul, a table with no pot for the planner, or a cleared 
 
 Anytime: the search keeps its best verified shot apart from NLopt's iterate, reports it
 through the progress callback each time it improves, and every phase stops at its share
-of the budget (search to 65 %, Monte Carlo to 92 %, everything by 95 %), at the
-caller's deadline or when the cancel flag is set. Work is also capped in simulations
-derived from the budget (12 per ms per thread), and NLopt's tolerances end most
-searches sooner still: unless time runs out first, the same seed gives the same
-answer whatever the thread timing (a test checks it); when it does, the answer is the
-best found in time. Two worker threads share the candidates and the Monte Carlo
-blocks, one simulator each.
+of the budget (the search to {pct(sched["search_share"] - sched["lookahead_share"])} and the lookahead's search of the next shot
+to {pct(sched["search_share"])}, or the search to {pct(sched["search_share"])} without it; the Monte Carlo to
+{pct(sched["search_share"] + sched["monte_carlo_share"])}; everything by {pct(sched["end_share"])}), at the caller's deadline or when the cancel flag is set.
+Work is also capped in simulations derived from the budget ({sched["simulations_per_ms"]:.0f} per ms per thread,
+the answer's `simulation_cap`), and NLopt's tolerances end most searches sooner still:
+unless time runs out first, the same seed gives the same answer whatever the thread
+timing, and the same request capped at `simulation_cap` gives it on any machine
+(tests check both); when time does run out (the answer's `cut_short`), the answer is
+the best found in time. A plan whose searches all run to their caps simulates about
+{work_rate:.0f} times a millisecond a thread (BM_PlanWork, below), fewer than the cap assumes, so
+on tables with many candidates the clock, not the cap, ends it. Two worker threads
+share the candidates and the Monte Carlo blocks, one simulator each.
 
 Once the buffers have grown, no evaluation allocates: a worker keeps its simulators,
 the table a stroke leaves and its copy with the cue ball in hand (`LeaveScratch`) from
