@@ -57,7 +57,10 @@ Players:
                    settings ("seedText": the seed as a string, exact where a JSON
                    double would round it), "framesCapped" (frames stopped at the
                    shot cap), "framesUndecided" (of those, level), "blackRespots",
-                   "simulationFailures", "thinBreakOff" (--thin-break-off), and per
+                   "simulationFailures", "thinBreakOff" (--thin-break-off),
+                   "plansCutShort" (plans the clock cut short: 0 with a
+                   --max-simulations that binds, the match then a function of
+                   the seed), and per
                    player (suffix A or B) highestBreak, centuries, penaltyPoints
                    (from the opponent's fouls), shots, stalls, planMsP50,
                    planMsP99, safetyOutlook and safetyOutlookP50 (the opponent's
@@ -187,7 +190,7 @@ void PrintJson(const Parsed& p, const planner::MatchReport& r, std::ostream& out
     << ", \"centuries\": " << r.centuries << ", \"foulsA\": " << a.fouls << ", \"foulsB\": " << b.fouls
     << ", \"safetiesA\": " << a.safeties << ", \"safetiesB\": " << b.safeties << ", \"stalls\": " << r.stalls
     << ", \"shots\": " << r.shots << ", \"planMsP50\": " << Number(r.plan_ms_p50)
-    << ", \"planMsP99\": " << Number(r.plan_ms_p99);
+    << ", \"planMsP99\": " << Number(r.plan_ms_p99) << ", \"plansCutShort\": " << r.plans_cut_short;
   j << ", \"playerA\": \"" << planner::ToString(a.kind) << "\", \"playerB\": \"" << planner::ToString(b.kind)
     << "\", \"seed\": " << o.seed << ", \"seedText\": \"" << o.seed << "\", \"budgetMs\": " << Number(p.budget_ms)
     << ", \"maxSimulations\": " << o.max_simulations << ", \"samples\": " << o.monte_carlo_samples

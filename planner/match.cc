@@ -184,6 +184,7 @@ struct TurnChoice {
   PotRoute route = PotRoute::kDirect;
   bool stall = false;
   double plan_ms = 0;
+  bool cut_short = false;  // the plan's PlanAnswer::cut_short
   double pot_probability = std::numeric_limits<double>::quiet_NaN();
   double plan_score = std::numeric_limits<double>::quiet_NaN();
   int samples = 0;
@@ -254,6 +255,7 @@ TurnChoice MatchRunner::Choose(const FrameState& f, int frame, Rng& rng) const {
   const PlanAnswer answer = planner_.Plan(req);
   TurnChoice c;
   c.plan_ms = answer.elapsed * 1e3;
+  c.cut_short = answer.cut_short;
   c.seen = req.table;
   c.plan_seed = seed;
   if (!answer.shots.empty()) {
@@ -342,6 +344,7 @@ void MatchRunner::Play(int frame, FrameState& f, const TurnChoice& c, Rng& rng, 
   p.plan_ms.push_back(c.plan_ms);
   plan_ms_.push_back(c.plan_ms);
   plan_ms_by_turn_[static_cast<size_t>(turn)].push_back(c.plan_ms);
+  if (c.cut_short) ++report_.plans_cut_short;
   if (c.stall) {
     ++p.stalls;
     ++summary.stalls;

@@ -247,6 +247,9 @@ struct MatchReport {
   /// Both players' planning times, ms.
   double plan_ms_p50 = 0;
   double plan_ms_p99 = 0;
+  /// Plans the clock cut short (PlanAnswer::cut_short): with none, the match is a
+  /// function of its options and seed (a simulation cap that binds first).
+  int plans_cut_short = 0;
   /// The same by kind of turn: the cue ball on the table, in hand after a foul,
   /// and the break-off (TurnType); NaN for a kind no turn was of.
   std::array<double, 3> plan_ms_p50_by_turn{};

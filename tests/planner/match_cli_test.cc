@@ -69,7 +69,7 @@ TEST(CliMatchTest, JsonHasTheContractedNames) {
       "shotsA",       "shotsB",        "stallsA",        "stallsB",           "planMsP50A",
       "planMsP50B",   "planMsP99A",    "planMsP99B",     "safetyOutlookA",    "safetyOutlookB",
       "safetyOutlookP50A", "safetyOutlookP50B", "breakOffOutlookA", "breakOffOutlookB", "breakOffOutlookP50A",
-      "breakOffOutlookP50B", "kindsA", "kindsB", "routesA", "routesB", "planMsByTurn"};
+      "breakOffOutlookP50B", "kindsA", "kindsB", "routesA", "routesB", "planMsByTurn", "plansCutShort"};
   std::set<std::string> all = contract;
   all.insert(more.begin(), more.end());
   EXPECT_EQ(Keys(json), all);
@@ -92,6 +92,7 @@ TEST(CliMatchTest, JsonHasTheContractedNames) {
   EXPECT_EQ(f.at("shotsA").number_value() + f.at("shotsB").number_value(), f.at("shots").number_value());
   EXPECT_EQ(f.at("stallsA").number_value() + f.at("stallsB").number_value(), f.at("stalls").number_value());
   EXPECT_LE(f.at("planMsP50").number_value(), f.at("planMsP99").number_value());
+  EXPECT_EQ(f.at("plansCutShort").number_value(), 0);  // capped in simulations, not in time
   // The opponent's pot chance after a safety: a probability, or null when the
   // player played none.
   for (const char* key : {"safetyOutlookA", "safetyOutlookB", "safetyOutlookP50A", "safetyOutlookP50B",

@@ -389,6 +389,8 @@ TEST(MatchTest, AMatchIsAFunctionOfItsSeed) {
     EXPECT_EQ(a.players[p].penalty_points, b.players[p].penalty_points);
   }
   EXPECT_EQ(a.simulation_failures, b.simulation_failures);
+  EXPECT_EQ(a.plans_cut_short, 0);  // every plan ended by its cap
+  EXPECT_EQ(b.plans_cut_short, 0);
 }
 
 }  // namespace
