@@ -11,6 +11,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <future>
 #include <memory>
 #include <ostream>
@@ -21,6 +23,7 @@
 #include "physics/core/params.h"
 #include "physics/table/table.h"
 #include "planner/planner.h"
+#include "server/metrics.h"
 #include "server/plan_convert.h"
 #include "server/server.h"
 #include "snooker/v1/service.grpc.pb.h"
@@ -430,9 +433,14 @@ TEST_F(PlanRpcTest, ADeadlineShorterThanTheBudgetEndsThePlan) {
     EXPECT_LT(took, milliseconds(deadline_ms) + std::chrono::seconds(2)) << deadline_ms;
   }
   WaitUntilIdle();
-  // Both plans, answered or not, were cut short by their deadlines; the warm-up, capped, was not.
-  EXPECT_EQ(server_->counts().plans_cut_short, 2);
-  EXPECT_EQ(Occurrences(Log(), "cut_short=1"), 2);
+  // Every plan the server took but the warm-up (capped in simulations) was cut short
+  // by its deadline, answered or not; the 2 ms call may have expired before it was sent.
+  const CallCounts counts = server_->counts();
+  std::int64_t plans = 0;
+  for (const std::int64_t n : counts.methods[static_cast<std::size_t>(MethodIndex("Plan"))].by_status) plans += n;
+  EXPECT_GE(plans, 2);
+  EXPECT_EQ(counts.plans_cut_short, plans - 1);
+  EXPECT_EQ(Occurrences(Log(), "cut_short=1"), plans - 1);
 }
 
 // The server's own maximum ends a plan without a client deadline the same way.
