@@ -65,6 +65,7 @@ struct Schedule {
   StopControl lookahead;
   StopControl monte_carlo;
   StopControl final;
+  StopControl caller;  // the caller's deadline alone (the fallback's)
   double search_simulations = 0;
   double lookahead_simulations = 0;
   double monte_carlo_simulations = 0;
@@ -79,21 +80,16 @@ struct Schedule {
 // before its end), so it did what the caps alone would have had it do.
 class CutWatch {
  public:
-  explicit CutWatch(const std::atomic<bool>* cancel) : cancel_(cancel) {}
-  // Work bounded by `deadline` ends now. True (and noted) when the deadline has passed
-  // or the plan is cancelled: StopControl::Due, remembered.
-  bool Ended(Clock::time_point deadline) {
-    const bool cancelled = cancel_ != nullptr && cancel_->load(std::memory_order_relaxed);
-    if (!cancelled && (deadline == Clock::time_point::max() || Clock::now() < deadline)) return false;
+  // Work bounded by `stop` ends now: stop.Due(), remembered when true.
+  bool Ended(const StopControl& stop) {
+    if (!stop.Due()) return false;
     Cut();
     return true;
   }
-  bool Ended(const StopControl& stop) { return Ended(stop.deadline); }
   void Cut() { cut_.store(true, std::memory_order_relaxed); }
   bool cut() const { return cut_.load(std::memory_order_relaxed); }
 
  private:
-  const std::atomic<bool>* cancel_;
   std::atomic<bool> cut_{false};
 };
 
@@ -116,6 +112,7 @@ Schedule MakeSchedule(const PlannerConfig& config, const PlanRequest& request, C
   s.lookahead = {at(config.search_share), request.cancel};
   s.monte_carlo = {at(config.search_share + config.monte_carlo_share), request.cancel};
   s.final = {end, request.cancel};
+  s.caller = {request.deadline, request.cancel};
   s.deadline_binds = request.deadline < budget_end;
   // Whole simulations, so that a request whose max_simulations is this plan's cap
   // shares the work out exactly as this one does.
@@ -260,7 +257,7 @@ class PlanRun {
   PotContext after_ctx_;  // the next shot's: vision sees the moved balls afresh
   SearchSettings settings_;
   Schedule schedule_;
-  CutWatch cut_{request_.cancel};
+  CutWatch cut_;
   // The tables candidates play on: the request's first, then one per placement of
   // the cue ball in hand (the cue ball last).
   std::vector<TableState> tables_;
@@ -707,7 +704,7 @@ void PlanRun::SearchAndVerify() {
 void PlanRun::Fallback() {
   const bool cancelled = request_.cancel != nullptr && request_.cancel->load();
   if (!shots_.empty() || cancelled || !FallbackAllowed()) return;
-  if (cut_.Ended(request_.deadline)) {
+  if (cut_.Ended(schedule_.caller)) {
     answer_.deadline_hit = true;  // no time for the scan: the deadline, not the table, left no shot
     return;
   }
@@ -716,13 +713,11 @@ void PlanRun::Fallback() {
   const TableState& table = tables_[static_cast<size_t>(t)];
   AddWorkers(1);
   Worker& w = *workers_.front();
-  physics::Interrupt interrupt;
-  interrupt.deadline = request_.deadline;
-  interrupt.cancelled = request_.cancel;
+  const physics::Interrupt interrupt = schedule_.caller.AsInterrupt();
   FallbackOptions options;
   options.allow_foul = request_.kinds.Has(ShotKind::kFoul);
   const auto found = FindLegalStroke(table, table.cue_index(), on_, ctx_, settings_, w.full, interrupt, options);
-  cut_.Ended(request_.deadline);
+  cut_.Ended(schedule_.caller);
   if (!found) {
     answer_.deadline_hit = answer_.deadline_hit || interrupt.Due();
     fallback_scanned_ = !interrupt.Due();
@@ -752,7 +747,7 @@ void PlanRun::Fallback() {
     shots_.push_back(std::move(*ps));
     fallback_past_budget_ = cut_.Ended(schedule_.final);
   }
-  cut_.Ended(request_.deadline);
+  cut_.Ended(schedule_.caller);
   answer_.verified = static_cast<int>(shots_.size());
 }
 
