@@ -717,10 +717,10 @@ void PlanRun::Fallback() {
   FallbackOptions options;
   options.allow_foul = request_.kinds.Has(ShotKind::kFoul);
   const auto found = FindLegalStroke(table, table.cue_index(), on_, ctx_, settings_, w.full, interrupt, options);
-  cut_.Ended(schedule_.caller);
+  const bool stopped = cut_.Ended(schedule_.caller);  // what `interrupt` checks, read once
   if (!found) {
-    answer_.deadline_hit = answer_.deadline_hit || interrupt.Due();
-    fallback_scanned_ = !interrupt.Due();
+    answer_.deadline_hit = answer_.deadline_hit || stopped;
+    fallback_scanned_ = !stopped;
     return;
   }
   fallback_scanned_ = true;
