@@ -347,17 +347,19 @@ void ShotPlannerService::Record(const char* method, const std::string& peer, con
   // it in its method's counts too.
   metrics_.Observe(MethodIndex(method), static_cast<int>(GrpcCodeOf(status.code)), latency_ms * 1e-3);
   if (work.cut_short) plans_cut_short_.fetch_add(1);
+  // Logged before it is counted as finished too: a reader that sees it finished finds
+  // its line (or its loss). The call is answered after this, whatever becomes of its line.
+  if (options_.log != nullptr) {
+    const bool written = WriteLogLine(*options_.log, log_mu_, [&](std::ostream& line) {
+      line << "snooker: call method=" << method << " peer=" << peer << " request_id=" << request_id
+           << " status=" << ToString(status.code)
+           << " latency_ms=" << latency_ms << " simulations=" << work.simulations
+           << " request_bytes=" << request_bytes << " response_bytes=" << response_bytes
+           << (work.cut_short ? " cut_short=1" : "") << extra << "\n";
+    });
+    if (!written) log_lines_lost_.fetch_add(1);
+  }
   Count(status);
-  if (options_.log == nullptr) return;
-  // The call is answered after this, whatever becomes of its line.
-  const bool written = WriteLogLine(*options_.log, log_mu_, [&](std::ostream& line) {
-    line << "snooker: call method=" << method << " peer=" << peer << " request_id=" << request_id
-         << " status=" << ToString(status.code)
-         << " latency_ms=" << latency_ms << " simulations=" << work.simulations
-         << " request_bytes=" << request_bytes << " response_bytes=" << response_bytes
-         << (work.cut_short ? " cut_short=1" : "") << extra << "\n";
-  });
-  if (!written) log_lines_lost_.fetch_add(1);
 }
 
 CallCounts ShotPlannerService::counts() const {
