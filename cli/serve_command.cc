@@ -8,7 +8,9 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -71,7 +73,8 @@ std::string Help() {
   auto num = [](double x) { return server::FormatNumber(x); };
   std::ostringstream h;
   h << "usage: snooker serve [--address HOST:PORT] [--tls-cert CERT.pem --tls-key KEY.pem\n"
-       "                     [--tls-client-ca CA.pem] | --insecure] [--max-call-ms MS]\n"
+       "                     [--tls-client-ca CA.pem] [--tls-reload-s S] | --insecure]\n"
+       "                     [--max-call-ms MS]\n"
        "                     [--shutdown-grace-ms MS] [--workers N] [--max-queued N]\n"
        "                     [--max-plans N] [--default-budget-ms MS] [--max-budget-ms MS]\n"
        "                     [--vision-tolerance-mm MM] [--model FILE]\n"
@@ -95,6 +98,11 @@ std::string Help() {
        "  --tls-cert CERT.pem      serve TLS with this certificate (chain), PEM\n"
        "  --tls-key KEY.pem        and its private key, PEM\n"
        "  --tls-client-ca CA.pem   require client certificates signed by this CA (mutual TLS)\n"
+       "  --tls-reload-s S         read the TLS files again when they change, checking at\n"
+       "                           most every S s, so that a rotated certificate is served\n"
+       "                           without a restart; swap each new set in whole, key and\n"
+       "                           certificate at once (default 0: read once; at most "
+    << lim::kMaxTlsReloadSeconds << ")\n"
        "  --insecure               allow plaintext on an address that is not loopback (a\n"
        "                           trusted network, or a TLS-terminating proxy in front)\n"
        "  --max-call-ms MS         longest wall time of one call, ms: a call ends at its\n"
@@ -151,6 +159,26 @@ bool ReadPem(const std::string& flag, const std::string& path, std::string* pem,
   return true;
 }
 
+// The TLS files of --tls-cert, --tls-key and --tls-client-ca into `options`, to be
+// read again every `reload_s` seconds when that is positive; false with the reason
+// on `err`.
+bool ReadTls(const std::string& cert, const std::string& key, const std::string& client_ca, std::int64_t reload_s,
+             server::ServerOptions* options, std::ostream& err) {
+  server::TlsOptions tls;
+  if (!ReadPem("tls-cert", cert, &tls.cert_chain_pem, err) || !ReadPem("tls-key", key, &tls.private_key_pem, err) ||
+      (!client_ca.empty() && !ReadPem("tls-client-ca", client_ca, &tls.client_ca_pem, err))) {
+    return false;
+  }
+  if (reload_s > 0) {
+    tls.reload_interval = std::chrono::seconds(reload_s);
+    tls.cert_chain_file = cert;
+    tls.private_key_file = key;
+    tls.client_ca_file = client_ca;
+  }
+  options->tls = std::move(tls);
+  return true;
+}
+
 // --http and --cors-origin as the server will take them (whether TLS is given, not
 // its files, which are read later); false with the reason on `err`.
 bool HttpFlagsOk(const std::string& http, const std::string& cors_origin, bool tls, bool insecure,
@@ -193,7 +221,7 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   namespace lim = server::limits;
   Args args(argv,
             {"address", "max-call-ms", "shutdown-grace-ms", "workers", "max-queued", "tls-cert",
-             "tls-key", "tls-client-ca", "max-plans", "default-budget-ms", "max-budget-ms",
+             "tls-key", "tls-client-ca", "tls-reload-s", "max-plans", "default-budget-ms", "max-budget-ms",
              "vision-tolerance-mm", "model", "http", "cors-origin"},
             {"help", "insecure"});
   if (args.error().empty() && args.Switch("help")) {
@@ -214,6 +242,7 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   const auto cert = args.Text("tls-cert", "");
   const auto key = args.Text("tls-key", "");
   const auto client_ca = args.Text("tls-client-ca", "");
+  const auto reload = args.Integer("tls-reload-s", 0, 0, lim::kMaxTlsReloadSeconds);
   const auto http = args.Text("http", "");
   const auto cors_origin = args.Text("cors-origin", "");
   if (args.error().empty()) {
@@ -223,6 +252,10 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
     }
     if (!client_ca->empty() && cert->empty()) {
       err << "snooker serve: --tls-client-ca needs --tls-cert and --tls-key\n";
+      return kExitUsage;
+    }
+    if (*reload > 0 && cert->empty()) {
+      err << "snooker serve: --tls-reload-s needs --tls-cert and --tls-key\n";
       return kExitUsage;
     }
     if (!cert->empty() && args.Switch("insecure")) {
@@ -255,15 +288,7 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
     err << "snooker serve: " << bad << "\n(see snooker serve --help)\n";
     return kExitUsage;
   }
-  if (!cert->empty()) {
-    server::TlsOptions tls;
-    if (!ReadPem("tls-cert", *cert, &tls.cert_chain_pem, err) ||
-        !ReadPem("tls-key", *key, &tls.private_key_pem, err) ||
-        (!client_ca->empty() && !ReadPem("tls-client-ca", *client_ca, &tls.client_ca_pem, err))) {
-      return kExitUsage;
-    }
-    options.tls = std::move(tls);
-  }
+  if (!cert->empty() && !ReadTls(*cert, *key, *client_ca, *reload, &options, err)) return kExitUsage;
   // Block the stop signals before gRPC starts its threads, then wait for one here:
   // the shutdown then runs on this thread, not inside a signal handler.
   sigset_t stop;

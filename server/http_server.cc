@@ -1,7 +1,5 @@
 #include "server/http_server.h"
 
-#include <openssl/err.h>
-#include <openssl/pem.h>
 #include <openssl/ssl.h>
 #include <sys/socket.h>
 
@@ -23,6 +21,7 @@
 #include "server/metrics.h"
 #include "server/request_id.h"
 #include "server/server.h"
+#include "server/tls_context.h"
 #include "server/web_files.h"
 #include "server/worker_pool.h"
 
@@ -60,69 +59,6 @@ std::string Printable(std::string_view text, std::size_t max = 200) {
   for (const char c : text.substr(0, max)) out += (c >= 0x20 && c < 0x7F) ? c : '?';
   if (text.size() > max) out += "...";
   return out;
-}
-
-// --- TLS from PEM text ------------------------------------------------------------
-
-struct BioFree {
-  void operator()(BIO* b) const { BIO_free(b); }
-};
-using Bio = std::unique_ptr<BIO, BioFree>;
-
-Bio MemoryBio(const std::string& pem) { return Bio(BIO_new_mem_buf(pem.data(), static_cast<int>(pem.size()))); }
-
-// Every certificate of `pem`, in order, to `take` (which owns it); how many.
-template <typename Take>
-int ForEachCertificate(const std::string& pem, Take take) {
-  Bio bio = MemoryBio(pem);
-  int n = 0;
-  while (bio != nullptr) {
-    X509* x = PEM_read_bio_X509(bio.get(), nullptr, nullptr, nullptr);
-    if (x == nullptr) break;
-    take(x);
-    ++n;
-  }
-  ERR_clear_error();  // the end of the text reads as an error
-  return n;
-}
-
-bool SetUpTls(SSL_CTX& ctx, const TlsOptions& tls, std::string* why) {
-  auto fail = [why](const char* what) {
-    *why = what;
-    return false;
-  };
-  SSL_CTX_set_min_proto_version(&ctx, TLS1_2_VERSION);
-  SSL_CTX_set_options(&ctx, SSL_OP_NO_COMPRESSION | SSL_OP_NO_RENEGOTIATION);
-  bool leaf = true, chain_ok = true;
-  const int certificates = ForEachCertificate(tls.cert_chain_pem, [&](X509* x) {
-    if (leaf) {
-      chain_ok = SSL_CTX_use_certificate(&ctx, x) == 1;
-      X509_free(x);
-      leaf = false;
-    } else if (SSL_CTX_add_extra_chain_cert(&ctx, x) != 1) {  // takes x when it succeeds
-      X509_free(x);
-      chain_ok = false;
-    }
-  });
-  if (certificates == 0 || !chain_ok) return fail("the certificate is not valid PEM");
-  Bio key_bio = MemoryBio(tls.private_key_pem);
-  EVP_PKEY* key = key_bio ? PEM_read_bio_PrivateKey(key_bio.get(), nullptr, nullptr, nullptr) : nullptr;
-  const bool key_ok = key != nullptr && SSL_CTX_use_PrivateKey(&ctx, key) == 1;
-  EVP_PKEY_free(key);
-  if (!key_ok) return fail("the private key is not valid PEM");
-  if (SSL_CTX_check_private_key(&ctx) != 1) return fail("the key does not match the certificate");
-  if (!tls.client_ca_pem.empty()) {
-    X509_STORE* store = SSL_CTX_get_cert_store(&ctx);
-    bool ca_ok = true;
-    const int cas = ForEachCertificate(tls.client_ca_pem, [&](X509* x) {
-      ca_ok = ca_ok && X509_STORE_add_cert(store, x) == 1 && SSL_CTX_add_client_CA(&ctx, x) == 1;
-      X509_free(x);
-    });
-    if (cas == 0 || !ca_ok) return fail("the client CA is not valid PEM");
-    SSL_CTX_set_verify(&ctx, SSL_VERIFY_PEER | SSL_VERIFY_FAIL_IF_NO_PEER_CERT, nullptr);
-  }
-  ERR_clear_error();
-  return true;
 }
 
 // --- Answers -------------------------------------------------------------------------
@@ -318,6 +254,7 @@ struct HttpServer::Impl {
   std::string cors_origin;
   std::ostream* log = nullptr;
   bool tls = false;
+  std::unique_ptr<TlsReloader> tls_reloader;  // before http, which calls it
   std::unique_ptr<httplib::Server> http;
   std::thread listener;
   std::future<void> listener_done;
@@ -618,6 +555,7 @@ void HttpServer::Impl::Stop(Clock::time_point deadline) {
   } else {
     listener.detach();
     (void)http.release();
+    (void)tls_reloader.release();
   }
 }
 
@@ -655,8 +593,15 @@ std::unique_ptr<HttpServer> HttpServer::Start(ShotPlannerService* service, const
   impl->tls = options.tls != nullptr;
   if (options.tls != nullptr) {
     std::string why;
-    impl->http = std::make_unique<httplib::SSLServer>(
-        [&](SSL_CTX& ctx) { return SetUpTls(ctx, *options.tls, &why); });
+    if (options.tls->reload_interval.count() > 0) {
+      impl->tls_reloader = std::make_unique<TlsReloader>(*options.tls, options.log, &impl->log_mu);
+    }
+    TlsReloader* reloader = impl->tls_reloader.get();
+    impl->http = std::make_unique<httplib::SSLServer>([&](SSL_CTX& ctx) {
+      if (!SetUpTls(ctx, *options.tls, &why)) return false;
+      if (reloader != nullptr) reloader->Install(ctx);
+      return true;
+    });
     if (!impl->http->is_valid()) return fail("cannot serve HTTPS on " + options.address + ": " + why);
   } else {
     impl->http = std::make_unique<httplib::Server>();

@@ -61,6 +61,9 @@ inline constexpr std::chrono::milliseconds kKeepalive{60'000};
 inline constexpr std::chrono::milliseconds kKeepaliveTimeout{20'000};
 /// Either may be set from 1 ms to a day.
 inline constexpr std::chrono::milliseconds kMaxKeepalive{86'400'000};
+/// `--tls-reload-s`: how often the certificate files may be read again, s (0: read
+/// once at the start), at most a day.
+inline constexpr std::int64_t kMaxTlsReloadSeconds = 86'400;
 /// On SIGTERM/SIGINT, calls in flight may finish for this long, then are cancelled
 /// (`snooker serve --shutdown-grace-ms`).
 inline constexpr std::chrono::milliseconds kDefaultShutdownGrace{5'000};

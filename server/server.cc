@@ -3,9 +3,12 @@
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/health_check_service_interface.h>
 #include <grpcpp/security/server_credentials.h>
+#include <grpcpp/security/tls_certificate_provider.h>
+#include <grpcpp/security/tls_credentials_options.h>
 
 #include "server/address.h"
 #include "server/plan_api.h"
+#include "server/tls_context.h"
 
 namespace snooker::server {
 
@@ -28,6 +31,23 @@ constexpr int kMaxMetadataBytes = 16 * 1024;
 
 std::shared_ptr<grpc::ServerCredentials> Credentials(const ServerOptions& options) {
   if (!options.tls) return grpc::InsecureServerCredentials();
+  if (options.tls->reload_interval.count() > 0) {
+    // gRPC's own watcher reads the files again every interval (the text was read
+    // from them just before, and checked by the HTTP side or the command line).
+    namespace ex = grpc::experimental;
+    const TlsOptions& tls = *options.tls;
+    ex::TlsServerCredentialsOptions o(std::make_shared<ex::FileWatcherCertificateProvider>(
+        tls.private_key_file, tls.cert_chain_file, tls.client_ca_file,
+        static_cast<unsigned>(tls.reload_interval.count())));
+    o.watch_identity_key_cert_pairs();
+    if (tls.client_ca_file.empty()) {
+      o.set_cert_request_type(GRPC_SSL_DONT_REQUEST_CLIENT_CERTIFICATE);
+    } else {
+      o.watch_root_certs();
+      o.set_cert_request_type(GRPC_SSL_REQUEST_AND_REQUIRE_CLIENT_CERTIFICATE_AND_VERIFY);
+    }
+    return grpc::experimental::TlsServerCredentials(o);
+  }
   grpc::SslServerCredentialsOptions ssl(
       options.tls->client_ca_pem.empty()
           ? GRPC_SSL_DONT_REQUEST_CLIENT_CERTIFICATE
@@ -38,6 +58,22 @@ std::shared_ptr<grpc::ServerCredentials> Credentials(const ServerOptions& option
 }
 
 }  // namespace
+
+std::string CheckTlsReload(const TlsOptions& tls) {
+  const auto s = tls.reload_interval.count();
+  if (s == 0) return "";
+  if (s < 0 || s > limits::kMaxTlsReloadSeconds) {
+    return "the TLS reload interval " + std::to_string(s) + " s is outside [0, " +
+           std::to_string(limits::kMaxTlsReloadSeconds) + "] s";
+  }
+  if (tls.cert_chain_file.empty() || tls.private_key_file.empty()) {
+    return "reloading TLS needs the files of the certificate and its key";
+  }
+  if (tls.client_ca_file.empty() != tls.client_ca_pem.empty()) {
+    return "reloading TLS with a client CA needs its file, and a client CA file needs its text";
+  }
+  return "";
+}
 
 std::unique_ptr<Server> Server::Start(const ServerOptions& options, std::string* error) {
   auto fail = [&](const std::string& why) {
@@ -60,6 +96,12 @@ std::unique_ptr<Server> Server::Start(const ServerOptions& options, std::string*
   }
   if (options.tls && (options.tls->cert_chain_pem.empty() || options.tls->private_key_pem.empty())) {
     return fail("TLS needs both a certificate and its private key");
+  }
+  if (options.tls) {
+    if (const std::string bad = CheckTlsReload(*options.tls); !bad.empty()) return fail(bad);
+    if (const std::string bad = CheckTlsText(*options.tls); !bad.empty()) {
+      return fail("cannot listen on " + options.address + " with TLS: " + bad);
+    }
   }
   HttpOptions http;
   http.address = options.http_address;

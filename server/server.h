@@ -35,7 +35,18 @@ struct TlsOptions {
   /// Not empty: clients must present a certificate signed by one of these CAs
   /// (mutual TLS); empty: clients are not asked for one.
   std::string client_ca_pem;
+  /// Certificate rotation without a restart (`--tls-reload-s`): a positive interval
+  /// has both transports read the files the text above came from again as they
+  /// change, checking at most once an interval; the files must then be given (the
+  /// client CA's exactly when client_ca_pem is set). Zero: the text above, for the
+  /// server's life.
+  std::chrono::seconds reload_interval{0};
+  std::string cert_chain_file, private_key_file, client_ca_file;
 };
+
+/// Empty, or what is wrong with `tls`'s reload settings (the interval out of
+/// [0, limits::kMaxTlsReloadSeconds], or a file missing for it).
+std::string CheckTlsReload(const TlsOptions& tls);
 
 struct ServerOptions : ServiceOptions {
   /// "host:port"; port 0 picks a free port.

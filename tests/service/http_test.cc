@@ -600,5 +600,47 @@ TEST_F(HttpTlsTest, HttpsServesWithTheTlsFlagsAndPlainHttpFails) {
   EXPECT_TRUE(!plain_res || plain_res->status != 200);
 }
 
+TEST_F(HttpTlsTest, ARotatedCertificateIsServedWithoutARestartAndABrokenSetIsNot) {
+  server_support::RotatingCertificates certs(cli_support::TempPath("snooker_http_rotation"));
+  certs.Serve(Path("server.pem"), Path("server.key"), Path("ca.pem"));
+  ServerOptions options;
+  TlsOptions tls;
+  tls.cert_chain_pem = Pem("server.pem");
+  tls.private_key_pem = Pem("server.key");
+  tls.client_ca_pem = Pem("ca.pem");
+  tls.reload_interval = std::chrono::seconds(1);
+  tls.cert_chain_file = certs.File("cert.pem");
+  tls.private_key_file = certs.File("key.pem");
+  tls.client_ca_file = certs.File("ca.pem");
+  options.tls = tls;
+  StartServer(options);
+  // Whether a client that trusts `ca`, with the certificate `client`, is answered.
+  auto answered = [&](const std::string& ca, const std::string& client) {
+    httplib::SSLClient c("localhost", port_, Path(client + ".pem"), Path(client + ".key"));
+    c.set_ca_cert_path(Path(ca));
+    c.enable_server_certificate_verification(true);
+    const auto res = c.Get("/healthz");
+    return res && res->status == 200;
+  };
+  EXPECT_TRUE(answered("ca.pem", "client"));
+  EXPECT_FALSE(answered("other-ca.pem", "other-client"));
+
+  // The server's certificate and the CA of its clients both rotated to another CA.
+  certs.Serve(Path("other-server.pem"), Path("other-server.key"), Path("other-ca.pem"));
+  EXPECT_TRUE(server_support::Eventually(std::chrono::seconds(15), [&] { return answered("other-ca.pem", "other-client"); }));
+  EXPECT_FALSE(answered("ca.pem", "client"));
+  EXPECT_FALSE(answered("other-ca.pem", "client"));
+
+  // A set whose key is not its certificate's is refused and said once; the set in use
+  // goes on serving.
+  certs.Serve(Path("server.pem"), Path("other-server.key"), Path("ca.pem"));
+  std::this_thread::sleep_for(std::chrono::milliseconds(1200));
+  for (int i = 0; i < 3; ++i) EXPECT_TRUE(answered("other-ca.pem", "other-client"));
+  const std::string log = Log();
+  EXPECT_TRUE(Mentions(log, "tls serves the certificate read again from " + certs.File("cert.pem"))) << log;
+  EXPECT_EQ(Occurrences(log, "tls kept the certificate in use; its files changed but the key does not match the certificate"), 1)
+      << log;
+}
+
 }  // namespace
 }  // namespace snooker::server

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <filesystem>
+#include <functional>
 #include <memory>
 #include <sstream>
 #include <streambuf>
@@ -37,6 +39,46 @@ inline server::CallCounts WaitUntilAnswered(const server::Server& server, std::i
   }
   return c;
 }
+
+/// True once `ok` holds, trying every 100 ms for at most `timeout`.
+inline bool Eventually(std::chrono::steady_clock::duration timeout, const std::function<bool()>& ok) {
+  const auto give_up = std::chrono::steady_clock::now() + timeout;
+  while (!ok()) {
+    if (std::chrono::steady_clock::now() >= give_up) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return true;
+}
+
+/// A server's TLS files as a certificate rotator keeps them (a mounted Kubernetes
+/// secret, for one): DIR/live is a symbolic link to the version in use, and Serve
+/// writes a new version beside it and renames a new link over `live`, so that a
+/// reader sees the old set or the new one, never half of each.
+class RotatingCertificates {
+ public:
+  explicit RotatingCertificates(std::string dir) : dir_(std::move(dir)) {
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  /// Makes copies of these files the set in use: cert.pem, key.pem and, when given,
+  /// ca.pem.
+  void Serve(const std::string& cert, const std::string& key, const std::string& ca = "") {
+    namespace fs = std::filesystem;
+    const std::string version = "v" + std::to_string(++versions_);
+    fs::create_directories(dir_ + "/" + version);
+    fs::copy_file(cert, dir_ + "/" + version + "/cert.pem");
+    fs::copy_file(key, dir_ + "/" + version + "/key.pem");
+    if (!ca.empty()) fs::copy_file(ca, dir_ + "/" + version + "/ca.pem");
+    fs::create_directory_symlink(version, dir_ + "/next");
+    fs::rename(dir_ + "/next", dir_ + "/live");
+  }
+  /// The path a server reads `name` at.
+  std::string File(const std::string& name) const { return dir_ + "/live/" + name; }
+
+ private:
+  std::string dir_;
+  int versions_ = 0;
+};
 
 /// A stream buffer that takes no character: every write through it fails (a log
 /// on a full disk).

@@ -181,10 +181,75 @@ TEST_F(TlsTest, AKeyThatDoesNotLoadIsAnErrorNotAServer) {
   o.tls->private_key_pem = Pem("client.key");  // not the certificate's key
   std::string error;
   EXPECT_EQ(Start(o, &error), nullptr);
-  EXPECT_TRUE(Mentions(error, "cannot listen on 127.0.0.1:0")) << error;
+  EXPECT_TRUE(Mentions(error, "cannot listen on 127.0.0.1:0 with TLS: the key does not match the certificate"))
+      << error;
   o.tls->private_key_pem.clear();
   EXPECT_EQ(Start(o, &error), nullptr);
   EXPECT_TRUE(Mentions(error, "TLS needs both a certificate and its private key")) << error;
+}
+
+TEST_F(TlsTest, ARotatedCertificateAndClientCaAreServedWithoutARestart) {
+  server_support::RotatingCertificates certs(cli_support::TempPath("snooker_grpc_rotation"));
+  certs.Serve(Path("server.pem"), Path("server.key"), Path("ca.pem"));
+  ServerOptions o;
+  o.address = "127.0.0.1:0";
+  o.tls = ServerTls(true);
+  o.tls->reload_interval = std::chrono::seconds(1);
+  o.tls->cert_chain_file = certs.File("cert.pem");
+  o.tls->private_key_file = certs.File("key.pem");
+  o.tls->client_ca_file = certs.File("ca.pem");
+  std::string error;
+  auto s = Start(o, &error);
+  ASSERT_NE(s, nullptr) << error;
+  EXPECT_TRUE(Call(s->port(), Tls("ca.pem", "client")).ok());
+  EXPECT_EQ(Call(s->port(), Tls("other-ca.pem", "other-client")).error_code(), grpc::StatusCode::UNAVAILABLE);
+
+  // The server's certificate and the CA of its clients both rotated to another CA.
+  certs.Serve(Path("other-server.pem"), Path("other-server.key"), Path("other-ca.pem"));
+  EXPECT_TRUE(server_support::Eventually(std::chrono::seconds(15), [&] {
+    return Call(s->port(), Tls("other-ca.pem", "other-client")).ok();
+  }));
+  EXPECT_EQ(Call(s->port(), Tls("ca.pem", "client")).error_code(), grpc::StatusCode::UNAVAILABLE);
+  EXPECT_EQ(Call(s->port(), Tls("other-ca.pem", "client")).error_code(), grpc::StatusCode::UNAVAILABLE);
+
+  // gRPC's watcher takes a set whose key is not its certificate's as no set: no
+  // handshake succeeds until a whole set is back, which is then served
+  // (operations.md, on rotating certificates).
+  certs.Serve(Path("server.pem"), Path("other-server.key"), Path("ca.pem"));
+  EXPECT_TRUE(server_support::Eventually(std::chrono::seconds(15), [&] {
+    return !Call(s->port(), Tls("other-ca.pem", "other-client")).ok();
+  }));
+  EXPECT_FALSE(Call(s->port(), Tls("ca.pem", "client")).ok());
+  certs.Serve(Path("server.pem"), Path("server.key"), Path("ca.pem"));
+  EXPECT_TRUE(server_support::Eventually(std::chrono::seconds(15), [&] {
+    return Call(s->port(), Tls("ca.pem", "client")).ok();
+  }));
+}
+
+TEST_F(TlsTest, ReloadingNeedsTheFilesAndAnIntervalInRange) {
+  ServerOptions o;
+  o.address = "127.0.0.1:0";
+  o.tls = ServerTls(true);
+  o.tls->reload_interval = std::chrono::seconds(60);
+  std::string error;
+  EXPECT_EQ(Start(o, &error), nullptr);
+  EXPECT_TRUE(Mentions(error, "reloading TLS needs the files of the certificate and its key")) << error;
+  o.tls->cert_chain_file = Path("server.pem");
+  o.tls->private_key_file = Path("server.key");
+  EXPECT_EQ(Start(o, &error), nullptr);
+  EXPECT_TRUE(Mentions(error, "with a client CA needs its file")) << error;
+  o.tls->client_ca_file = Path("ca.pem");
+  o.tls->reload_interval = std::chrono::seconds(limits::kMaxTlsReloadSeconds + 1);
+  EXPECT_EQ(Start(o, &error), nullptr);
+  EXPECT_TRUE(Mentions(error, "the TLS reload interval 86401 s is outside [0, 86400] s")) << error;
+
+  using cli_support::RunCli;
+  cli_support::RunResult r = RunCli("serve --tls-reload-s 60");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(Mentions(r.err, "--tls-reload-s needs --tls-cert and --tls-key")) << r.err;
+  r = RunCli("serve --tls-reload-s 86401 --tls-cert " + Path("server.pem") + " --tls-key " + Path("server.key"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(Mentions(r.err, "tls-reload-s")) << r.err;
 }
 
 TEST_F(TlsTest, TheCommandLineServesAndCallsWithTls) {
@@ -202,8 +267,9 @@ TEST_F(TlsTest, TheCommandLineServesAndCallsWithTls) {
   r = RunCli("serve --insecure --tls-cert " + Path("server.pem") + " --tls-key " + Path("server.key"));
   EXPECT_EQ(r.exit_code, 2);
 
-  // snooker serve with mutual TLS; snooker simulate --server as its client.
-  r = RunCli("serve --address 127.0.0.1:0 --tls-cert " + Path("server.pem") + " --tls-key " +
+  // snooker serve with mutual TLS (its files watched for rotation); snooker simulate
+  // --server as its client.
+  r = RunCli("serve --address 127.0.0.1:0 --tls-reload-s 60 --tls-cert " + Path("server.pem") + " --tls-key " +
              Path("server.key") + " --tls-client-ca " + Path("ca.pem") +
              " > " + Path("serve.out") + " & pid=$!; " + cli_support::kWaitForPort(Path("serve.out")) +
              SNOOKER_CLI_PATH +

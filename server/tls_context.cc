@@ -1,0 +1,215 @@
+#include "server/tls_context.h"
+
+#include <openssl/err.h>
+#include <openssl/pem.h>
+#include <openssl/x509.h>
+#include <sys/stat.h>
+
+#include <fstream>
+#include <iterator>
+#include <utility>
+
+#include "server/log_line.h"
+#include "server/server.h"
+
+namespace snooker::server {
+
+// A certificate set as a handshake takes it: the leaf, the rest of its chain, its key,
+// and the client CA (its certificates to verify by, their names to ask for).
+struct TlsMaterial {
+  X509* leaf = nullptr;
+  STACK_OF(X509)* chain = sk_X509_new_null();
+  EVP_PKEY* key = nullptr;
+  X509_STORE* ca_store = nullptr;  // null: clients are not asked for a certificate
+  STACK_OF(X509_NAME)* ca_names = nullptr;
+
+  TlsMaterial() = default;
+  TlsMaterial(const TlsMaterial&) = delete;
+  TlsMaterial& operator=(const TlsMaterial&) = delete;
+  ~TlsMaterial() {
+    X509_free(leaf);
+    sk_X509_pop_free(chain, X509_free);
+    EVP_PKEY_free(key);
+    X509_STORE_free(ca_store);
+    sk_X509_NAME_pop_free(ca_names, X509_NAME_free);
+  }
+};
+
+namespace {
+
+struct BioFree {
+  void operator()(BIO* b) const { BIO_free(b); }
+};
+using Bio = std::unique_ptr<BIO, BioFree>;
+
+Bio MemoryBio(const std::string& pem) { return Bio(BIO_new_mem_buf(pem.data(), static_cast<int>(pem.size()))); }
+
+// Every certificate of `pem`, in order, to `take` (which owns it); how many.
+template <typename Take>
+int ForEachCertificate(const std::string& pem, Take take) {
+  Bio bio = MemoryBio(pem);
+  int n = 0;
+  while (bio != nullptr) {
+    X509* x = PEM_read_bio_X509(bio.get(), nullptr, nullptr, nullptr);
+    if (x == nullptr) break;
+    take(x);
+    ++n;
+  }
+  return n;
+}
+
+// The set in the PEM texts (no client CA when `ca_pem` is empty), or null with *why.
+std::shared_ptr<const TlsMaterial> LoadMaterial(const std::string& cert_pem, const std::string& key_pem,
+                                                const std::string& ca_pem, std::string* why) {
+  auto m = std::make_shared<TlsMaterial>();
+  auto fail = [&](const char* what) {
+    ERR_clear_error();  // the end of a PEM text reads as an error too
+    *why = what;
+    return nullptr;
+  };
+  bool chain_ok = m->chain != nullptr;
+  ForEachCertificate(cert_pem, [&](X509* x) {
+    if (m->leaf == nullptr) {
+      m->leaf = x;
+    } else if (!chain_ok || sk_X509_push(m->chain, x) == 0) {
+      X509_free(x);
+      chain_ok = false;
+    }
+  });
+  if (m->leaf == nullptr || !chain_ok) return fail("the certificate is not valid PEM");
+  if (Bio bio = MemoryBio(key_pem); bio != nullptr) m->key = PEM_read_bio_PrivateKey(bio.get(), nullptr, nullptr, nullptr);
+  if (m->key == nullptr) return fail("the private key is not valid PEM");
+  if (X509_check_private_key(m->leaf, m->key) != 1) return fail("the key does not match the certificate");
+  if (!ca_pem.empty()) {
+    m->ca_store = X509_STORE_new();
+    m->ca_names = sk_X509_NAME_new_null();
+    bool ca_ok = m->ca_store != nullptr && m->ca_names != nullptr;
+    const int cas = ForEachCertificate(ca_pem, [&](X509* x) {
+      X509_NAME* name = ca_ok ? X509_NAME_dup(X509_get_subject_name(x)) : nullptr;
+      ca_ok = ca_ok && name != nullptr && X509_STORE_add_cert(m->ca_store, x) == 1 &&
+              sk_X509_NAME_push(m->ca_names, name) != 0;
+      if (!ca_ok) X509_NAME_free(name);
+      X509_free(x);
+    });
+    if (cas == 0 || !ca_ok) return fail("the client CA is not valid PEM");
+  }
+  ERR_clear_error();
+  return m;
+}
+
+// The client CA's names for a handshake to ask for; the handshake owns them.
+STACK_OF(X509_NAME)* CaNames(const TlsMaterial& m) { return SSL_dup_CA_list(m.ca_names); }
+
+// A file's text, at most 1 MiB (a certificate set is a few kB); false with *why.
+bool ReadSmallFile(const std::string& path, std::string* text, std::string* why) {
+  constexpr std::size_t kMaxBytes = 1 << 20;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    *why = "cannot read '" + path + "'";
+    return false;
+  }
+  text->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  if (in.bad() || text->size() > kMaxBytes) {
+    *why = "'" + path + "' cannot be read whole, or is over 1 MiB";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool SetUpTls(SSL_CTX& ctx, const TlsOptions& tls, std::string* why) {
+  SSL_CTX_set_min_proto_version(&ctx, TLS1_2_VERSION);
+  SSL_CTX_set_options(&ctx, SSL_OP_NO_COMPRESSION | SSL_OP_NO_RENEGOTIATION);
+  const auto m = LoadMaterial(tls.cert_chain_pem, tls.private_key_pem, tls.client_ca_pem, why);
+  if (m == nullptr) return false;
+  bool ok = SSL_CTX_use_certificate(&ctx, m->leaf) == 1 && SSL_CTX_set1_chain(&ctx, m->chain) == 1 &&
+            SSL_CTX_use_PrivateKey(&ctx, m->key) == 1;
+  if (ok && m->ca_store != nullptr) {
+    STACK_OF(X509_NAME)* names = CaNames(*m);
+    ok = names != nullptr && SSL_CTX_set1_verify_cert_store(&ctx, m->ca_store) == 1;
+    if (names != nullptr) SSL_CTX_set_client_CA_list(&ctx, names);
+    SSL_CTX_set_verify(&ctx, SSL_VERIFY_PEER | SSL_VERIFY_FAIL_IF_NO_PEER_CERT, nullptr);
+  }
+  ERR_clear_error();
+  if (!ok) *why = "OpenSSL would not take the certificate";
+  return ok;
+}
+
+std::string CheckTlsText(const TlsOptions& tls) {
+  std::string why;
+  return LoadMaterial(tls.cert_chain_pem, tls.private_key_pem, tls.client_ca_pem, &why) != nullptr ? "" : why;
+}
+
+TlsReloader::TlsReloader(const TlsOptions& tls, std::ostream* log, std::mutex* log_mu)
+    : cert_file_(tls.cert_chain_file),
+      key_file_(tls.private_key_file),
+      ca_file_(tls.client_ca_file),
+      interval_(tls.reload_interval),
+      log_(log),
+      log_mu_(log_mu) {
+  const std::string* files[3] = {&cert_file_, &key_file_, &ca_file_};
+  for (int i = 0; i < 3; ++i) stamps_[i] = StampOf(*files[i]);
+  next_check_ = std::chrono::steady_clock::now() + interval_;
+}
+
+TlsReloader::~TlsReloader() = default;
+
+TlsReloader::Stamp TlsReloader::StampOf(const std::string& path) {
+  struct stat st {};
+  if (path.empty() || stat(path.c_str(), &st) != 0) return {};
+  return {static_cast<long long>(st.st_mtim.tv_sec) * 1'000'000'000LL + st.st_mtim.tv_nsec,
+          static_cast<long long>(st.st_size)};
+}
+
+void TlsReloader::Install(SSL_CTX& ctx) { SSL_CTX_set_cert_cb(&ctx, &TlsReloader::OnCertificate, this); }
+
+int TlsReloader::OnCertificate(SSL* ssl, void* self) {
+  const auto m = static_cast<TlsReloader*>(self)->Current();
+  if (m == nullptr) return 1;  // the files are as at the start: the context's own set
+  bool ok = SSL_use_certificate(ssl, m->leaf) == 1 && SSL_set1_chain(ssl, m->chain) == 1 &&
+            SSL_use_PrivateKey(ssl, m->key) == 1;
+  if (ok && m->ca_store != nullptr) {
+    STACK_OF(X509_NAME)* names = CaNames(*m);
+    ok = names != nullptr && SSL_set1_verify_cert_store(ssl, m->ca_store) == 1;
+    if (names != nullptr) SSL_set_client_CA_list(ssl, names);
+  }
+  return ok ? 1 : 0;  // 0 ends the handshake
+}
+
+std::shared_ptr<const TlsMaterial> TlsReloader::Current() {
+  std::lock_guard<std::mutex> lock(mu_);
+  const auto now = std::chrono::steady_clock::now();
+  if (now < next_check_) return material_;
+  next_check_ = now + interval_;
+  const std::string* files[3] = {&cert_file_, &key_file_, &ca_file_};
+  Stamp stamps[3];
+  bool changed = false;
+  for (int i = 0; i < 3; ++i) {
+    stamps[i] = StampOf(*files[i]);
+    changed = changed || !(stamps[i] == stamps_[i]);
+  }
+  if (!changed) return material_;
+  std::string pem[3], why;
+  bool read = true;
+  for (int i = 0; i < 3 && read; ++i) read = files[i]->empty() || ReadSmallFile(*files[i], &pem[i], &why);
+  auto m = read ? LoadMaterial(pem[0], pem[1], pem[2], &why) : nullptr;
+  if (m == nullptr) {
+    // The stamps stay as they were, so that a set written in several steps is taken
+    // once it is whole.
+    if (why != refused_) Say("snooker: tls kept the certificate in use; its files changed but " + why + "\n");
+    refused_ = why;
+    return material_;
+  }
+  for (int i = 0; i < 3; ++i) stamps_[i] = stamps[i];
+  material_ = std::move(m);
+  refused_.clear();
+  Say("snooker: tls serves the certificate read again from " + cert_file_ + "\n");
+  return material_;
+}
+
+void TlsReloader::Say(const std::string& line) {
+  if (log_ != nullptr && log_mu_ != nullptr) WriteLogLine(*log_, *log_mu_, [&](std::ostream& out) { out << line; });
+}
+
+}  // namespace snooker::server
