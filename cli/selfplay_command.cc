@@ -34,8 +34,11 @@ re-spotted while reds remain.
   --seed S         seed of the frames, the noise and the planner (0 to 2^64 - 1)
   --budget-ms N    planning budget per shot, ms (default 80)
   --json           print one JSON object: {"meanBreak", "maxBreak", "potRate",
-                   "planMsP50", "planMsP99", "frames", "shots"} (points, points, share
-                   of attempted pots that dropped, ms, ms, count, count)
+                   "planMsP50", "planMsP99", "frames", "shots", "plansCutShort"}
+                   (points, points, share of attempted pots that dropped, ms, ms,
+                   count, count, plans the clock cut short: 0 with a
+                   --max-simulations cap the budget covers, when the run is a
+                   function of its seed)
 Noise (standard deviations; the same options as snooker plan):
 )";
 constexpr const char* kSelfplayHelpTail = R"(Planner:
@@ -129,7 +132,7 @@ int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::os
     j << "{\"meanBreak\": " << r.mean_break << ", \"maxBreak\": " << r.max_break
       << ", \"potRate\": " << r.pot_rate << ", \"planMsP50\": " << r.plan_ms_p50
       << ", \"planMsP99\": " << r.plan_ms_p99 << ", \"frames\": " << r.frames
-      << ", \"shots\": " << r.shots << "}\n";
+      << ", \"shots\": " << r.shots << ", \"plansCutShort\": " << r.plans_cut_short << "}\n";
     out << j.str();
     return kExitOk;
   }
@@ -140,7 +143,8 @@ int RunSelfPlay(const std::vector<std::string>& argv, std::ostream& out, std::os
       << "pots dropped " << std::setprecision(3) << r.pot_rate << " (" << r.pots << " of " << r.shots
       << ")\n"
       << std::setprecision(1) << "planning time per shot: median " << r.plan_ms_p50 << " ms, 99th percentile "
-      << r.plan_ms_p99 << " ms\nbreaks ended by:";
+      << r.plan_ms_p99 << " ms, " << r.plans_cut_short << " of " << r.plan_ms.size()
+      << " plans cut short by the clock\nbreaks ended by:";
   for (const auto& [why, n] : ends) out << " " << why << " " << n << ";";
   out << "\n";
   return kExitOk;

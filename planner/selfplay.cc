@@ -107,6 +107,7 @@ SelfPlayReport RunSelfPlay(const Planner& planner, const SelfPlayOptions& o,
       req.position_spread = o.position_spread;
       const PlanAnswer answer = planner.Plan(req);
       report.plan_ms.push_back(answer.elapsed * 1e3);
+      if (answer.cut_short) ++report.plans_cut_short;
       if (answer.shots.empty()) {
         rec.end = "no pot";
         break;

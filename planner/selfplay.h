@@ -77,6 +77,9 @@ struct SelfPlayReport {
   double pot_rate = 0;      ///< pots / shots
   double plan_ms_p50 = 0;   ///< median planning time per shot, ms
   double plan_ms_p99 = 0;   ///< 99th percentile (nearest rank), ms
+  /// Plans the clock cut short (PlanAnswer::cut_short): with none, the run is a
+  /// function of its seed and options.
+  int plans_cut_short = 0;
   std::vector<FrameRecord> records;
   std::vector<double> plan_ms;  ///< every plan, in order
 };

@@ -526,7 +526,8 @@ TEST(CliSelfPlayTest, JsonHasExactlyTheContractedNames) {
   Struct json;
   ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &json).ok()) << r.out;
   EXPECT_EQ(Keys(json), (std::set<std::string>{"meanBreak", "maxBreak", "potRate", "planMsP50",
-                                               "planMsP99", "frames", "shots"}));
+                                               "planMsP99", "frames", "shots", "plansCutShort"}));
+  EXPECT_EQ(json.fields().at("plansCutShort").number_value(), 0);  // capped in simulations, not in time
   EXPECT_EQ(json.fields().at("frames").number_value(), 1);
   EXPECT_GE(json.fields().at("potRate").number_value(), 0);
   EXPECT_LE(json.fields().at("potRate").number_value(), 1);

@@ -95,12 +95,28 @@ TEST(SelfPlayTest, AShortRunIsConsistent) {
   EXPECT_DOUBLE_EQ(r.mean_break, total / 2.0);
   EXPECT_GE(static_cast<int>(r.plan_ms.size()), shots);
   EXPECT_LE(r.plan_ms_p50, r.plan_ms_p99);
+  EXPECT_EQ(r.plans_cut_short, 0);  // capped in simulations, with a budget of 30 s
   // Same seed, same frames.
   const SelfPlayReport again = RunSelfPlay(Planner::Default(), o);
   for (size_t i = 0; i < r.records.size(); ++i) {
     EXPECT_EQ(r.records[i].points, again.records[i].points);
     EXPECT_EQ(r.records[i].end, again.records[i].end);
   }
+}
+
+// Plans that the clock ends are counted: a budget of 1 ms that buys a million
+// simulations a millisecond ends every plan's search by the clock.
+TEST(SelfPlayTest, PlansTheClockCutShortAreCounted) {
+  PlannerConfig config;
+  config.simulations_per_ms = 1e6;
+  const Planner planner(config);
+  SelfPlayOptions o = ShortRun(1, 3, 3);
+  o.time_budget = 1e-3;
+  o.max_simulations = 0;
+  o.threads = 1;
+  const SelfPlayReport r = RunSelfPlay(planner, o);
+  ASSERT_GT(r.plan_ms.size(), 0u);
+  EXPECT_EQ(r.plans_cut_short, static_cast<int>(r.plan_ms.size()));
 }
 
 // A world with a real table's uncertainty: with the squirt and throw fractions at 0
