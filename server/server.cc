@@ -32,8 +32,8 @@ constexpr int kMaxMetadataBytes = 16 * 1024;
 std::shared_ptr<grpc::ServerCredentials> Credentials(const ServerOptions& options) {
   if (!options.tls) return grpc::InsecureServerCredentials();
   if (options.tls->reload_interval.count() > 0) {
-    // gRPC's own watcher reads the files again every interval (the text was read
-    // from them just before, and checked by the HTTP side or the command line).
+    // gRPC's own watcher reads the files, and again every interval (Start has
+    // checked the text read from them).
     namespace ex = grpc::experimental;
     const TlsOptions& tls = *options.tls;
     ex::TlsServerCredentialsOptions o(std::make_shared<ex::FileWatcherCertificateProvider>(
