@@ -14,10 +14,10 @@
 #include "cli/json.h"
 #include "cli/json_input.h"
 #include "cli/model_file.h"
-#include "cli/read_file.h"
 #include "cli/write_file.h"
 #include "server/calibrate_api.h"
 #include "server/model_convert.h"
+#include "server/read_file.h"
 
 namespace snooker::cli {
 namespace {
@@ -88,7 +88,7 @@ std::vector<std::string> TakeDataFiles(std::vector<std::string>* argv) {
 bool ReadObservations(const std::vector<std::string>& files, v1::Observations* all, std::ostream& err) {
   for (const std::string& path : files) {
     std::string text, why;
-    if (!ReadInputFile(path, &text, &why)) {
+    if (!server::ReadInputFile(path, &text, &why)) {
       err << "snooker calibrate: --data '" << path << "': " << why << "\n";
       return false;
     }

@@ -7,8 +7,8 @@
 #include <future>
 
 #include "cli/commands.h"
-#include "cli/read_file.h"
 #include "server/limits.h"
+#include "server/read_file.h"
 #include "server/request_id.h"
 
 namespace snooker::cli {
@@ -34,7 +34,7 @@ namespace {
 bool ReadPem(const std::string& command, const std::string& flag, const std::string& path,
              std::string* pem, std::ostream& err) {
   std::string why;
-  if (!ReadInputFile(path, pem, &why)) {
+  if (!server::ReadInputFile(path, pem, &why)) {
     err << command << ": --" << flag << " cannot read '" << path << "': " << why << "\n";
     return false;
   }

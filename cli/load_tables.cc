@@ -5,7 +5,6 @@
 #include <filesystem>
 
 #include "cli/json_input.h"
-#include "cli/read_file.h"
 #include "physics/core/params.h"
 #include "physics/core/splitmix64.h"
 #include "physics/core/types.h"
@@ -14,6 +13,7 @@
 #include "planner/rules.h"
 #include "server/convert.h"
 #include "server/plan_convert.h"
+#include "server/read_file.h"
 
 namespace snooker::cli {
 
@@ -152,7 +152,7 @@ bool ReadTables(const std::string& dir, std::vector<v1::TableState>* tables, std
   }
   for (const fs::path& f : files) {
     std::string text, why;
-    if (!ReadInputFile(f.string(), &text, &why)) {
+    if (!server::ReadInputFile(f.string(), &text, &why)) {
       *error = "cannot read '" + f.string() + "': " + why;
       return false;
     }

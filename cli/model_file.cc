@@ -1,8 +1,8 @@
 #include "cli/model_file.h"
 
 #include "cli/json_input.h"
-#include "cli/read_file.h"
 #include "server/model_convert.h"
+#include "server/read_file.h"
 #include "snooker/v1/physics_model.pb.h"
 
 namespace snooker::cli {
@@ -10,7 +10,7 @@ namespace snooker::cli {
 std::string LoadModelFile(const std::string& path, physics::Model* model) {
   std::string text, why;
   const std::string where = "'" + path + "': ";
-  if (!ReadInputFile(path, &text, &why)) return where + why;
+  if (!server::ReadInputFile(path, &text, &why)) return where + why;
   v1::PhysicsModel file;
   std::string error;
   if (!ReadJsonMessage(text, &file, &error)) return where + error;

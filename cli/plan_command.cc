@@ -25,12 +25,12 @@
 #include "cli/json.h"
 #include "cli/json_input.h"
 #include "cli/load_tables.h"
-#include "cli/read_file.h"
 #include "cli/svg.h"
 #include "cli/write_file.h"
 #include "server/api.h"
 #include "server/convert.h"
 #include "server/limits.h"
+#include "server/read_file.h"
 #include "snooker/v1/service.grpc.pb.h"
 
 namespace snooker::cli {
@@ -160,7 +160,7 @@ bool ReadTable(const std::string& path, v1::PlanRequest* request, std::ostream& 
     return false;
   }
   std::string text, why;
-  if (!ReadInputFile(path, &text, &why)) {
+  if (!server::ReadInputFile(path, &text, &why)) {
     err << "snooker plan: cannot read '" << path << "': " << why << "\n";
     return false;
   }

@@ -19,9 +19,9 @@
 #include "cli/args.h"
 #include "cli/model_file.h"
 #include "cli/commands.h"
-#include "cli/read_file.h"
 #include "server/convert.h"
 #include "server/limits.h"
+#include "server/read_file.h"
 #include "server/server.h"
 
 namespace snooker::cli {
@@ -148,7 +148,7 @@ std::string Help() {
 // Reads a PEM file for a TLS flag; false with the reason on `err`.
 bool ReadPem(const std::string& flag, const std::string& path, std::string* pem, std::ostream& err) {
   std::string why;
-  if (!ReadInputFile(path, pem, &why)) {
+  if (!server::ReadInputFile(path, pem, &why)) {
     err << "snooker serve: --" << flag << " cannot read '" << path << "': " << why << "\n";
     return false;
   }

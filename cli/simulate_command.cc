@@ -13,12 +13,12 @@
 #include "cli/commands.h"
 #include "cli/json.h"
 #include "cli/json_input.h"
-#include "cli/read_file.h"
 #include "cli/svg.h"
 #include "cli/write_file.h"
 #include "server/api.h"
 #include "server/convert.h"
 #include "server/limits.h"
+#include "server/read_file.h"
 #include "snooker/v1/service.grpc.pb.h"
 
 namespace snooker::cli {
@@ -77,9 +77,9 @@ ball centres in metres.
 // said on `err`) or kExitFailure (out of memory).
 int ReadJson(const std::string& path, google::protobuf::Message* msg, std::ostream& err) {
   std::string text, why;
-  if (!ReadInputFile(path, &text, &why)) {
+  if (!server::ReadInputFile(path, &text, &why)) {
     err << "snooker simulate: cannot read '" << path << "': " << why << "\n";
-    return why == kOutOfMemory ? kExitFailure : kExitUsage;
+    return why == server::kOutOfMemory ? kExitFailure : kExitUsage;
   }
   try {
     if (!ReadJsonMessage(text, msg, &why)) {

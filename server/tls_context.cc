@@ -5,11 +5,10 @@
 #include <openssl/x509.h>
 #include <sys/stat.h>
 
-#include <fstream>
-#include <iterator>
 #include <utility>
 
 #include "server/log_line.h"
+#include "server/read_file.h"
 #include "server/server.h"
 
 namespace snooker::server {
@@ -100,22 +99,6 @@ std::shared_ptr<const TlsMaterial> LoadMaterial(const std::string& cert_pem, con
 // The client CA's names for a handshake to ask for; the handshake owns them.
 STACK_OF(X509_NAME)* CaNames(const TlsMaterial& m) { return SSL_dup_CA_list(m.ca_names); }
 
-// A file's text, at most 1 MiB (a certificate set is a few kB); false with *why.
-bool ReadSmallFile(const std::string& path, std::string* text, std::string* why) {
-  constexpr std::size_t kMaxBytes = 1 << 20;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    *why = "cannot read '" + path + "'";
-    return false;
-  }
-  text->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  if (in.bad() || text->size() > kMaxBytes) {
-    *why = "'" + path + "' cannot be read whole, or is over 1 MiB";
-    return false;
-  }
-  return true;
-}
-
 }  // namespace
 
 bool SetUpTls(SSL_CTX& ctx, const TlsOptions& tls, std::string* why) {
@@ -142,14 +125,11 @@ std::string CheckTlsText(const TlsOptions& tls) {
 }
 
 TlsReloader::TlsReloader(const TlsOptions& tls, std::ostream* log, std::mutex* log_mu)
-    : cert_file_(tls.cert_chain_file),
-      key_file_(tls.private_key_file),
-      ca_file_(tls.client_ca_file),
+    : files_{tls.cert_chain_file, tls.private_key_file, tls.client_ca_file},
       interval_(tls.reload_interval),
       log_(log),
       log_mu_(log_mu) {
-  const std::string* files[3] = {&cert_file_, &key_file_, &ca_file_};
-  for (int i = 0; i < 3; ++i) stamps_[i] = StampOf(*files[i]);
+  for (int i = 0; i < 3; ++i) stamps_[i] = StampOf(files_[i]);
   next_check_ = std::chrono::steady_clock::now() + interval_;
 }
 
@@ -182,17 +162,20 @@ std::shared_ptr<const TlsMaterial> TlsReloader::Current() {
   const auto now = std::chrono::steady_clock::now();
   if (now < next_check_) return material_;
   next_check_ = now + interval_;
-  const std::string* files[3] = {&cert_file_, &key_file_, &ca_file_};
   Stamp stamps[3];
   bool changed = false;
   for (int i = 0; i < 3; ++i) {
-    stamps[i] = StampOf(*files[i]);
+    stamps[i] = StampOf(files_[i]);
     changed = changed || !(stamps[i] == stamps_[i]);
   }
   if (!changed) return material_;
   std::string pem[3], why;
   bool read = true;
-  for (int i = 0; i < 3 && read; ++i) read = files[i]->empty() || ReadSmallFile(*files[i], &pem[i], &why);
+  for (int i = 0; i < 3 && read; ++i) {
+    if (files_[i].empty() || ReadInputFile(files_[i], &pem[i], &why)) continue;
+    why = "cannot read '" + files_[i] + "': " + why;
+    read = false;
+  }
   auto m = read ? LoadMaterial(pem[0], pem[1], pem[2], &why) : nullptr;
   if (m == nullptr) {
     // The stamps stay as they were, so that a set written in several steps is taken
@@ -204,7 +187,7 @@ std::shared_ptr<const TlsMaterial> TlsReloader::Current() {
   for (int i = 0; i < 3; ++i) stamps_[i] = stamps[i];
   material_ = std::move(m);
   refused_.clear();
-  Say("snooker: tls serves the certificate read again from " + cert_file_ + "\n");
+  Say("snooker: tls serves the certificate read again from " + files_[0] + "\n");
   return material_;
 }
 

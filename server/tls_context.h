@@ -28,7 +28,7 @@ std::string CheckTlsText(const TlsOptions& tls);
 
 /// Reads TlsOptions' files again, at most once a reload interval, as a handshake
 /// asks for them (SSL_CTX_set_cert_cb): a file whose modification time or size has
-/// changed has all three read again, and a set that loads (PEM, the key matching the
+/// changed has all three read again (as the command line reads them: ReadInputFile), and a set that loads (PEM, the key matching the
 /// certificate) is what later handshakes present and verify clients by. A set that
 /// does not load leaves the last good one in use and is said once in the log.
 class TlsReloader {
@@ -53,7 +53,7 @@ class TlsReloader {
   std::shared_ptr<const TlsMaterial> Current();
   void Say(const std::string& line);
 
-  std::string cert_file_, key_file_, ca_file_;
+  std::string files_[3];  // the certificate, its key, the client CA (empty: none)
   std::chrono::steady_clock::duration interval_;
   std::ostream* log_;
   std::mutex* log_mu_;

@@ -7,6 +7,7 @@
 #include <google/protobuf/util/json_util.h>
 #include <google/protobuf/util/message_differencer.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -640,6 +641,46 @@ TEST_F(HttpTlsTest, ARotatedCertificateIsServedWithoutARestartAndABrokenSetIsNot
   EXPECT_TRUE(Mentions(log, "tls serves the certificate read again from " + certs.File("cert.pem"))) << log;
   EXPECT_EQ(Occurrences(log, "tls kept the certificate in use; its files changed but the key does not match the certificate"), 1)
       << log;
+}
+
+// A key file replaced by a FIFO that nobody writes is refused, not waited on: the
+// handshakes go on with the set in use. The HTTP listener alone, since gRPC's own
+// watcher would open the FIFO and wait (operations.md, on rotating certificates).
+TEST_F(HttpTlsTest, AFifoInPlaceOfAKeyIsRefusedNotWaitedOn) {
+  server_support::RotatingCertificates certs(cli_support::TempPath("snooker_http_fifo"));
+  certs.Serve(Path("server.pem"), Path("server.key"));
+  TlsOptions tls;
+  tls.cert_chain_pem = Pem("server.pem");
+  tls.private_key_pem = Pem("server.key");
+  tls.reload_interval = std::chrono::seconds(1);
+  tls.cert_chain_file = certs.File("cert.pem");
+  tls.private_key_file = certs.File("key.pem");
+  ShotPlannerService service{ServiceOptions{}};
+  std::ostringstream log;
+  HttpOptions options;
+  options.address = "127.0.0.1:0";
+  options.tls = &tls;
+  options.log = &log;
+  std::string error;
+  auto http = HttpServer::Start(&service, options, &error);
+  ASSERT_NE(http, nullptr) << error;
+  auto answered = [&] {
+    httplib::SSLClient c("localhost", http->port());
+    c.set_ca_cert_path(Path("ca.pem"));
+    c.enable_server_certificate_verification(true);
+    c.set_read_timeout(5, 0);
+    const auto res = c.Get("/healthz");
+    return res && res->status == 200;
+  };
+  EXPECT_TRUE(answered());
+  ASSERT_EQ(std::remove(certs.File("key.pem").c_str()), 0);
+  ASSERT_EQ(mkfifo(certs.File("key.pem").c_str(), 0600), 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1200));
+  for (int i = 0; i < 3; ++i) EXPECT_TRUE(answered());
+  http->Finish(Clock::now());
+  EXPECT_TRUE(Mentions(log.str(), "tls kept the certificate in use; its files changed but cannot read '" +
+                                      certs.File("key.pem") + "': is a FIFO (named pipe), not a regular file"))
+      << log.str();
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-#include "cli/read_file.h"
+#include "server/read_file.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -9,7 +9,7 @@
 #include <cstring>
 #include <new>
 
-namespace snooker::cli {
+namespace snooker::server {
 namespace {
 
 // Closes a file descriptor when it goes out of scope.
@@ -84,4 +84,4 @@ bool ReadInputFile(const std::string& path, std::string* text, std::string* why)
   return true;
 }
 
-}  // namespace snooker::cli
+}  // namespace snooker::server

@@ -1,12 +1,13 @@
-// Reading an input file on the command line: only a regular file, only up to a size
-// limit, and a reason otherwise. A path may name anything: a directory, a FIFO that
-// nobody writes (reading it would hang), /dev/zero (endless), a file of gigabytes.
+// Reading an input file named by a user (the command line's files, the TLS files the
+// server reads again as they rotate): only a regular file, only up to a size limit,
+// and a reason otherwise. A path may name anything: a directory, a FIFO that nobody
+// writes (reading it would hang), /dev/zero (endless), a file of gigabytes.
 #pragma once
 
 #include <cstddef>
 #include <string>
 
-namespace snooker::cli {
+namespace snooker::server {
 
 /// Largest input file read, bytes (16 MiB: a full table is under 2 KB).
 inline constexpr std::size_t kMaxInputFileBytes = 16u << 20;
@@ -20,4 +21,4 @@ inline constexpr const char* kOutOfMemory = "out of memory";
 /// or directory", "out of memory"); never blocks on a FIFO or a device.
 bool ReadInputFile(const std::string& path, std::string* text, std::string* why);
 
-}  // namespace snooker::cli
+}  // namespace snooker::server
