@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -20,11 +21,24 @@ struct RunResult {
   std::string out, err;
 };
 
-/// A path named `name` in the test temp folder, this process's own (ctest runs test
-/// cases in parallel processes).
-inline std::string TempPath(const std::string& name) {
-  return testing::TempDir() + std::to_string(getpid()) + "_" + name;
+/// This process's own folder in the test temp folder (ctest runs test cases in parallel
+/// processes), made on first use and removed with everything in it when the process
+/// exits normally, so that passing runs leave nothing behind.
+inline const std::string& TestFolder() {
+  struct Folder {
+    std::string path = testing::TempDir() + "snooker_tests_" + std::to_string(getpid()) + "/";
+    Folder() { std::filesystem::create_directories(path); }
+    ~Folder() {
+      std::error_code ignored;  // a file still open elsewhere must not abort the exit
+      std::filesystem::remove_all(path, ignored);
+    }
+  };
+  static const Folder folder;
+  return folder.path;
 }
+
+/// A path named `name` in this process's test folder.
+inline std::string TempPath(const std::string& name) { return TestFolder() + name; }
 
 /// Runs `command` with /bin/sh; stdout and stderr captured apart.
 inline RunResult RunShell(const std::string& command) {
@@ -50,7 +64,11 @@ inline RunResult RunShell(const std::string& command) {
 
 /// Runs the built `snooker` binary with `args` (already shell-quoted where needed).
 inline RunResult RunCli(const std::string& args) {
-  return RunShell(std::string(SNOOKER_CLI_PATH) + " " + args);
+  // Appended in place: GCC 12 warns a false -Wstringop-overflow on the chain of `+`.
+  std::string command = SNOOKER_CLI_PATH;
+  command += ' ';
+  command += args;
+  return RunShell(command);
 }
 
 /// Shell text that waits (at most 20 s) until `serve_out`, the standard output of a
