@@ -16,6 +16,7 @@
 #include "physics/sim/contacts.h"
 #include "physics/sim/simulate.h"
 #include "tests/support/invariants.h"
+#include "tests/support/sanitizers.h"
 #include "tests/support/scenarios.h"
 
 namespace snooker::physics {
@@ -244,10 +245,11 @@ void PrintTo(const BreakOffSweep& s, std::ostream* os) { *os << s.name; }
 
 class BreakOffSweepTest : public testing::TestWithParam<BreakOffSweep> {};
 
-// 1000 seeded random break-offs per gap: each comes to rest well under the event
-// cap and keeps the invariants. docs/resting-contacts.md has the event counts.
+// 1000 seeded random break-offs per gap (250 under the sanitizers): each comes to rest
+// well under the event cap and keeps the invariants. docs/resting-contacts.md has the
+// event counts.
 TEST_P(BreakOffSweepTest, ComeToRestWellUnderTheCap) {
-  constexpr int kBreakOffs = 1000;
+  constexpr int kBreakOffs = sanitizers::SweepCases(1000);
   std::mt19937_64 rng(0x5eed0000u + static_cast<unsigned>(GetParam().gap * 1e6));
   Simulator sim(DefaultTable(), SimParams{});
   std::vector<std::int32_t> events;

@@ -3,6 +3,7 @@
 #include "physics/sim/simulate.h"
 
 #include "tests/support/invariants.h"
+#include "tests/support/sanitizers.h"
 #include "tests/support/scenarios.h"
 
 #include <gtest/gtest.h>
@@ -260,9 +261,9 @@ TEST_F(SimulateTest, OverlappingOrNonFiniteBallsAreRejected) {
 
 // Over many seeded random shots on random tables every run keeps the invariants
 // (tests/support/invariants.h) and ends with all balls at rest or pocketed within
-// its event cap.
+// its event cap (a quarter of the shots under the sanitizers).
 TEST_F(SimulateTest, RandomShotsKeepTheInvariants) {
-  constexpr int kShots = 10000;
+  constexpr int kShots = sanitizers::SweepCases(10000);
   std::mt19937_64 rng(20251123);
   std::uniform_real_distribution<double> u(0, 1);
   const double c = table_.cushion_contact_distance();
