@@ -9,6 +9,7 @@
 #include <future>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -254,7 +255,8 @@ struct HttpServer::Impl {
   std::string cors_origin;
   std::ostream* log = nullptr;
   bool tls = false;
-  std::unique_ptr<TlsReloader> tls_reloader;  // before http, which calls it
+  std::optional<std::int64_t> certificate_expiry;  // the start's certificate's, without a reloader
+  std::unique_ptr<TlsReloader> tls_reloader;       // before http, which calls it
   std::unique_ptr<httplib::Server> http;
   std::thread listener;
   std::future<void> listener_done;
@@ -360,7 +362,8 @@ void HttpServer::Impl::OnGet(const httplib::Request& req, httplib::Response& res
   if (req.path == "/metrics") {
     res.status = 200;
     res.set_header("Cache-Control", "no-store");
-    res.set_content(MetricsText(service->counts()), "text/plain; version=0.0.4; charset=utf-8");
+    const auto expiry = tls_reloader != nullptr ? tls_reloader->Expiry() : certificate_expiry;
+    res.set_content(MetricsText(service->counts(), expiry), "text/plain; version=0.0.4; charset=utf-8");
     return;
   }
   if (req.path.starts_with(connect::kServicePath)) return ReplyNotAllowed(res, "POST, OPTIONS", true);
@@ -593,6 +596,7 @@ std::unique_ptr<HttpServer> HttpServer::Start(ShotPlannerService* service, const
   impl->tls = options.tls != nullptr;
   if (options.tls != nullptr) {
     std::string why;
+    impl->certificate_expiry = CertificateExpiry(options.tls->cert_chain_pem);
     if (options.tls->reload_interval.count() > 0) {
       impl->tls_reloader = std::make_unique<TlsReloader>(*options.tls, options.log, &impl->log_mu);
     }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "server/build_info.h"
@@ -50,7 +51,7 @@ void Head(std::ostream& out, const char* name, const char* type, const char* hel
 
 }  // namespace
 
-std::string MetricsText(const CallCounts& counts) {
+std::string MetricsText(const CallCounts& counts, std::optional<std::int64_t> certificate_expiry) {
   std::ostringstream out;
   out.precision(9);  // the bounds as written, the sums to nine digits
   auto single = [&](const char* name, const char* type, const char* help, std::int64_t value) {
@@ -74,6 +75,12 @@ std::string MetricsText(const CallCounts& counts) {
          counts.plans_cut_short);
   single("snooker_log_lines_lost_total", "counter", "Call log lines the log refused (the calls were answered).",
          counts.log_lines_lost);
+  if (certificate_expiry) {
+    single("snooker_tls_certificate_expiry_timestamp_seconds", "gauge",
+           "When the TLS certificate that new connections are presented expires (its notAfter), "
+           "in s since the Unix epoch.",
+           *certificate_expiry);
+  }
   Head(out, "snooker_calls_total", "counter", "Calls answered, by method and gRPC status.");
   for (std::size_t m = 0; m < kMethodCount; ++m) {
     for (std::size_t c = 0; c < kStatusCodeCount; ++c) {

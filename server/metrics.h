@@ -7,6 +7,7 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -54,8 +55,9 @@ struct CallCounts;
 
 /// `counts` in Prometheus's text format (version 0.0.4): the build, the calls received, in flight,
 /// running and answered by method and status, the plans in the server, the progress
-/// messages written and dropped, the plans cut short, the log lines lost, and each method's latency
-/// histogram (snooker_call_latency_seconds).
-std::string MetricsText(const CallCounts& counts);
+/// messages written and dropped, the plans cut short, the log lines lost, each method's latency
+/// histogram (snooker_call_latency_seconds), and with TLS when the certificate served
+/// expires (`certificate_expiry`, Unix s).
+std::string MetricsText(const CallCounts& counts, std::optional<std::int64_t> certificate_expiry = std::nullopt);
 
 }  // namespace snooker::server

@@ -5,6 +5,7 @@
 #include <openssl/x509.h>
 #include <sys/stat.h>
 
+#include <ctime>
 #include <utility>
 
 #include "server/log_line.h"
@@ -21,6 +22,7 @@ struct TlsMaterial {
   EVP_PKEY* key = nullptr;
   X509_STORE* ca_store = nullptr;  // null: clients are not asked for a certificate
   STACK_OF(X509_NAME)* ca_names = nullptr;
+  std::optional<std::int64_t> expiry;  // the leaf's notAfter, Unix s
 
   TlsMaterial() = default;
   TlsMaterial(const TlsMaterial&) = delete;
@@ -57,6 +59,14 @@ int ForEachCertificate(const std::string& pem, Take take) {
   return n;
 }
 
+// The certificate's notAfter, Unix s (nullopt when OpenSSL cannot read it as a date).
+std::optional<std::int64_t> ExpiryOf(const X509& certificate) {
+  const ASN1_TIME* not_after = X509_get0_notAfter(&certificate);
+  std::tm utc{};
+  if (not_after == nullptr || ASN1_TIME_to_tm(not_after, &utc) != 1) return std::nullopt;
+  return static_cast<std::int64_t>(timegm(&utc));
+}
+
 // The set in the PEM texts (no client CA when `ca_pem` is empty), or null with *why.
 std::shared_ptr<const TlsMaterial> LoadMaterial(const std::string& cert_pem, const std::string& key_pem,
                                                 const std::string& ca_pem, std::string* why) {
@@ -76,6 +86,7 @@ std::shared_ptr<const TlsMaterial> LoadMaterial(const std::string& cert_pem, con
     }
   });
   if (m->leaf == nullptr || !chain_ok) return fail("the certificate is not valid PEM");
+  m->expiry = ExpiryOf(*m->leaf);
   if (Bio bio = MemoryBio(key_pem); bio != nullptr) m->key = PEM_read_bio_PrivateKey(bio.get(), nullptr, nullptr, nullptr);
   if (m->key == nullptr) return fail("the private key is not valid PEM");
   if (X509_check_private_key(m->leaf, m->key) != 1) return fail("the key does not match the certificate");
@@ -124,11 +135,22 @@ std::string CheckTlsText(const TlsOptions& tls) {
   return LoadMaterial(tls.cert_chain_pem, tls.private_key_pem, tls.client_ca_pem, &why) != nullptr ? "" : why;
 }
 
+std::optional<std::int64_t> CertificateExpiry(const std::string& cert_chain_pem) {
+  std::optional<std::int64_t> expiry;
+  ForEachCertificate(cert_chain_pem, [&](X509* x) {
+    if (!expiry) expiry = ExpiryOf(*x);
+    X509_free(x);
+  });
+  ERR_clear_error();
+  return expiry;
+}
+
 TlsReloader::TlsReloader(const TlsOptions& tls, std::ostream* log, std::mutex* log_mu)
     : files_{tls.cert_chain_file, tls.private_key_file, tls.client_ca_file},
       interval_(tls.reload_interval),
       log_(log),
-      log_mu_(log_mu) {
+      log_mu_(log_mu),
+      start_expiry_(CertificateExpiry(tls.cert_chain_pem)) {
   for (int i = 0; i < 3; ++i) stamps_[i] = StampOf(files_[i]);
   next_check_ = std::chrono::steady_clock::now() + interval_;
 }
@@ -155,6 +177,11 @@ int TlsReloader::OnCertificate(SSL* ssl, void* self) {
     if (names != nullptr) SSL_set_client_CA_list(ssl, names);
   }
   return ok ? 1 : 0;  // 0 ends the handshake
+}
+
+std::optional<std::int64_t> TlsReloader::Expiry() {
+  const auto m = Current();
+  return m != nullptr ? m->expiry : start_expiry_;
 }
 
 std::shared_ptr<const TlsMaterial> TlsReloader::Current() {

@@ -6,8 +6,10 @@
 #pragma once
 
 #include <chrono>
+#include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <ostream>
 #include <string>
 
@@ -26,6 +28,10 @@ bool SetUpTls(SSL_CTX& ctx, const TlsOptions& tls, std::string* why);
 /// Empty, or why the PEM text of `tls` does not load (SetUpTls's reasons).
 std::string CheckTlsText(const TlsOptions& tls);
 
+/// When the first certificate of the PEM text `cert_chain_pem` (the leaf) expires, its
+/// notAfter in s since the Unix epoch; nullopt when it does not load.
+std::optional<std::int64_t> CertificateExpiry(const std::string& cert_chain_pem);
+
 /// Reads TlsOptions' files again, at most once a reload interval, as a handshake
 /// asks for them (SSL_CTX_set_cert_cb): a file whose modification time or size has
 /// changed has all three read again (as the command line reads them: ReadInputFile), and a set that loads (PEM, the key matching the
@@ -41,6 +47,10 @@ class TlsReloader {
 
   /// Installs this on `ctx`: every handshake of its connections asks it.
   void Install(SSL_CTX& ctx);
+
+  /// When the certificate that the next handshake presents expires (CertificateExpiry),
+  /// the files read again first if a handshake would read them now.
+  std::optional<std::int64_t> Expiry();
 
  private:
   struct Stamp {
@@ -61,6 +71,7 @@ class TlsReloader {
   std::chrono::steady_clock::time_point next_check_;
   Stamp stamps_[3];
   std::shared_ptr<const TlsMaterial> material_;  // null: the context's own (the start's)
+  std::optional<std::int64_t> start_expiry_;     // the context's own certificate's
   std::string refused_;                          // the last refusal said, not to repeat it
 };
 

@@ -24,6 +24,7 @@
 #include "server/connect.h"
 #include "server/request_id.h"
 #include "server/server.h"
+#include "server/tls_context.h"
 #include "server/web_files.h"
 #include "tests/service/requests.h"
 #include "tests/service/server_support.h"
@@ -228,6 +229,7 @@ TEST_F(HttpTest, MetricsCountTheCallsOfBothTransports) {
   EXPECT_TRUE(Mentions(text, "\nsnooker_call_latency_seconds_count{method=\"Collide\"} 3\n")) << text;
   EXPECT_TRUE(Mentions(text, "\nsnooker_call_latency_seconds_count{method=\"Plan\"} 0\n")) << text;
   EXPECT_TRUE(Mentions(text, "\nsnooker_plans_cut_short_total 0\n")) << text;
+  EXPECT_FALSE(Mentions(text, "snooker_tls_certificate_expiry")) << "no TLS, no certificate: " << text;
   // Scraping is not a call: the count stands.
   EXPECT_TRUE(Mentions(Client().Get("/metrics")->body, "\nsnooker_calls_received_total 3\n"));
   EXPECT_EQ(Client().Post("/metrics", "", "text/plain")->status, 405);
@@ -565,6 +567,14 @@ class HttpTlsTest : public HttpTest {
     ss << f.rdbuf();
     return ss.str();
   }
+  /// The line of the certificate expiry gauge that /metrics should show for the
+  /// certificate `name`: its notAfter as openssl prints it, read by date(1).
+  static std::string ExpiryLine(const std::string& name) {
+    const cli_support::RunResult r =
+        cli_support::RunShell("date -u -d \"$(openssl x509 -noout -enddate -in " + Path(name) + " | cut -d= -f2)\" +%s");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return "\nsnooker_tls_certificate_expiry_timestamp_seconds " + r.out;  // r.out ends with its newline
+  }
   static inline std::string dir_;
 };
 
@@ -584,6 +594,9 @@ TEST_F(HttpTlsTest, HttpsServesWithTheTlsFlagsAndPlainHttpFails) {
   auto res = with_certificate.Post("/snooker.v1.ShotPlanner/GetModel", "{}", "application/json");
   ASSERT_TRUE(res) << httplib::to_string(res.error());
   EXPECT_EQ(res->status, 200);
+  const auto metrics = with_certificate.Get("/metrics");
+  ASSERT_TRUE(metrics);
+  EXPECT_TRUE(Mentions(metrics->body, ExpiryLine("server.pem"))) << ExpiryLine("server.pem") << metrics->body;
 
   httplib::SSLClient without_certificate("localhost", port_);
   without_certificate.set_ca_cert_path(Path("ca.pem"));
@@ -599,6 +612,17 @@ TEST_F(HttpTlsTest, HttpsServesWithTheTlsFlagsAndPlainHttpFails) {
   plain.set_read_timeout(5, 0);
   const auto plain_res = plain.Get("/healthz");
   EXPECT_TRUE(!plain_res || plain_res->status != 200);
+}
+
+// The leaf's expiry, read from its PEM text; none from text that is not a certificate.
+TEST_F(HttpTlsTest, ACertificatesExpiryIsItsLeafs) {
+  const auto expiry = CertificateExpiry(Pem("server.pem") + Pem("other-server.pem"));
+  ASSERT_TRUE(expiry);
+  EXPECT_EQ("\nsnooker_tls_certificate_expiry_timestamp_seconds " + std::to_string(*expiry) + "\n",
+            ExpiryLine("server.pem"));
+  EXPECT_FALSE(CertificateExpiry(""));
+  EXPECT_FALSE(CertificateExpiry(Pem("server.key")));
+  EXPECT_FALSE(CertificateExpiry("-----BEGIN CERTIFICATE-----\nnot base64\n-----END CERTIFICATE-----\n"));
 }
 
 TEST_F(HttpTlsTest, ARotatedCertificateIsServedWithoutARestartAndABrokenSetIsNot) {
@@ -623,8 +647,18 @@ TEST_F(HttpTlsTest, ARotatedCertificateIsServedWithoutARestartAndABrokenSetIsNot
     const auto res = c.Get("/healthz");
     return res && res->status == 200;
   };
+  // The expiry of the certificate served, on /metrics.
+  auto metrics = [&](const std::string& ca, const std::string& client) {
+    httplib::SSLClient c("localhost", port_, Path(client + ".pem"), Path(client + ".key"));
+    c.set_ca_cert_path(Path(ca));
+    c.enable_server_certificate_verification(true);
+    const auto res = c.Get("/metrics");
+    return res ? res->body : "no answer: " + httplib::to_string(res.error());
+  };
+  ASSERT_NE(ExpiryLine("server.pem"), ExpiryLine("other-server.pem")) << "scripts/dev-certs gives them different lives";
   EXPECT_TRUE(answered("ca.pem", "client"));
   EXPECT_FALSE(answered("other-ca.pem", "other-client"));
+  EXPECT_TRUE(Mentions(metrics("ca.pem", "client"), ExpiryLine("server.pem")));
 
   // The server's certificate and the CA of its clients both rotated to another CA.
   certs.Serve(Path("other-server.pem"), Path("other-server.key"), Path("other-ca.pem"));
@@ -637,6 +671,7 @@ TEST_F(HttpTlsTest, ARotatedCertificateIsServedWithoutARestartAndABrokenSetIsNot
   certs.Serve(Path("server.pem"), Path("other-server.key"), Path("ca.pem"));
   std::this_thread::sleep_for(std::chrono::milliseconds(1200));
   for (int i = 0; i < 3; ++i) EXPECT_TRUE(answered("other-ca.pem", "other-client"));
+  EXPECT_TRUE(Mentions(metrics("other-ca.pem", "other-client"), ExpiryLine("other-server.pem")));
   const std::string log = Log();
   EXPECT_TRUE(Mentions(log, "tls serves the certificate read again from " + certs.File("cert.pem"))) << log;
   EXPECT_EQ(Occurrences(log, "tls kept the certificate in use; its files changed but the key does not match the certificate"), 1)

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -17,6 +18,7 @@
 
 #include "server/connect.h"
 #include "server/grpc_service.h"
+#include "tests/support/text.h"
 
 namespace snooker::server {
 namespace {
@@ -91,7 +93,9 @@ TEST(MetricsTextTest, IsPrometheusTextWithCumulativeBuckets) {
   counts.received = 4;
   counts.finished = 3;
   counts.methods = m.Read();
-  const std::string text = MetricsText(counts);
+  constexpr std::int64_t kExpiry = 1796083200;  // 2026-12-01T00:00:00Z
+  const std::string text = MetricsText(counts, kExpiry);
+  EXPECT_FALSE(Mentions(MetricsText(counts), "snooker_tls_certificate_expiry")) << "without TLS";
 
   const std::regex sample(R"(^([a-z_]+)(\{[a-zA-Z_]+="[^"]*"(,[a-zA-Z_]+="[^"]*")*\})? (-?[0-9.e+-]+)$)");
   const std::regex comment(R"(^# (HELP|TYPE) ([a-z_]+) .+$)");
@@ -115,6 +119,7 @@ TEST(MetricsTextTest, IsPrometheusTextWithCumulativeBuckets) {
     value[std::string(s[1]) + std::string(s[2])] = std::stod(s[4]);
   }
   EXPECT_EQ(value["snooker_calls_received_total"], 4);
+  EXPECT_EQ(value["snooker_tls_certificate_expiry_timestamp_seconds"], kExpiry);
   EXPECT_EQ(value["snooker_calls_in_flight"], 1);
   EXPECT_EQ(value[R"(snooker_calls_total{method="Simulate",code="OK"})"], 2);
   EXPECT_EQ(value[R"(snooker_calls_total{method="Simulate",code="INVALID_ARGUMENT"})"], 1);
