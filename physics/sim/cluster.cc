@@ -10,8 +10,13 @@
 namespace snooker::physics {
 namespace {
 
-// Caps of the solution and the velocity to which its contacts are solved.
-constexpr int kMaxClusterSweeps = 200;
+// Caps of the solution and the velocity to which its contacts are solved. Along a
+// straight line of touching balls a sweep shrinks the error only by about
+// cos^2(pi / (n + 1)) for n contacts, so the longest line (limits::kMaxBalls, 31
+// contacts) needs between 2000 and 3000 sweeps; at 200 a line of nine ran out and
+// HoldApproaching stopped it dead. A cluster stops sweeping as soon as it converges
+// (the break-off's triangle within the first 200), so the cap costs only such lines.
+constexpr int kMaxClusterSweeps = 5000;
 constexpr double kClusterSpeedTolerance = 1e-12;  // m/s, below the detector's 1e-9
 
 // Normal separation speed of a contact (> 0: separating). m/s.
