@@ -7,6 +7,7 @@
 #include <future>
 
 #include "cli/commands.h"
+#include "server/address.h"
 #include "server/limits.h"
 #include "server/read_file.h"
 #include "server/request_id.h"
@@ -80,6 +81,10 @@ bool ClientOptionsFrom(Args& args, const std::string& command, const std::string
   const auto deadline = args.Integer("deadline-ms", default_deadline_ms, 1,
                                      server::limits::kMaxCallMsLimit);
   if (!args.error().empty()) return true;  // the caller reports it
+  if (const std::string why = server::CheckConnectTarget(*target); !why.empty()) {
+    err << command << ": --" << target_flag << ": " << why << "\n";
+    return false;
+  }
   options->target = *target;
   if (cert->empty() != key->empty()) {
     err << command << ": --tls-cert and --tls-key go together\n";

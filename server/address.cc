@@ -25,7 +25,39 @@ bool SplitHost(std::string_view address, std::string_view* host) {
   return host->find(':') == std::string_view::npos;
 }
 
+// The value of a port of one to five digits, or -1.
+long PortValue(std::string_view port) {
+  long value = 0;
+  bool digits = !port.empty() && port.size() <= 5;
+  for (char c : port) {
+    digits = digits && c >= '0' && c <= '9';
+    if (digits) value = value * 10 + (c - '0');
+  }
+  return digits ? value : -1;
+}
+
+// `address` without a leading "ipv4:", "ipv6:", "dns:///" or "dns:".
+std::string_view WithoutScheme(std::string_view address) {
+  for (std::string_view scheme : {"ipv4:", "ipv6:", "dns:///", "dns:"}) {
+    if (address.starts_with(scheme)) return address.substr(scheme.size());
+  }
+  return address;
+}
+
 }  // namespace
+
+std::string CheckConnectTarget(std::string_view target) {
+  if (target.starts_with("unix:") || target.starts_with("unix-abstract:")) return "";
+  const std::string_view address = WithoutScheme(target);
+  std::string_view host;
+  if (!SplitHost(address, &host)) return "";  // a host alone: gRPC's default port
+  const std::string_view port = address.substr(address.rfind(':') + 1);
+  const long value = PortValue(port);
+  if (value < 1 || value > 65535) {
+    return "port '" + std::string(port) + "' of '" + std::string(target) + "' is not in [1, 65535]";
+  }
+  return "";
+}
 
 std::string CheckListenAddress(std::string_view address) {
   if (address.starts_with("unix:") || address.starts_with("unix-abstract:")) return "";
@@ -34,13 +66,8 @@ std::string CheckListenAddress(std::string_view address) {
     return "address '" + std::string(address) + "' is not HOST:PORT (an IPv6 host in brackets)";
   }
   const std::string_view port = address.substr(address.rfind(':') + 1);
-  long value = 0;
-  bool digits = !port.empty() && port.size() <= 5;
-  for (char c : port) {
-    digits = digits && c >= '0' && c <= '9';
-    if (digits) value = value * 10 + (c - '0');
-  }
-  if (!digits || value > 65535) {
+  const long value = PortValue(port);
+  if (value < 0 || value > 65535) {
     return "port '" + std::string(port) + "' of '" + std::string(address) + "' is not in [0, 65535]";
   }
   return "";
@@ -66,12 +93,7 @@ std::string PlaintextRefusal(std::string_view address, bool tls, bool allow_inse
 
 bool IsLoopbackAddress(std::string_view address) {
   if (address.starts_with("unix:") || address.starts_with("unix-abstract:")) return true;
-  for (std::string_view scheme : {"ipv4:", "ipv6:", "dns:///", "dns:"}) {
-    if (address.starts_with(scheme)) {
-      address.remove_prefix(scheme.size());
-      break;
-    }
-  }
+  address = WithoutScheme(address);
   std::string_view host;
   if (!SplitHost(address, &host) || host.empty()) return false;
   if (host == "localhost") return true;

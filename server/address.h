@@ -20,6 +20,12 @@ bool IsLoopbackAddress(std::string_view address);
 /// 99999 as 34463.)
 std::string CheckListenAddress(std::string_view address);
 
+/// Empty when a client may call `target`: a gRPC target ("host:port", "[v6]:port",
+/// with or without a "dns:", "ipv4:" or "ipv6:" scheme, a Unix socket, or a host
+/// alone) whose port, when it names one, is in [1, 65535]; otherwise what is wrong.
+/// (gRPC takes port 101815 as 36279 and -5 as 65531.)
+std::string CheckConnectTarget(std::string_view target);
+
 /// The host and port of "host:port" or "[v6]:port" (a valid listen address that is
 /// not a Unix socket); false otherwise.
 bool SplitHostPort(std::string_view address, std::string* host, int* port);

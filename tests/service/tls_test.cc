@@ -45,6 +45,25 @@ TEST(LoopbackAddressTest, ListenAddressesNeedAPortInRange) {
   EXPECT_TRUE(Mentions(CheckListenAddress("127.0.0.1"), "is not HOST:PORT"));
 }
 
+// A client's port is checked before gRPC, which would take it modulo 65536.
+TEST(LoopbackAddressTest, ClientTargetsNeedAPortInRangeWhenTheyNameOne) {
+  for (const char* good : {"127.0.0.1:1", "[::1]:65535", "localhost:50051", "dns:///example.com:443",
+                           "ipv4:127.0.0.1:50051", "unix:/tmp/x.sock", "example.com", ""}) {
+    EXPECT_EQ(CheckConnectTarget(good), "") << good;
+  }
+  EXPECT_EQ(CheckConnectTarget("127.0.0.1:101815"), "port '101815' of '127.0.0.1:101815' is not in [1, 65535]");
+  for (const char* bad : {"127.0.0.1:0", "127.0.0.1:-5", "127.0.0.1:65536", "dns:///localhost:99999",
+                          "[::1]:http", "localhost:"}) {
+    EXPECT_TRUE(Mentions(CheckConnectTarget(bad), "is not in [1, 65535]")) << bad;
+  }
+  const cli_support::RunResult r = cli_support::RunCli("plan --server 127.0.0.1:101815 --table builtin:black");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_TRUE(Mentions(r.err, "--server: port '101815' of '127.0.0.1:101815' is not in [1, 65535]")) << r.err;
+  const cli_support::RunResult l = cli_support::RunCli("loadtest --target 127.0.0.1:-5 --concurrency 1 --requests 1");
+  EXPECT_EQ(l.exit_code, 2) << l.out;
+  EXPECT_TRUE(Mentions(l.err, "--target: port '-5' of '127.0.0.1:-5' is not in [1, 65535]")) << l.err;
+}
+
 std::string Read(const std::string& path) {
   std::ifstream f(path);
   std::stringstream ss;
