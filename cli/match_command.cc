@@ -339,11 +339,19 @@ void PrintText(const planner::MatchReport& r, std::ostream& out) {
   row("stalls", a.stalls, b.stalls);
   row("planning ms, median", a.plan_ms_p50, b.plan_ms_p50);
   row("planning ms, 99th pct", a.plan_ms_p99, b.plan_ms_p99);
+  // A probability to two places, or "-" for a player who played no such stroke.
+  auto probability = [](double p) {
+    if (!std::isfinite(p)) return std::string("-");
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(2) << p;
+    return s.str();
+  };
   if (std::isfinite(a.mean_safety_outlook) || std::isfinite(b.mean_safety_outlook)) {
-    row("opponent's pot after safety", a.mean_safety_outlook, b.mean_safety_outlook);
+    row("opponent's pot after safety", probability(a.mean_safety_outlook), probability(b.mean_safety_outlook));
   }
   if (std::isfinite(a.mean_break_off_outlook) || std::isfinite(b.mean_break_off_outlook)) {
-    row("opponent's pot after break-off", a.mean_break_off_outlook, b.mean_break_off_outlook);
+    row("opponent's pot after break-off", probability(a.mean_break_off_outlook),
+        probability(b.mean_break_off_outlook));
   }
   out << "frames stopped at the shot cap: " << r.frames_capped << " (" << r.frames_undecided
       << " level); re-spotted blacks: " << r.black_respots << "; strokes not simulated to rest: "

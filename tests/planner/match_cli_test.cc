@@ -11,6 +11,7 @@
 #include <fstream>
 #include <ostream>
 #include <set>
+#include <regex>
 #include <string>
 
 #include "tests/support/cli_support.h"
@@ -324,6 +325,10 @@ TEST(CliMatchTest, ReadableOutputNamesThePlayers) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("A one-ply against B default"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("frames won"), std::string::npos) << r.out;
+  // A broke off, B did not: B's outlook after a break-off is "-", not "nan".
+  const std::regex break_off_row(R"(\n  opponent's pot after break-off +[01]\.[0-9]{2} +-\n)");
+  EXPECT_TRUE(std::regex_search(r.out, break_off_row)) << r.out;
+  EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
 }
 
 struct BadFlag {
