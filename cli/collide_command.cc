@@ -41,7 +41,7 @@ and spin (-wT cos th, wT sin th, wS); the object ball is at rest.
                      integrator)
   --mu-bb X          ball-ball friction coefficient, 0 to 1 (default 0.05)
   --restitution E    energetic coefficient of restitution, 0 to 1 (default 0.89)
-  --mu-s X           ball-cloth sliding friction coefficient, 0 to 1 (default 0.21)
+  --mu-s X           ball-cloth sliding friction coefficient, 0.01 to 1 (default 0.21)
   --friction-law L   constant (mu_bb), marlow (slip-speed dependent, Marlow 1994)
                      exponential (mu_bb + b exp(-c s), s the slip speed in m/s)
                      or exponential-impact-speed (the same, s the normal approach

@@ -133,7 +133,7 @@ std::vector<FieldError> ValidateCollideRequest(const v1::CollideRequest& r) {
   CheckOptional(&errors, p, &P::has_mu_bb, &P::mu_bb, "parameters.mu_bb", physics::limits::kFrictionCoefficient);
   CheckOptional(&errors, p, &P::has_restitution, &P::restitution, "parameters.restitution",
                 physics::limits::kRestitution);
-  CheckOptional(&errors, p, &P::has_mu_s, &P::mu_s, "parameters.mu_s", physics::limits::kFrictionCoefficient);
+  CheckOptional(&errors, p, &P::has_mu_s, &P::mu_s, "parameters.mu_s", physics::limits::kClothSlideFriction);
   CheckOptional(&errors, p, &P::has_mass_kg, &P::mass_kg, "parameters.mass_kg", physics::limits::kBallMass, "kg");
   CheckOptional(&errors, p, &P::has_radius_m, &P::radius_m, "parameters.radius_m", physics::limits::kBallRadius, "m");
   CheckOptional(&errors, p, &P::has_gravity, &P::gravity, "parameters.gravity", physics::limits::kGravity, "m/s^2");

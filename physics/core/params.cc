@@ -15,8 +15,6 @@ void Check(std::ostringstream& out, bool ok, const char* name, double value, con
   out << name << " = " << value << " (must be " << rule << ")";
 }
 
-bool Finite(double x) { return std::isfinite(x); }
-
 }  // namespace
 
 std::string ValidateBallParams(const BallParams& p) {
@@ -40,11 +38,10 @@ bool BallParamsValid(const BallParams& p) {
 
 std::string ValidateClothParams(const ClothParams& p) {
   std::ostringstream out;
-  Check(out, limits::kFrictionCoefficient.Contains(p.mu_s), "mu_s", p.mu_s, "in [0, 1]");
-  Check(out, limits::kFrictionCoefficient.Contains(p.mu_r), "mu_r", p.mu_r, "in [0, 1]");
-  Check(out, Finite(p.spin_decel) && p.spin_decel >= 0, "spin_decel", p.spin_decel,
-        "a finite number >= 0 rad/s^2");
-  Check(out, Finite(p.g) && p.g > 0, "g", p.g, "a finite number > 0 m/s^2");
+  Check(out, limits::kClothSlideFriction.Contains(p.mu_s), "mu_s", p.mu_s, "in [0.01, 1]");
+  Check(out, limits::kRollingResistance.Contains(p.mu_r), "mu_r", p.mu_r, "in [0.001, 1]");
+  Check(out, limits::kSpinDecel.Contains(p.spin_decel), "spin_decel", p.spin_decel, "in [0, 10000] rad/s^2");
+  Check(out, limits::kGravity.Contains(p.g), "g", p.g, "in [0.1, 100] m/s^2");
   return out.str();
 }
 

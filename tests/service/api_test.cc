@@ -13,6 +13,7 @@
 #include "server/convert.h"
 #include "tests/physics/impact/paper_shots.h"
 #include "tests/service/requests.h"
+#include "tests/support/text.h"
 
 namespace snooker::server {
 namespace {
@@ -48,6 +49,29 @@ TEST(ValidateCollideRequestTest, NamesEveryBadField) {
                                               "solver.steps", "solver.tolerance"}));
   EXPECT_EQ(errors[0].value, "-1");
   EXPECT_NE(Describe(errors).find("cut_angle_deg = 90"), std::string::npos);
+}
+
+// A cloth too slippery to end the slip: mu_s = 0 answered a slip of 0 s, and a
+// denormal one a slip of infinite time.
+TEST(ValidateCollideRequestTest, TheClothMustEndTheSlip) {
+  for (const double mu_s : {0.0, 1e-320, 0.009}) {
+    v1::CollideRequest r = PaperShotRequest(physics::kPaperShots[0]);
+    r.mutable_parameters()->set_mu_s(mu_s);
+    const auto errors = ValidateCollideRequest(r);
+    ASSERT_EQ(errors.size(), 1u) << mu_s;
+    EXPECT_EQ(errors[0].field, "parameters.mu_s");
+    EXPECT_TRUE(Mentions(Describe(errors), "must be in [0.01, 1]")) << Describe(errors);
+  }
+  v1::CollideRequest r = PaperShotRequest(physics::kPaperShots[0]);
+  v1::CollideResponse usual, slippery;
+  ASSERT_TRUE(Collide(r, &usual).ok());
+  r.mutable_parameters()->set_mu_s(0.01);
+  ASSERT_TRUE(Collide(r, &slippery).ok());
+  // T_s = 2|u| / (7 mu_s g): about 21 times the paper's cloth's (0.21; the impact
+  // itself changes a little with mu_s).
+  const double ratio = slippery.cue().slip_end().time() / usual.cue().slip_end().time();
+  EXPECT_GT(ratio, 15);
+  EXPECT_LT(ratio, 30);
 }
 
 TEST(CollideTest, ReturnsThePapersFirstShot) {

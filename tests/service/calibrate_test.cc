@@ -319,7 +319,7 @@ TEST(CalibrateValidationTest, ABadStartModelIsNamed) {
   v1::CalibrateRequest r = ThrowFit();
   r.mutable_start()->mutable_cloth()->set_mu_s(2);
   const std::string m = Refusal(r);
-  EXPECT_TRUE(Has(m, "start = not a valid model (cloth.mu_s = 2 (must be in [0, 1]))")) << m;
+  EXPECT_TRUE(Has(m, "start = not a valid model (cloth.mu_s = 2 (must be in [0.01, 1]))")) << m;
 }
 
 TEST(CalibrateValidationTest, TheClothFromThrowsAloneIsRefusedWithTheReason) {

@@ -78,6 +78,13 @@ TEST(ModelFileTest, BadValuesAreNamed) {
   };
   EXPECT_NE(error(R"({"cloth": {"muS": -0.5}})").find("cloth.mu_s = -0.5"), std::string::npos);
   EXPECT_NE(error(R"({"cloth": {"muR": "NaN"}})").find("cloth.mu_r = nan"), std::string::npos);
+  // A cloth that would never stop a ball: every simulation would end at its caps.
+  EXPECT_NE(error(R"({"cloth": {"muS": 1e-300}})").find("cloth.mu_s = 1e-300 (must be in [0.01, 1])"),
+            std::string::npos);
+  EXPECT_NE(error(R"({"cloth": {"muR": 0}})").find("cloth.mu_r = 0 (must be in [0.001, 1])"), std::string::npos);
+  EXPECT_NE(error(R"({"cloth": {"gravity": 1e-300}})").find("cloth.g = 1e-300 (must be in [0.1, 100] m/s^2)"),
+            std::string::npos);
+  EXPECT_NE(error(R"({"cloth": {"spinDecel": 1e9}})").find("cloth.spin_decel = 1e+09"), std::string::npos);
   EXPECT_NE(error(R"({"cue": {"endMassKg": 0}})").find("cue.end_mass = 0"), std::string::npos);
   EXPECT_NE(error(R"({"ballBall": {"frictionLaw": "BALL_BALL_FRICTION_LAW_EXPONENTIAL", "slipGain": 0.99}})")
                 .find("slip_gain = 0.99"),
@@ -126,7 +133,7 @@ TEST(ModelCommandTest, EveryCommandRefusesABadModelFileNamingTheField) {
         std::string("serve --address 127.0.0.1:0")}) {
     const cli_support::RunResult r = RunCli(cmd + " --model " + bad);
     EXPECT_EQ(r.exit_code, 2) << cmd;
-    EXPECT_NE(r.err.find("cloth.mu_s = 2 (must be in [0, 1])"), std::string::npos) << cmd << ": " << r.err;
+    EXPECT_NE(r.err.find("cloth.mu_s = 2 (must be in [0.01, 1])"), std::string::npos) << cmd << ": " << r.err;
     const cli_support::RunResult s = RunCli(cmd + " --model " + broken);
     EXPECT_EQ(s.exit_code, 2) << cmd;
     EXPECT_NE(s.err.find("line 1"), std::string::npos) << cmd << ": " << s.err;
