@@ -120,6 +120,8 @@ class Parser {
   }
 
   const JsonSyntaxError& error() const { return error_; }
+  /// Whether the document failed by nesting too deep (which no reader may take).
+  bool too_deep() const { return too_deep_; }
   const std::vector<Edit>& edits() const { return edits_; }
   const std::vector<std::string>& problems() const { return problems_; }
 
@@ -131,6 +133,7 @@ class Parser {
     if (pos_ >= t_.size()) return Fail("the document ends where a value was expected");
     const char c = t_[pos_];
     if ((c == '{' || c == '[') && depth >= kMaxDepth) {
+      too_deep_ = true;
       return Fail("nested more than " + std::to_string(kMaxDepth) + " levels deep");
     }
     if (c == '{') return Object(type, depth + 1, index);
@@ -161,6 +164,9 @@ class Parser {
       SkipSpace();
       const FieldDescriptor* field = FieldOf(type, key.text);
       const Descriptor* member_type = field != nullptr && !field->is_map() ? field->message_type() : nullptr;
+      if (field != nullptr && field->is_repeated() && !field->is_map() && pos_ < t_.size() && t_[pos_] == '{') {
+        Problem(server::QuoteId(key.text) + " is an object where a list [...] is expected");
+      }
       StringValue value;
       if (!Value(field, member_type, depth, 0, &value)) return false;
       if (value.present && TakenInAnyCase(field)) pending.push_back({field, value});
@@ -183,6 +189,10 @@ class Parser {
     if (At(']')) return true;
     for (std::size_t index = 0; pos_ < t_.size(); ++index) {
       SkipSpace();
+      if (type != nullptr && field != nullptr && pos_ < t_.size() && t_[pos_] != '{') {
+        Problem("element " + std::to_string(index) + " (counting from 0) of " + server::QuoteId(field->json_name()) +
+                " is not an object");
+      }
       if (!Value(field, type, depth, index, nullptr)) return false;
       SkipSpace();
       if (pos_ >= t_.size()) break;
@@ -370,9 +380,16 @@ class Parser {
     return false;
   }
 
+  // Notes a problem of the document's shape at the current position.
+  void Problem(const std::string& what) {
+    const JsonSyntaxError at = PositionOf(pos_, "");
+    problems_.push_back("line " + std::to_string(at.line) + ", column " + std::to_string(at.column) + ": " + what);
+  }
+
   std::string_view t_;
   std::size_t pos_ = 0;
   JsonSyntaxError error_;
+  bool too_deep_ = false;
   std::vector<Edit> edits_;
   std::vector<std::string> problems_;
 };
@@ -419,15 +436,18 @@ bool ReadJsonMessage(std::string_view text, google::protobuf::Message* message, 
       input = rewritten;
     }
   }
+  // The syntax error, where it is.
+  auto syntax_error = [&] {
+    const JsonSyntaxError& e = parser.error();
+    *error = "line " + std::to_string(e.line) + ", column " + std::to_string(e.column) + ": " + e.what;
+    return false;
+  };
+  if (!json && parser.too_deep()) return syntax_error();  // Protobuf's reader takes any depth, slowly
   const auto status = google::protobuf::util::JsonStringToMessage(
       google::protobuf::StringPiece(input.data(), input.size()), message);
   if (status.ok()) return true;
-  if (json) {
-    *error = std::string(status.message());
-  } else {
-    const JsonSyntaxError& e = parser.error();
-    *error = "line " + std::to_string(e.line) + ", column " + std::to_string(e.column) + ": " + e.what;
-  }
+  if (!json) return syntax_error();
+  *error = std::string(status.message());
   return false;
 }
 
