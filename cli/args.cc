@@ -33,6 +33,11 @@ Args::Args(const std::vector<std::string>& argv, const std::set<std::string>& va
       } else {
         Fail("--" + name + " needs a value");
       }
+      // An empty path or address (an unset shell variable) would otherwise read as
+      // the flag left out: no picture, no log, no HTTP, and exit 0.
+      if (values_.count(name) > 0 && values_[name].empty()) {
+        Fail("--" + name + " needs a value; it was given an empty one");
+      }
     } else {
       Fail("unknown option --" + name);
     }

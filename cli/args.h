@@ -15,7 +15,8 @@ namespace snooker::cli {
 class Args {
  public:
   /// `valued`: flags that take a value; `switches`: flags that do not. Names are
-  /// given without the leading "--". Unknown flags and stray words are errors.
+  /// given without the leading "--". Unknown flags, stray words and empty values are
+  /// errors.
   Args(const std::vector<std::string>& argv, const std::set<std::string>& valued,
        const std::set<std::string>& switches);
 

@@ -352,7 +352,7 @@ INSTANTIATE_TEST_SUITE_P(
     testing::Values(BadFlag{"match --seed 1", "--frames is required"},
                     BadFlag{"match --frames 0 --seed 1", "--frames 0 is out of range"},
                     BadFlag{"match --frames 1 --seed 1 --player-a grandmaster", "--player-a 'grandmaster' is not a player"},
-                    BadFlag{"match --frames 1 --seed 1 --player-b ''", "--player-b '' is not a player"},
+                    BadFlag{"match --frames 1 --seed 1 --player-b ''", "--player-b needs a value; it was given an empty one"},
                     BadFlag{"match --frames 1 --seed 1 --noise-speed 2", "--noise-speed 2 is out of range"},
                     BadFlag{"match --frames 1 --seed 1 --budget-ms 0", "--budget-ms 0 is out of range"},
                     BadFlag{"match --frames 1 --seed 1 --max-shots 201", "--max-shots 201 is out of range"},

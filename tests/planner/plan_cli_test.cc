@@ -480,6 +480,8 @@ INSTANTIATE_TEST_SUITE_P(
                     BadInput{"plan --table TABLE --kinds POT,PUSH",
                              "--kinds 'POT,PUSH': 'PUSH' is not one of POT, SAFETY, ESCAPE, BREAK_OFF, FOUL"},
                     BadInput{"plan --table TABLE --routes DIRECT,", "--routes 'DIRECT,': '' is not one of DIRECT"},
+                    // An empty path (an unset shell variable) once drew no picture and exited 0.
+                    BadInput{"plan --table TABLE --svg ''", "--svg needs a value; it was given an empty one"},
                     // The command checks only that a value fits the field's type.
                     BadInput{"plan --table TABLE --shots 3000000000",
                              "--shots 3000000000 is out of range [-2147483648, 2147483647]"},

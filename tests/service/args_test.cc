@@ -51,7 +51,7 @@ TEST(ArgsTest, ParseErrorsNameTheFlagOrTheWord) {
 }
 
 TEST(ArgsTest, NumbersMustBeWholeAndFinite) {
-  for (const char* bad : {"", "1.5x", " 1", "abc", "0x10"}) {
+  for (const char* bad : {"1.5x", " 1", "abc", "0x10"}) {
     Args a = Parse({"--speed", bad});
     EXPECT_EQ(a.Number("speed", std::nullopt), std::nullopt) << bad;
     EXPECT_EQ(a.error(), "--speed '" + std::string(bad) + "' is not a number") << bad;
@@ -101,6 +101,15 @@ TEST(ArgsTest, AFlagWithoutAFallbackIsRequired) {
   // The later lookups keep the first error.
   EXPECT_EQ(a.Integer("frames", std::nullopt, 1, 10), std::nullopt);
   EXPECT_EQ(a.error(), "--table is required");
+}
+
+// An empty path or address (an unset shell variable) is an error, not the flag left out.
+TEST(ArgsTest, AnEmptyTextIsRefused) {
+  for (const std::vector<std::string>& argv :
+       {std::vector<std::string>{"--table", ""}, {"--table="}, {"--speed", ""}}) {
+    const Args a = Parse(argv);
+    EXPECT_EQ(a.error(), argv[0].substr(0, argv[0].find('=')) + " needs a value; it was given an empty one");
+  }
 }
 
 }  // namespace

@@ -141,7 +141,9 @@ INSTANTIATE_TEST_SUITE_P(
                     BadInput{"ToleranceZero", "--speed 1 --tolerance 0", "--tolerance 0"},
                     BadInput{"SpeedMissing", "--cut-deg 10", "--speed is required"},
                     BadInput{"UnknownOption", "--speed 1 --spin 3", "unknown option --spin"},
-                    BadInput{"SpeedWithoutValue", "--speed", "--speed needs a value"}),
+                    BadInput{"SpeedWithoutValue", "--speed", "--speed needs a value"},
+                    BadInput{"SpeedEmpty", "--speed ''", "--speed needs a value; it was given an empty one"},
+                    BadInput{"MuSBelowTheCloths", "--speed 1 --mu-s 1e-320", "--mu-s 1e-320: must be in [0.01, 1]"}),
     [](const testing::TestParamInfo<BadInput>& p) { return std::string(p.param.name); });
 
 TEST(CliCollideTest, HelpExplainsEveryOptionWithItsUnit) {
