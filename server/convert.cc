@@ -251,6 +251,12 @@ bool CheckBalls(const v1::TableState& t, const physics::TableModel& table, CueBa
     } else if (b.id().size() > plim::kMaxIdBytes) {
       errors.push_back({where + ".id", QuoteId(b.id()),
                         "at most " + std::to_string(plim::kMaxIdBytes) + " bytes"});
+    } else if (std::any_of(b.id().begin(), b.id().end(), [](char ch) {
+                 return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7F;
+               })) {
+      // An id is printed on the command line's output, in logs and in pictures: a
+      // newline or an escape sequence in it would forge lines or drive a terminal.
+      errors.push_back({where + ".id", QuoteId(b.id()), "must hold no control characters"});
     } else if (!ids.insert(b.id()).second) {
       errors.push_back({where + ".id", QuoteId(b.id()), "is used by another ball"});
     }

@@ -87,6 +87,25 @@ TEST(RequestBoundsTest, AnIdOfTheLimitIsAccepted) {
   EXPECT_TRUE(st.ok()) << st.message;
 }
 
+// An id with a newline or an escape sequence would forge lines of the command line's
+// output or drive a terminal; one of any other printable UTF-8 is kept as it is.
+TEST(RequestBoundsTest, AnIdWithAControlCharacterIsRefused) {
+  for (const std::string id : {std::string("red\nfake line"), std::string("\x1b[2Jred"), std::string("a\0b", 3),
+                               std::string("del\x7f")}) {
+    v1::SimulateRequest r = req::BreakOff(1, 0, 0);
+    r.mutable_table()->mutable_balls(3)->set_id(id);
+    v1::SimulateResponse resp;
+    const ApiStatus st = Simulate(r, &resp);
+    EXPECT_EQ(st.code, Code::kInvalidArgument) << QuoteId(id);
+    EXPECT_TRUE(Mentions(st.message, "table.balls[3].id = " + QuoteId(id) + " (must hold no control characters)"))
+        << st.message;
+  }
+  v1::SimulateRequest r = req::BreakOff(1, 0, 0);
+  r.mutable_table()->mutable_balls(3)->set_id("rouge n\u00b0 3 \u2014 ok");
+  v1::SimulateResponse resp;
+  EXPECT_TRUE(Simulate(r, &resp).ok());
+}
+
 TEST(QuoteIdTest, CutsAtACharacterBoundaryAndEscapesControlBytes) {
   EXPECT_EQ(QuoteId("red-1"), "\"red-1\"");
   EXPECT_EQ(QuoteId("a\"b\\c\n"), "\"a\\\"b\\\\c\\x0a\"");
