@@ -12,6 +12,7 @@
 #include "planner/builtin_tables.h"
 #include "planner/rules.h"
 #include "server/convert.h"
+#include "server/limits.h"
 #include "server/plan_convert.h"
 #include "server/read_file.h"
 
@@ -163,6 +164,15 @@ bool ReadTables(const std::string& dir, std::vector<v1::TableState>* tables, std
     }
     if (server::CueIndex(t) < 0 || t.balls_size() < 2) {
       *error = "'" + f.string() + "' needs a CUE ball and another ball";
+      return false;
+    }
+    // What a server would refuse on any settings (the ids, kinds, positions; overlaps
+    // beyond the largest vision repair a server may make), so that a load test does
+    // not send a table every call of which fails.
+    const server::TableCheck check =
+        server::CheckTable(t, physics::DefaultTable(), server::limits::kVisionToleranceMm.hi * 1e-3);
+    if (!check.errors.empty()) {
+      *error = "'" + f.string() + "' is not a table a server takes: " + server::BoundMessage(server::Describe(check.errors));
       return false;
     }
     tables->push_back(std::move(t));
