@@ -90,7 +90,7 @@ TEST(RequestBoundsTest, AnIdOfTheLimitIsAccepted) {
 // An id with a newline or an escape sequence would forge lines of the command line's
 // output or drive a terminal; one of any other printable UTF-8 is kept as it is.
 TEST(RequestBoundsTest, AnIdWithAControlCharacterIsRefused) {
-  for (const std::string id : {std::string("red\nfake line"), std::string("\x1b[2Jred"), std::string("a\0b", 3),
+  for (const std::string& id : {std::string("red\nfake line"), std::string("\x1b[2Jred"), std::string("a\0b", 3),
                                std::string("del\x7f")}) {
     v1::SimulateRequest r = req::BreakOff(1, 0, 0);
     r.mutable_table()->mutable_balls(3)->set_id(id);
