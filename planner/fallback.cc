@@ -7,6 +7,7 @@
 #include "planner/cushion_paths.h"
 #include "planner/geometry.h"
 #include "planner/robustness.h"
+#include "planner/rules.h"
 
 namespace snooker::planner {
 namespace {
@@ -93,7 +94,7 @@ std::optional<FallbackShot> FindLegalStroke(const TableState& table, int cue, Ba
     if (CueMargin(table, cue, heading, lim.cue, *ctx.table) < 0) return true;
     const Vec2 u(std::cos(heading), std::sin(heading));
     if (std::any_of(touching.begin(), touching.end(), [&](int i) {
-          return u.dot(table.balls[static_cast<size_t>(i)].position - c) > 0;  // a push
+          return PlaysInto(u, table.balls[static_cast<size_t>(i)].position - c);
         })) {
       return true;
     }

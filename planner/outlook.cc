@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "planner/rules.h"
+
 namespace snooker::planner {
 namespace {
 
@@ -49,7 +51,7 @@ bool PathClear(const TableState& table, int cue, int target, const Vec2& c, cons
     if (k == cue || k == target) continue;
     const Vec2& p = table.balls[i].position;
     if (Touches(touching, i)) {
-      if (u.dot(p - c) > 0) return false;
+      if (PlaysInto(u, p - c)) return false;
       continue;
     }
     if (p.x() < x0 || p.x() > x1 || p.y() < y0 || p.y() > y1) continue;

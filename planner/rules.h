@@ -101,6 +101,15 @@ inline constexpr double kTouchingGap = 1e-4;
 /// of `model`'s radius), ascending; empty when the table has no cue ball.
 std::vector<int> TouchingCueBall(const TableState& table, const physics::TableModel& model);
 
+/// Whether a stroke along the unit vector `u` plays into a ball touching the cue ball
+/// at `to_ball` from it (a push): any component towards it, bar rounding. Along the
+/// tangent, as when the cue ball is hemmed in on both sides and plays between, it
+/// plays away; a heading's rounding (cos 270 deg is -1.8e-16, not 0) must not make
+/// that a push.
+inline bool PlaysInto(const physics::Vec2& u, const physics::Vec2& to_ball) {
+  return u.dot(to_ball) > 1e-12 * to_ball.norm();
+}
+
 /// The value of a foul (docs/planning-notes.md §1.4): 4, or the value of the ball
 /// on (the nominated colour when a colour is on and one was nominated), of the first
 /// ball hit, or of any ball potted in the stroke, whichever is highest: 4 to 7.

@@ -14,6 +14,7 @@
 #include "planner/geometry.h"
 #include "planner/planner.h"
 #include "planner/robustness.h"
+#include "planner/rules.h"
 
 namespace snooker::planner {
 namespace {
@@ -200,6 +201,33 @@ TEST(FallbackScanTest, HemmedInItAnswersTheLeastCostlyFoulOnlyWhenAllowed) {
     }
   }
   EXPECT_GT(compared, 0);
+}
+
+// The cue ball touching a black behind it and a blue and a pink on either side, the
+// red far up the table: the one heading that plays away from all three runs between
+// the blue and the pink, along both their tangents. The rounding of that heading
+// (cos of -90 deg is not 0) once made it a push into one of them, and the plan had no
+// stroke at all; now it plays it (off the baulk cushion, a foul on the black).
+TEST(FallbackScanTest, TouchingOnThreeSidesItPlaysBetweenTheSideBalls) {
+  const double r = physics::DefaultTable().ball_radius();
+  const Vec2 c(0.889, 0.5);
+  TableState t;
+  t.balls = {{BallKind::kCue, c},
+             {BallKind::kBlack, c + Vec2(0, 2 * r)},
+             {BallKind::kBlue, c - Vec2(2 * r, 0)},
+             {BallKind::kPink, c + Vec2(2 * r, 0)},
+             {BallKind::kRed, Vec2(0.889, 3.0)}};
+  ASSERT_EQ(TouchingCueBall(t, physics::DefaultTable()).size(), 3u);
+  Scan scan(t);
+  FallbackOptions options;
+  options.allow_foul = true;
+  const auto found =
+      FindLegalStroke(t, 0, BallOn::kRed, scan.ctx, scan.settings, scan.sim, physics::Interrupt{}, options);
+  ASSERT_TRUE(found.has_value());
+  const Vec2 u(std::cos(found->cue.heading), std::sin(found->cue.heading));
+  EXPECT_NEAR(u.y(), -1.0, 1e-12) << "straight down the table, between the blue and the pink";
+  for (int i = 1; i <= 3; ++i) EXPECT_FALSE(PlaysInto(u, t.balls[static_cast<size_t>(i)].position - c)) << i;
+  EXPECT_TRUE(PlaysInto(Vec2(1e-9, -1).normalized(), t.balls[3].position - c)) << "a nanoradian towards the pink";
 }
 
 }  // namespace
