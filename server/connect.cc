@@ -226,8 +226,7 @@ ApiStatus DecodeRequest(std::string_view bytes, Codec codec, google::protobuf::M
   if (status.ok()) return ApiStatus::Ok();
   message->Clear();
   if (const std::optional<JsonSyntaxError> e = FindJsonSyntaxError(bytes)) {
-    return ApiStatus::Invalid(OneLine("the request is not JSON: line " + std::to_string(e->line) +
-                                      ", column " + std::to_string(e->column) + ": " + e->what));
+    return ApiStatus::Invalid(OneLine("the request is not JSON: " + LineColumnText(*e)));
   }
   return ApiStatus::Invalid(OneLine("the request is not a " + type + " in Protobuf's JSON form: " +
                                     std::string(status.message())));

@@ -312,9 +312,8 @@ class Parser {
                       : "ball " + std::to_string(index) + " (counting from 0; it has no id)") +
                   " has kind " + server::QuoteId(p.value.text) + ", which";
       }
-      const JsonSyntaxError at = PositionOf(p.value.begin, "");
-      problems_.push_back("line " + std::to_string(at.line) + ", column " + std::to_string(at.column) +
-                          ": " + subject + " is not one of " + ValueList(e) + " (in any case)");
+      problems_.push_back(
+          LineColumnText(PositionOf(p.value.begin, subject + " is not one of " + ValueList(e) + " (in any case)")));
     }
   }
 
@@ -381,10 +380,7 @@ class Parser {
   }
 
   // Notes a problem of the document's shape at the current position.
-  void Problem(const std::string& what) {
-    const JsonSyntaxError at = PositionOf(pos_, "");
-    problems_.push_back("line " + std::to_string(at.line) + ", column " + std::to_string(at.column) + ": " + what);
-  }
+  void Problem(std::string what) { problems_.push_back(LineColumnText(PositionOf(pos_, std::move(what)))); }
 
   std::string_view t_;
   std::size_t pos_ = 0;
@@ -411,6 +407,10 @@ std::string Rewritten(std::string_view text, std::vector<Edit> edits) {
 
 }  // namespace
 
+std::string LineColumnText(const JsonSyntaxError& e) {
+  return "line " + std::to_string(e.line) + ", column " + std::to_string(e.column) + ": " + e.what;
+}
+
 std::optional<JsonSyntaxError> FindJsonSyntaxError(std::string_view text) {
   Parser parser(text);
   if (parser.Document(nullptr)) return std::nullopt;
@@ -436,18 +436,14 @@ bool ReadJsonMessage(std::string_view text, google::protobuf::Message* message, 
       input = rewritten;
     }
   }
-  // The syntax error, where it is.
-  auto syntax_error = [&] {
-    const JsonSyntaxError& e = parser.error();
-    *error = "line " + std::to_string(e.line) + ", column " + std::to_string(e.column) + ": " + e.what;
+  if (!json && parser.too_deep()) {  // Protobuf's reader would take any depth, slowly
+    *error = LineColumnText(parser.error());
     return false;
-  };
-  if (!json && parser.too_deep()) return syntax_error();  // Protobuf's reader takes any depth, slowly
+  }
   const auto status = google::protobuf::util::JsonStringToMessage(
       google::protobuf::StringPiece(input.data(), input.size()), message);
   if (status.ok()) return true;
-  if (!json) return syntax_error();
-  *error = std::string(status.message());
+  *error = json ? std::string(status.message()) : LineColumnText(parser.error());
   return false;
 }
 

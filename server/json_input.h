@@ -20,6 +20,9 @@ struct JsonSyntaxError {
   std::string what;
 };
 
+/// "line L, column C: what", as the error messages give it.
+std::string LineColumnText(const JsonSyntaxError& e);
+
 /// The first syntax error of `text` read as one JSON document (RFC 8259: an object,
 /// array, string, number, true, false or null, with white space around it), or
 /// nothing when it is one. Nesting deeper than 100 is an error.
