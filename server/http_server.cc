@@ -255,7 +255,7 @@ struct HttpServer::Impl {
   std::string cors_origin;
   std::ostream* log = nullptr;
   bool tls = false;
-  std::optional<std::int64_t> certificate_expiry;  // the start's certificate's, without a reloader
+  std::optional<std::int64_t> certificate_expiry;  // the start's certificate's
   std::unique_ptr<TlsReloader> tls_reloader;       // before http, which calls it
   std::unique_ptr<httplib::Server> http;
   std::thread listener;
@@ -362,7 +362,7 @@ void HttpServer::Impl::OnGet(const httplib::Request& req, httplib::Response& res
   if (req.path == "/metrics") {
     res.status = 200;
     res.set_header("Cache-Control", "no-store");
-    const auto expiry = tls_reloader != nullptr ? tls_reloader->Expiry() : certificate_expiry;
+    const auto expiry = tls_reloader != nullptr ? tls_reloader->Expiry(certificate_expiry) : certificate_expiry;
     res.set_content(MetricsText(service->counts(), expiry), "text/plain; version=0.0.4; charset=utf-8");
     return;
   }

@@ -149,8 +149,7 @@ TlsReloader::TlsReloader(const TlsOptions& tls, std::ostream* log, std::mutex* l
     : files_{tls.cert_chain_file, tls.private_key_file, tls.client_ca_file},
       interval_(tls.reload_interval),
       log_(log),
-      log_mu_(log_mu),
-      start_expiry_(CertificateExpiry(tls.cert_chain_pem)) {
+      log_mu_(log_mu) {
   for (int i = 0; i < 3; ++i) stamps_[i] = StampOf(files_[i]);
   next_check_ = std::chrono::steady_clock::now() + interval_;
 }
@@ -179,9 +178,9 @@ int TlsReloader::OnCertificate(SSL* ssl, void* self) {
   return ok ? 1 : 0;  // 0 ends the handshake
 }
 
-std::optional<std::int64_t> TlsReloader::Expiry() {
+std::optional<std::int64_t> TlsReloader::Expiry(std::optional<std::int64_t> start_expiry) {
   const auto m = Current();
-  return m != nullptr ? m->expiry : start_expiry_;
+  return m != nullptr ? m->expiry : start_expiry;
 }
 
 std::shared_ptr<const TlsMaterial> TlsReloader::Current() {

@@ -34,8 +34,9 @@ std::optional<std::int64_t> CertificateExpiry(const std::string& cert_chain_pem)
 
 /// Reads TlsOptions' files again, at most once a reload interval, as a handshake
 /// asks for them (SSL_CTX_set_cert_cb): a file whose modification time or size has
-/// changed has all three read again (as the command line reads them: ReadInputFile), and a set that loads (PEM, the key matching the
-/// certificate) is what later handshakes present and verify clients by. A set that
+/// changed has all three read again (as the command line reads them: ReadInputFile),
+/// and a set that loads (PEM, the key matching the certificate) is what later
+/// handshakes present and verify clients by. A set that
 /// does not load leaves the last good one in use and is said once in the log.
 class TlsReloader {
  public:
@@ -49,8 +50,9 @@ class TlsReloader {
   void Install(SSL_CTX& ctx);
 
   /// When the certificate that the next handshake presents expires (CertificateExpiry),
-  /// the files read again first if a handshake would read them now.
-  std::optional<std::int64_t> Expiry();
+  /// the files read again first if a handshake would read them now: a set read again,
+  /// or `start_expiry`, the context's own certificate's.
+  std::optional<std::int64_t> Expiry(std::optional<std::int64_t> start_expiry);
 
  private:
   struct Stamp {
@@ -71,7 +73,6 @@ class TlsReloader {
   std::chrono::steady_clock::time_point next_check_;
   Stamp stamps_[3];
   std::shared_ptr<const TlsMaterial> material_;  // null: the context's own (the start's)
-  std::optional<std::int64_t> start_expiry_;     // the context's own certificate's
   std::string refused_;                          // the last refusal said, not to repeat it
 };
 
