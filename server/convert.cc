@@ -58,6 +58,12 @@ void CheckEnum(std::vector<FieldError>* errors, int value, bool valid, const cha
 
 // Length of the longest prefix of s of at most n bytes that does not end inside a
 // UTF-8 sequence.
+// An ASCII control character (below 0x20, or DEL).
+bool IsControlByte(char ch) {
+  const auto c = static_cast<unsigned char>(ch);
+  return c < 0x20 || c == 0x7F;
+}
+
 std::size_t Utf8Prefix(std::string_view s, std::size_t n) {
   if (s.size() <= n) return s.size();
   while (n > 0 && (static_cast<unsigned char>(s[n]) & 0xC0) == 0x80) --n;
@@ -80,7 +86,7 @@ std::string QuoteId(std::string_view id) {
     if (ch == '"' || ch == '\\') {
       out += '\\';
       out += ch;
-    } else if (c < 0x20 || c == 0x7F) {
+    } else if (IsControlByte(ch)) {
       static constexpr char kHex[] = "0123456789abcdef";
       out += "\\x";
       out += kHex[c >> 4];
@@ -251,9 +257,7 @@ bool CheckBalls(const v1::TableState& t, const physics::TableModel& table, CueBa
     } else if (b.id().size() > plim::kMaxIdBytes) {
       errors.push_back({where + ".id", QuoteId(b.id()),
                         "at most " + std::to_string(plim::kMaxIdBytes) + " bytes"});
-    } else if (std::any_of(b.id().begin(), b.id().end(), [](char ch) {
-                 return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7F;
-               })) {
+    } else if (std::any_of(b.id().begin(), b.id().end(), IsControlByte)) {
       // An id is printed on the command line's output, in logs and in pictures: a
       // newline or an escape sequence in it would forge lines or drive a terminal.
       errors.push_back({where + ".id", QuoteId(b.id()), "must hold no control characters"});
