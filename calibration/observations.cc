@@ -32,6 +32,15 @@ class Problems {
     out_ << where_ << '.' << name << " = " << value << " (must be " << rule << ")";
     return false;
   }
+  // As Check, for a rule about which values are given rather than about a value:
+  // "where: what".
+  bool Require(bool ok, const std::string& what) {
+    if (ok || bad_) return ok;
+    bad_ = true;
+    Separate();
+    out_ << where_ << ": " << what;
+    return false;
+  }
   // A message about the set as a whole, or about an observation without a value.
   void Add(const std::string& message) {
     Separate();
@@ -56,10 +65,9 @@ constexpr const char* kSpinRule = "a finite number of at most 1000 rad/s in size
 
 void CheckThrow(const ThrowObservation& o, Problems* p) {
   p->Check(std::isfinite(o.cut) && o.cut >= 0 && o.cut <= kMaxCut, "cut", o.cut, "in [0, 1.553] rad (89 deg)");
-  if (o.cue_ball_speed.has_value() == o.object_ball_speed.has_value()) {
-    p->Check(false, "cue_ball_speed", o.cue_ball_speed.value_or(NAN),
-             "given alone: exactly one of cue_ball_speed and object_ball_speed");
-  }
+  p->Require(o.cue_ball_speed.has_value() != o.object_ball_speed.has_value(),
+             o.cue_ball_speed ? "both cue_ball_speed and object_ball_speed are given (give exactly one)"
+                              : "neither cue_ball_speed nor object_ball_speed is given (give exactly one)");
   if (o.cue_ball_speed) p->Check(InSpeedRange(*o.cue_ball_speed), "cue_ball_speed", *o.cue_ball_speed, kSpeedRule);
   if (o.object_ball_speed) {
     p->Check(InSpeedRange(*o.object_ball_speed), "object_ball_speed", *o.object_ball_speed, kSpeedRule);

@@ -127,7 +127,15 @@ std::vector<physics::BallState> StartOfShot(const TrackedShot& shot, const physi
   if (const auto* k = std::get_if<physics::CueStrike>(&shot.strike)) {
     const physics::StrikeResult s = physics::Strike(*k, model.cue, model.ball, model.cloth.g);
     if (s.status != physics::StrikeStatus::kOk) {
-      *error = std::string("strike refused: ") + physics::ToString(s.status);
+      std::ostringstream why;
+      why << "strike refused: " << physics::ToString(s.status);
+      if (s.status == physics::StrikeStatus::kMiscue) {
+        why << " (the tip " << std::hypot(k->side, k->height) << " R from the ball's centre line, beyond the cue's limit of "
+            << physics::MiscueLimit(model.cue) << " R)";
+      } else if (s.status == physics::StrikeStatus::kHop) {
+        why << " (the ball would hop " << s.hop * 1e3 << " mm, more than the cue's " << model.cue.max_hop * 1e3 << " mm)";
+      }
+      *error = why.str();
       return {};
     }
     struck = s.shot;

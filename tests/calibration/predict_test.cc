@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
 
 #include "physics/sim/simulate.h"
 
@@ -135,7 +136,14 @@ TEST(PredictShotTest, APocketedBallStaysWhereItDropped) {
 TEST(PredictShotTest, ARefusedStrikeIsAnError) {
   TrackedShot s = TwoBallShot();
   std::get<physics::CueStrike>(s.strike).side = 0.7;  // beyond the miscue limit 0.51
-  EXPECT_NE(PredictShot(s, physics::Model{}).error.find("miscue"), std::string::npos);
+  std::get<physics::CueStrike>(s.strike).height = 0;
+  const std::string error = PredictShot(s, physics::Model{}).error;
+  // It names the tip's offset and the limit it is beyond.
+  std::ostringstream limit;
+  limit << "beyond the cue's limit of " << physics::MiscueLimit(physics::Model{}.cue) << " R";
+  EXPECT_NE(error.find("strike refused: miscue (the tip 0.7 R from"), std::string::npos) << error;
+  EXPECT_NE(error.find(limit.str()), std::string::npos) << error;
+  EXPECT_LT(physics::MiscueLimit(physics::Model{}.cue), 0.7);
 }
 
 }  // namespace
