@@ -53,6 +53,14 @@ bool ParseAll(const std::string& t, T* x) {
   return ec == std::errc() && end == t.data() + t.size() && !t.empty();
 }
 
+// True when `t` is a whole number too large for a long: digits, perhaps after a '-',
+// that from_chars reads to the end but cannot hold.
+bool WholeButTooLarge(const std::string& t) {
+  long x = 0;
+  const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
+  return ec == std::errc::result_out_of_range && end == t.data() + t.size();
+}
+
 }  // namespace
 
 const std::string* Args::Find(const std::string& name, bool has_fallback) {
@@ -82,11 +90,12 @@ std::optional<long> Args::Integer(const std::string& name, std::optional<long> f
   const std::string* t = Find(name, fallback.has_value());
   if (!t) return fallback;
   long x = 0;
-  if (!ParseAll(*t, &x)) {
+  const bool whole = ParseAll(*t, &x);
+  if (!whole && !WholeButTooLarge(*t)) {
     Fail("--" + name + " '" + *t + "' is not a whole number");
     return std::nullopt;
   }
-  if (x < lo || x > hi) {
+  if (!whole || x < lo || x > hi) {
     Fail("--" + name + " " + *t + " is out of range [" + std::to_string(lo) + ", " +
          std::to_string(hi) + "]");
     return std::nullopt;

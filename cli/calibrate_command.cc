@@ -3,7 +3,6 @@
 // data, and the reference of the tracked-shot format).
 #include <iomanip>
 #include <iostream>
-#include <limits>
 #include <stdexcept>
 
 #include <google/protobuf/util/json_util.h>
@@ -184,7 +183,7 @@ int RunRecord(const std::vector<std::string>& argv, std::ostream& out, std::ostr
   }
   const auto world_path = args.Text("world", std::nullopt);
   const auto shots = args.Integer("shots", std::nullopt, 1, calibration::kMaxRecordedShots);
-  const auto seed = args.Integer("seed", std::nullopt, 0, std::numeric_limits<long>::max());
+  const auto seed = args.Unsigned64("seed", std::nullopt);
   const auto noise = args.Number("vision-noise-mm", 1.0);
   const auto out_path = args.Text("out", std::nullopt);
   if (args.error().empty() && !(*noise >= 0 && *noise <= 50)) {
@@ -200,7 +199,7 @@ int RunRecord(const std::vector<std::string>& argv, std::ostream& out, std::ostr
     return kExitUsage;
   }
   calibration::Observations recorded;
-  recorded.shots = calibration::Record(world, static_cast<int>(*shots), static_cast<std::uint64_t>(*seed), *noise * 1e-3);
+  recorded.shots = calibration::Record(world, static_cast<int>(*shots), *seed, *noise * 1e-3);
   v1::Observations file;
   server::ObservationsToProto(recorded, &file);
   if (!WriteJson(file, *out_path, "snooker record", err)) return kExitFailure;

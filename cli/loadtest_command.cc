@@ -12,7 +12,6 @@
 #include <cmath>
 #include <iomanip>
 #include <map>
-#include <limits>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -240,7 +239,7 @@ struct Settings {
   long concurrency = 0;
   std::size_t requests = 0;
   std::string tables_dir;  // empty: the built-in tables
-  long seed = 1;
+  std::uint64_t seed = 1;
   long max_seconds = 600;
   double budget_ms = kDefaultPlanBudgetMs;
   bool json = false;
@@ -262,7 +261,7 @@ std::optional<int> ParseSettings(const std::vector<std::string>& argv, std::ostr
   const auto requests = args.Integer("requests", std::nullopt, 1, 1'000'000);
   const auto method = args.Text("method", "simulate");
   const auto tables_dir = args.Text("tables", "");
-  const auto seed = args.Integer("seed", 1, 0, std::numeric_limits<long>::max());
+  const auto seed = args.Unsigned64("seed", 1);
   const auto max_seconds = args.Integer("max-seconds", 600, 1, 3600);
   const auto budget_ms = args.Number("budget-ms", kDefaultPlanBudgetMs);
   if (!ClientOptionsFrom(args, kCommand, "target", 10'000, &s->client, err)) return kExitUsage;
@@ -341,7 +340,7 @@ bool ChooseTables(const Settings& s, const Expectations& expect, std::vector<v1:
   }
   // Overlaps of 0.3 mm only for a server that repairs them.
   constexpr double kOverlapMm = 0.3;
-  *tables = VariedTables(static_cast<std::uint64_t>(s.seed), 64,
+  *tables = VariedTables(s.seed, 64,
                          expect.vision_tolerance_mm >= kOverlapMm ? kOverlapMm : 0);
   return true;
 }
@@ -350,7 +349,7 @@ bool ChooseTables(const Settings& s, const Expectations& expect, std::vector<v1:
 // `i`), sent, timed and its answer checked.
 Outcome CallOnce(v1::ShotPlanner::Stub& stub, const Settings& s, const v1::TableState& table,
                  std::size_t i, const Expectations& expect) {
-  LoadRandom random(static_cast<std::uint64_t>(s.seed) * 0x9E3779B97F4A7C15ull + i);
+  LoadRandom random(s.seed * 0x9E3779B97F4A7C15ull + i);
   grpc::ClientContext context;
   context.set_deadline(std::chrono::system_clock::now() + s.client.deadline);
   Outcome o;

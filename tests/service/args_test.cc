@@ -80,6 +80,12 @@ TEST(ArgsTest, IntegersKeepToTheirRange) {
     EXPECT_EQ(b.Integer("frames", std::nullopt, 1, 100), std::nullopt) << bad;
     EXPECT_EQ(b.error(), "--frames '" + std::string(bad) + "' is not a whole number") << bad;
   }
+  // A whole number beyond a long is out of range, not "not a whole number".
+  for (const char* huge : {"9223372036854775808", "-9223372036854775809"}) {
+    Args h = Parse({"--frames", huge});
+    EXPECT_EQ(h.Integer("frames", std::nullopt, 1, 100), std::nullopt) << huge;
+    EXPECT_EQ(h.error(), "--frames " + std::string(huge) + " is out of range [1, 100]") << huge;
+  }
 }
 
 TEST(ArgsTest, SeedsTakeTheWholeUnsignedRange) {

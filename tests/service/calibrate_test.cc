@@ -513,17 +513,21 @@ ThrowFiles WriteThrowFiles() {
 
 TEST(RecordCommandTest, TheSameArgumentsGiveTheSameFileAndAnotherSeedAnother) {
   const std::string a = cli_support::TempPath("record_a.json"), b = cli_support::TempPath("record_b.json"),
-                    c = cli_support::TempPath("record_c.json");
+                    c = cli_support::TempPath("record_c.json"), d = cli_support::TempPath("record_d.json");
   const std::string args = "record --world default --shots 3 --vision-noise-mm 1 --seed ";
   const cli_support::RunResult ra = RunCli(args + "5 --out " + a);
   ASSERT_EQ(ra.exit_code, 0) << ra.err;
   EXPECT_TRUE(Has(ra.out, "recorded 3 tracked shots")) << ra.out;
   ASSERT_EQ(RunCli(args + "5 --out " + b).exit_code, 0);
   ASSERT_EQ(RunCli(args + "6 --out " + c).exit_code, 0);
+  // Seeds take the whole unsigned range, as every command's --seed does.
+  const cli_support::RunResult rd = RunCli(args + "18446744073709551615 --out " + d);
+  ASSERT_EQ(rd.exit_code, 0) << rd.err;
   const std::string text = ReadText(a);
   EXPECT_FALSE(text.empty());
   EXPECT_EQ(text, ReadText(b));
   EXPECT_NE(text, ReadText(c));
+  EXPECT_NE(text, ReadText(d));
   v1::Observations read;
   ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(text, &read).ok());
   EXPECT_EQ(read.tracked_size(), 3);
