@@ -58,27 +58,6 @@ std::string ValuePrefix(const EnumDescriptor* e) {
   return prefix + "_";
 }
 
-// The enum's values but the unspecified one, without their prefix: "CUE, RED, ...".
-std::string ValueList(const EnumDescriptor* e) {
-  const std::string prefix = ValuePrefix(e);
-  std::string list;
-  for (int i = 0; i < e->value_count(); ++i) {
-    if (e->value(i)->number() == 0) continue;
-    std::string name = e->value(i)->name();
-    if (name.compare(0, prefix.size(), prefix) == 0) name.erase(0, prefix.size());
-    list += (list.empty() ? "" : ", ") + name;
-  }
-  return list;
-}
-
-// The value named `text` in any case, with or without the enum's prefix; or null.
-const EnumValueDescriptor* FindInAnyCase(const EnumDescriptor* e, const std::string& text) {
-  std::string upper;
-  for (const char c : text) upper += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  if (const EnumValueDescriptor* v = e->FindValueByName(upper)) return v;
-  return e->FindValueByName(ValuePrefix(e) + upper);
-}
-
 void AppendUtf8(std::uint32_t cp, std::string* out) {
   if (cp < 0x80) {
     *out += static_cast<char>(cp);
@@ -152,6 +131,9 @@ class Parser {
     if (At('}')) return true;
     std::vector<PendingEnum> pending;
     std::optional<std::string> id;
+    // The fields given so far, with the name each was given by: a field given twice
+    // would lose its first value (a repeated one would join the two lists).
+    std::vector<std::pair<const FieldDescriptor*, std::string>> given;
     while (pos_ < t_.size()) {
       SkipSpace();
       if (!At('"', /*consume=*/false)) {
@@ -163,6 +145,7 @@ class Parser {
       if (!At(':')) return Fail("expected ':' after the member name " + server::QuoteId(key.text) + Found());
       SkipSpace();
       const FieldDescriptor* field = FieldOf(type, key.text);
+      if (field != nullptr) NoteGiven(field, key.text, &given);
       const Descriptor* member_type = field != nullptr && !field->is_map() ? field->message_type() : nullptr;
       if (field != nullptr && field->is_repeated() && !field->is_map() && pos_ < t_.size() && t_[pos_] == '{') {
         Problem(server::QuoteId(key.text) + " is an object where a list [...] is expected");
@@ -181,6 +164,19 @@ class Parser {
       return Fail("expected ',' or '}' after a member of an object" + Found());
     }
     return Fail("the document ends inside an object (no closing '}')");
+  }
+
+  // Notes `field`, given as `name`, among the object's `given` fields; a problem when
+  // it was given before. The list holds at most the type's fields.
+  void NoteGiven(const FieldDescriptor* field, const std::string& name,
+                 std::vector<std::pair<const FieldDescriptor*, std::string>>* given) {
+    const auto before = std::find_if(given->begin(), given->end(), [&](const auto& g) { return g.first == field; });
+    if (before == given->end()) {
+      given->emplace_back(field, name);
+      return;
+    }
+    Problem(server::QuoteId(name) + " is given a second time in the same object" +
+            (before->second == name ? std::string() : " (first as " + server::QuoteId(before->second) + ")"));
   }
 
   bool Array(const FieldDescriptor* field, const Descriptor* type, int depth) {
@@ -445,6 +441,25 @@ bool ReadJsonMessage(std::string_view text, google::protobuf::Message* message, 
   if (status.ok()) return true;
   *error = json ? std::string(status.message()) : LineColumnText(parser.error());
   return false;
+}
+
+std::string ValueList(const EnumDescriptor* e) {
+  const std::string prefix = ValuePrefix(e);
+  std::string list;
+  for (int i = 0; i < e->value_count(); ++i) {
+    if (e->value(i)->number() == 0) continue;
+    std::string name = e->value(i)->name();
+    if (name.compare(0, prefix.size(), prefix) == 0) name.erase(0, prefix.size());
+    list += (list.empty() ? "" : ", ") + name;
+  }
+  return list;
+}
+
+const EnumValueDescriptor* FindInAnyCase(const EnumDescriptor* e, const std::string& text) {
+  std::string upper;
+  for (const char c : text) upper += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  if (const EnumValueDescriptor* v = e->FindValueByName(upper)) return v;
+  return e->FindValueByName(ValuePrefix(e) + upper);
 }
 
 }  // namespace snooker::server

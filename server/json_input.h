@@ -5,6 +5,7 @@
 // (connect.h) uses the syntax scanner to say where a request body stops being JSON.
 #pragma once
 
+#include <google/protobuf/descriptor.h>
 #include <google/protobuf/message.h>
 
 #include <optional>
@@ -38,9 +39,21 @@ std::optional<JsonSyntaxError> FindJsonSyntaxError(std::string_view text);
 ///    RED, YELLOW, GREEN, BROWN, BLUE, PINK, BLACK (in any case)" (a ball without an id
 ///   is named by its index: "ball 2 (counting from 0; it has no id)"; the first such
 ///   value, and how many more there are)
+///   "line 1, column 52: \"balls\" is given a second time in the same object" (a
+///   field given twice, by either of its names: Protobuf would keep the last value,
+///   or join the lists)
 /// or Protobuf's own reason for anything else (an unknown field, a string where a
 /// number belongs). A text that is not strict JSON but that Protobuf's reader takes
 /// anyway is read as before, without the change of case.
 bool ReadJsonMessage(std::string_view text, google::protobuf::Message* message, std::string* error);
+
+/// The value of enum `e` named `text` in any case, with or without the enum's prefix
+/// ("pink", "Pink" and "BALL_ON_PINK" of BallOn), as JSON input reads it; or null.
+/// The command line's flags that name a ball kind or ball on read it so too.
+const google::protobuf::EnumValueDescriptor* FindInAnyCase(const google::protobuf::EnumDescriptor* e,
+                                                           const std::string& text);
+
+/// `e`'s values but the unspecified one, without their prefix: "RED, COLOUR, YELLOW, ...".
+std::string ValueList(const google::protobuf::EnumDescriptor* e);
 
 }  // namespace snooker::server

@@ -199,6 +199,27 @@ TEST(ReadJsonMessageTest, WhatProtobufTakesBeyondJsonIsStillRead) {
   EXPECT_EQ(t.balls(0).id(), "cue");
 }
 
+// Protobuf's reader takes a member given twice: the last value of a single field, the
+// two lists joined of a repeated one. Either would act on a table other than the one
+// its sender meant, so a field may be given once, by either of its names.
+TEST(ReadJsonMessageTest, AFieldGivenTwiceIsRefused) {
+  v1::TableState t;
+  std::string error;
+  EXPECT_FALSE(ReadJsonMessage(R"({"balls": [{"id": "cue", "kind": "CUE"}], "balls": [{"id": "red-1", "kind": "RED"}]})",
+                               &t, &error));
+  EXPECT_EQ(error, "line 1, column 52: \"balls\" is given a second time in the same object");
+  EXPECT_FALSE(ReadJsonMessage(R"({"balls": [{"id": "cue", "kind": "CUE", "id": "red-1"}]})", &t, &error));
+  EXPECT_EQ(error, "line 1, column 47: \"id\" is given a second time in the same object");
+  v1::PlanRequest r;
+  EXPECT_FALSE(ReadJsonMessage(R"({"ballOn": "RED", "ball_on": "PINK"})", &r, &error));
+  EXPECT_EQ(error, "line 1, column 30: \"ball_on\" is given a second time in the same object (first as \"ballOn\")");
+  // The same name in different objects is no repeat.
+  ASSERT_TRUE(ReadJsonMessage(R"({"balls": [{"id": "cue", "kind": "CUE"}, {"id": "red-1", "kind": "RED"}]})", &t,
+                              &error))
+      << error;
+  EXPECT_EQ(t.balls_size(), 2);
+}
+
 // Protobuf's reader dropped what is not a ball in the list of balls, took one ball
 // for the list, and read nesting of any depth (5 million levels in 4 s) once the
 // strict reader had refused it.
