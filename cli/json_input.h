@@ -5,8 +5,10 @@
 
 namespace snooker::cli {
 
+using server::FindInAnyCase;
 using server::FindJsonSyntaxError;
 using server::JsonSyntaxError;
 using server::ReadJsonMessage;
+using server::ValueList;
 
 }  // namespace snooker::cli

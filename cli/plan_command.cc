@@ -10,7 +10,6 @@
 #include <cstdint>
 #include <iomanip>
 #include <limits>
-#include <map>
 #include <optional>
 #include <memory>
 #include <set>
@@ -66,8 +65,9 @@ with its route (direct, plant, double, kick).
                    in baulk), colours (the reds gone, the colours on their spots),
                    break-off (the 15 reds racked, the colours on their spots, the cue
                    ball in hand: --cue-in-hand is implied)
-  --on BALL        the ball on: RED, a colour, or COLOUR (any colour, the planner
-                   choosing); default: a red while reds remain, else the lowest colour
+  --on BALL        the ball on, in any case: RED, a colour, or COLOUR (any colour,
+                   the planner choosing); default: a red while reds remain, else the
+                   lowest colour
   --budget-ms N    planning time budget, ms (default 80; 1 to 60000; with --server,
                    the server's --default-budget-ms and at most its --max-budget-ms)
   --shots K        how many shots to list, best first (default 3; 1 to 20)
@@ -172,7 +172,7 @@ bool ReadTable(const std::string& path, v1::PlanRequest* request, std::ostream& 
   return true;
 }
 
-void PrintReadable(const v1::PlanResponse& r, std::ostream& out) {
+void PrintReadable(const v1::PlanResponse& r, const v1::TableState& table, std::ostream& out) {
   for (const v1::Warning& w : r.warnings()) out << "warning: " << w.message() << "\n";
   if (r.warnings_size() > 0) out << "\n";
   if (r.shots_size() == 0) {
@@ -182,7 +182,7 @@ void PrintReadable(const v1::PlanResponse& r, std::ostream& out) {
   }
   int rank = 0;
   for (const v1::PlannedShot& s : r.shots()) {
-    out << std::fixed << "#" << ++rank << "  " << ShotLabel(s) << std::setprecision(3) << "   ";
+    out << std::fixed << "#" << ++rank << "  " << ShotLabel(s, table) << std::setprecision(3) << "   ";
     if (s.kind() == v1::POT) out << "P(pot) " << s.pot_probability() << ", ";
     const std::string leave = LeaveLabel(s, 3);
     out << "P(foul) " << s.foul_probability() << (leave.empty() ? "" : ", " + leave) << "; worth "
@@ -217,13 +217,14 @@ void PrintReadable(const v1::PlanResponse& r, std::ostream& out) {
 }
 
 // A progress message of --stream: the best verified shot so far.
-void PrintProgress(const v1::PlanResponse& r, bool json, std::ostream& out, std::ostream& err) {
+void PrintProgress(const v1::PlanResponse& r, const v1::TableState& table, bool json, std::ostream& out,
+                   std::ostream& err) {
   if (json) {
     PrintJson(r, "snooker plan", out, err);
     return;
   }
   for (const v1::PlannedShot& s : r.shots()) {
-    out << std::fixed << std::setprecision(1) << "progress " << r.elapsed_ms() << " ms: " << ShotLabel(s)
+    out << std::fixed << std::setprecision(1) << "progress " << r.elapsed_ms() << " ms: " << ShotLabel(s, table)
         << std::setprecision(3);
     if (s.kind() == v1::POT) out << ", P(pot) estimate " << s.pot_probability();
     const std::string leave = LeaveLabel(s, 3);
@@ -248,18 +249,14 @@ struct PlanSettings {
 
 // --on into the request's ball_on. False after saying why on `err`.
 bool SetBallOn(Args& args, v1::PlanRequest* req, std::ostream& err) {
-  static const std::map<std::string, v1::BallOn> kOn = {
-      {"RED", v1::BALL_ON_RED},       {"COLOUR", v1::BALL_ON_COLOUR}, {"YELLOW", v1::BALL_ON_YELLOW},
-      {"GREEN", v1::BALL_ON_GREEN},   {"BROWN", v1::BALL_ON_BROWN},   {"BLUE", v1::BALL_ON_BLUE},
-      {"PINK", v1::BALL_ON_PINK},     {"BLACK", v1::BALL_ON_BLACK}};
   const std::string on = *args.Text("on", "");
-  const auto it = kOn.find(on);
-  if (it == kOn.end()) {
-    err << "snooker plan: --on '" << on
-        << "' is not one of RED, YELLOW, GREEN, BROWN, BLUE, PINK, BLACK, COLOUR\n";
+  const google::protobuf::EnumValueDescriptor* value = FindInAnyCase(v1::BallOn_descriptor(), on);
+  if (value == nullptr || value->number() == v1::BALL_ON_UNSPECIFIED) {
+    err << "snooker plan: --on '" << on << "' is not one of " << ValueList(v1::BallOn_descriptor())
+        << " (in any case)\n";
     return false;
   }
-  req->set_ball_on(it->second);
+  req->set_ball_on(static_cast<v1::BallOn>(value->number()));
   return true;
 }
 
@@ -437,7 +434,7 @@ int PlanOnServer(const PlanSettings& s, v1::PlanResponse* resp, std::ostream& ou
       *resp = message;
       final_seen = true;
     } else {
-      PrintProgress(message, s.json, out, err);
+      PrintProgress(message, s.request.table(), s.json, out, err);
     }
   }
   const grpc::Status st = reader->Finish();
@@ -460,7 +457,7 @@ int PlanHere(const PlanSettings& s, v1::PlanResponse* resp, std::ostream& out, s
     control.planner = &*own;
   }
   if (s.stream) {
-    control.on_progress = [&](const v1::PlanResponse& best) { PrintProgress(best, s.json, out, err); };
+    control.on_progress = [&](const v1::PlanResponse& best) { PrintProgress(best, s.request.table(), s.json, out, err); };
   }
   const server::ApiStatus status = server::Plan(s.request, resp, control);
   if (!status.ok()) {
@@ -519,7 +516,7 @@ int WriteAnswer(const PlanSettings& s, const v1::PlanResponse& resp, std::ostrea
   if (s.json) {
     if (!PrintJson(resp, "snooker plan", out, err)) return kExitFailure;
   } else {
-    PrintReadable(resp, out);
+    PrintReadable(resp, s.request.table(), out);
   }
   return kExitOk;
 }

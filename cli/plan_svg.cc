@@ -107,11 +107,11 @@ std::string Percent(double p) {
 
 // "pot, direct: red-1 -> top-right", "safety: red-3 first", "escape: no ball hit",
 // "foul: red-2 first, nominating yellow".
-std::string Headline(const v1::PlannedShot& s) {
+std::string Headline(const v1::PlannedShot& s, const v1::TableState& table) {
   const std::string kind = svg::Words(v1::ShotKind_Name(s.kind())), route = svg::Words(v1::PotRoute_Name(s.route()));
   if (s.kind() != v1::POT) {
-    const std::string nominated = s.kind() == v1::FOUL ? ", nominating " + s.object_ball() : "";
-    return kind + ": " + (s.first_ball().empty() ? "no ball hit" : s.first_ball() + " first") + nominated;
+    return kind + ": " + (s.first_ball().empty() ? "no ball hit" : s.first_ball() + " first") +
+           FoulNomination(s, table);
   }
   std::string line = "pot, " + route;
   if (s.route() == v1::PLANT && !s.first_ball().empty()) line += " off " + s.first_ball();
@@ -119,8 +119,8 @@ std::string Headline(const v1::PlannedShot& s) {
 }
 
 // The shot's lines of the panel, under its number.
-void AddShotLines(svg::Canvas& c, const v1::PlannedShot& s, int number) {
-  c.AddPanelLine({Headline(s), true, number, number == 1, 8});
+void AddShotLines(svg::Canvas& c, const v1::PlannedShot& s, const v1::TableState& table, int number) {
+  c.AddPanelLine({Headline(s, table), true, number, number == 1, 8});
   std::ostringstream odds, cue;
   if (s.kind() == v1::POT) odds << "P(pot) " << Percent(s.pot_probability()) << ", ";
   odds << "P(foul) " << Percent(s.foul_probability()) << ", worth " << std::fixed << std::setprecision(1)
@@ -253,7 +253,7 @@ std::string PlanSvg(const v1::TableState& table, const v1::PlanResponse& plan, c
   head << "Plan: " << plan.shots_size() << (plan.shots_size() == 1 ? " shot" : " shots") << ", best first";
   c.AddPanelLine({head.str(), true});
   for (const v1::Warning& w : plan.warnings()) c.AddPanelLine({"warning: " + w.message()});
-  for (int k = 0; k < plan.shots_size(); ++k) AddShotLines(c, plan.shots(k), k + 1);
+  for (int k = 0; k < plan.shots_size(); ++k) AddShotLines(c, plan.shots(k), table, k + 1);
   c.AddKey(true);
   return c.Document();
 }

@@ -60,11 +60,19 @@ std::string TableSvg(const physics::TableModel& table, const v1::TableState& tab
   return c.Document();
 }
 
-std::string ShotLabel(const v1::PlannedShot& s) {
+std::string FoulNomination(const v1::PlannedShot& s, const v1::TableState& table) {
+  if (s.kind() != v1::FOUL) return "";
+  for (const v1::Ball& b : table.balls()) {
+    if (b.id() == s.object_ball()) return b.kind() == v1::CUE || b.kind() == v1::RED ? "" : ", nominating " + b.id();
+  }
+  return "";
+}
+
+std::string ShotLabel(const v1::PlannedShot& s, const v1::TableState& table) {
   const std::string kind = svg::Words(v1::ShotKind_Name(s.kind())), route = svg::Words(v1::PotRoute_Name(s.route()));
   if (s.kind() != v1::POT) {
-    const std::string nominated = s.kind() == v1::FOUL ? ", nominating " + s.object_ball() : "";
-    return kind + ", " + (s.first_ball().empty() ? "no ball hit" : s.first_ball() + " first") + nominated;
+    return kind + ", " + (s.first_ball().empty() ? "no ball hit" : s.first_ball() + " first") +
+           FoulNomination(s, table);
   }
   std::string label = s.object_ball() + " into " + s.pocket() + " (pot, " + route;
   if (s.route() == v1::PLANT && !s.first_ball().empty()) label += " off " + s.first_ball();

@@ -34,8 +34,14 @@ std::string TableSvg(const physics::TableModel& table, const v1::TableState& tab
                      const std::string& caption);
 
 /// A planned shot in words: "red-1 into top-right (pot, direct)", "red-1 into
-/// top-right (pot, plant off red-2)", "safety, red-3 first", "escape, no ball hit".
-std::string ShotLabel(const v1::PlannedShot& shot);
+/// top-right (pot, plant off red-2)", "safety, red-3 first", "escape, no ball hit",
+/// "foul, red-2 first, nominating yellow". `table` is the table planned on: a foul
+/// names its object ball as a nomination only when that ball is a colour (with a red
+/// on there is nothing to nominate, and the object ball is the red played).
+std::string ShotLabel(const v1::PlannedShot& shot, const v1::TableState& table);
+
+/// ", nominating <colour>" for a FOUL whose object ball is a colour of `table`, else "".
+std::string FoulNomination(const v1::PlannedShot& shot, const v1::TableState& table);
 
 /// What a planned shot leaves, in words, its values to `precision` decimals: after a
 /// pot the striker's position and next ball ("position 0.82, next ball black");

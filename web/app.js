@@ -663,10 +663,13 @@ function handoverWords(shot) {
     `${fixed(h.meanExpectedPoints, 1)} points on average; snookered in ${num(h.snookeredRuns)}`;
 }
 
-function shotLabel(shot, short) {
+// A foul names its object ball as a nomination only when it is a colour: with a red
+// on there is nothing to nominate, and the object ball is the red played.
+function shotLabel(shot, balls, short) {
   const kind = shot.kind || 'SHOT_KIND_UNSPECIFIED';
   if (kind === 'POT') return (short ? '' : 'pot, ') + words(shot.route || 'direct');
-  if (kind === 'FOUL' && shot.objectBall) return `foul, nominating ${shot.objectBall}`;
+  const object = kind === 'FOUL' && (balls || []).find((b) => b.id === shot.objectBall);
+  if (object && object.kind !== 'RED' && object.kind !== 'CUE') return `foul, nominating ${shot.objectBall}`;
   return words(kind);
 }
 
@@ -675,7 +678,7 @@ function showProgress(message, balls, request) {
   showWarnings(message.warnings);
   if (!shot) return;
   const target = shot.pocket ? `${shot.objectBall} → ${shot.pocket}` : shot.objectBall || 'no ball';
-  $('progress').textContent = `Best so far (${fixed(message.elapsedMs, 0)} ms): ${shotLabel(shot)}, ${target}, ` +
+  $('progress').textContent = `Best so far (${fixed(message.elapsedMs, 0)} ms): ${shotLabel(shot, balls)}, ${target}, ` +
     `P(pot) ≈ ${pct(shot.potProbability)} (fast estimate)`;
   drawShot(shot, balls, request, null, true);
   ++debugInfo.progressShown;
@@ -735,7 +738,7 @@ function renderShots(response, balls) {
     if (shot.route === 'PLANT' && shot.firstBall) target.append(' (off ', ballLabel(shot.firstBall, balls), ')');
     const row = html('tr', { 'data-index': String(i) }, [
       html('td', { text: String(i + 1) }),
-      html('td', { text: shotLabel(shot, true), title: shotLabel(shot) }),
+      html('td', { text: shotLabel(shot, balls, true), title: shotLabel(shot, balls) }),
       target,
       html('td', { class: 'num pot', text: pct(shot.potProbability), 'data-value': String(num(shot.potProbability)) }),
       html('td', { class: 'num foul', text: pct(shot.foulProbability), 'data-value': String(num(shot.foulProbability)) }),
@@ -823,7 +826,7 @@ function showDetail(shot, planned) {
   const balls = planned.balls;
   $('detail').hidden = false;
   const target = shot.pocket ? `${shot.objectBall} into ${shot.pocket}` : shot.objectBall || 'no ball';
-  $('detail-title').textContent = `Shot ${state.selectedShot + 1}: ${shotLabel(shot)}, ${target}`;
+  $('detail-title').textContent = `Shot ${state.selectedShot + 1}: ${shotLabel(shot, balls)}, ${target}`;
   const cue = shot.cue || {};
   const side = num(cue.tipSide), height = num(cue.tipHeight), elevation = num(cue.elevationDeg);
   const dot = $('tip-dot');

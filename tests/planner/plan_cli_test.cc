@@ -192,14 +192,43 @@ TEST(CliPlanTest, HemmedInTheAnswerIsAFoulThatSaysWhatItNominates) {
   {"id": "yellow", "kind": "YELLOW", "position": {"x": 1.18100, "y": 0.73700}},
   {"id": "blue", "kind": "BLUE", "position": {"x": 0.88900, "y": 1.78450}},
   {"id": "pink", "kind": "PINK", "position": {"x": 0.88900, "y": 2.67675}}]})");
-  const RunResult r = RunCli("plan --table " + table + " --on COLOUR --shots 1 --max-simulations 300 --budget-ms 30000");
+  const std::string svg = cli_support::TempPath("plan_hemmed.svg");
+  const RunResult r =
+      RunCli("plan --table " + table + " --on COLOUR --shots 1 --max-simulations 300 --budget-ms 30000 --svg " + svg);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("note: "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("no legal stroke was found, so the shot is the foul that costs least"), std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("#1  foul, red-"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find(" first, nominating yellow"), std::string::npos) << r.out;
+  EXPECT_NE(SvgText(ReadAll(svg)).find(" first, nominating yellow"), std::string::npos);
   std::remove(table.c_str());
+  std::remove(svg.c_str());
+}
+
+// The same ring of colours with a red on: still no legal stroke, and the foul names
+// no nomination (there is none with a red on), in the words and on the drawing. The
+// ball on is given in lower case, as a table's JSON may give it.
+TEST(CliPlanTest, HemmedInWithARedOnTheFoulNominatesNothing) {
+  const std::string table = WriteFile("plan_hemmed_red_on", R"({"balls": [
+  {"id": "cue", "kind": "CUE", "position": {"x": 0.60000, "y": 2.20000}},
+  {"id": "yellow", "kind": "YELLOW", "position": {"x": 0.65111, "y": 2.21581}},
+  {"id": "green", "kind": "GREEN", "position": {"x": 0.61186, "y": 2.25217}},
+  {"id": "brown", "kind": "BROWN", "position": {"x": 0.56075, "y": 2.23636}},
+  {"id": "blue", "kind": "BLUE", "position": {"x": 0.54889, "y": 2.18419}},
+  {"id": "pink", "kind": "PINK", "position": {"x": 0.58814, "y": 2.14783}},
+  {"id": "black", "kind": "BLACK", "position": {"x": 0.63925, "y": 2.16364}},
+  {"id": "red-1", "kind": "RED", "position": {"x": 1.18100, "y": 3.20000}}]})");
+  const std::string svg = cli_support::TempPath("plan_hemmed_red_on.svg");
+  const RunResult r = RunCli("plan --table " + table + " --on red --shots 1 --max-simulations 300 --budget-ms 30000 --svg " + svg);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("#1  foul, "), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("nominating"), std::string::npos) << r.out;
+  const std::string drawing = SvgText(ReadAll(svg));
+  EXPECT_NE(drawing.find("foul: "), std::string::npos) << drawing;
+  EXPECT_EQ(drawing.find("nominating"), std::string::npos) << drawing;
+  std::remove(table.c_str());
+  std::remove(svg.c_str());
 }
 
 // The kTable without its cue ball.
@@ -468,6 +497,7 @@ INSTANTIATE_TEST_SUITE_P(
     testing::Values(BadInput{"plan", "--table is required"},
                     BadInput{"plan --table /nonexistent.json", "cannot read '/nonexistent.json'"},
                     BadInput{"plan --table TABLE --on PURPLE", "--on 'PURPLE'"},
+                    BadInput{"plan --table TABLE --on unspecified", "--on 'unspecified' is not one of RED, COLOUR"},
                     BadInput{"plan --table TABLE --on YELLOW", "ball_on = BALL_ON_YELLOW"},
                     BadInput{"plan --table TABLE --budget-ms 0", "time_budget_ms = 0"},
                     BadInput{"plan --table TABLE --budget-ms soon", "--budget-ms 'soon'"},

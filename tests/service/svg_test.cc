@@ -497,24 +497,37 @@ TEST(ShotSvgTest, EveryBallsPathReadsOnTheCloth) {
 }
 
 TEST(ShotLabelTest, EachKindInWords) {
+  v1::TableState t;
+  for (const auto& [id, kind] : {std::pair{"red-1", v1::RED}, std::pair{"red-2", v1::RED}, std::pair{"yellow", v1::YELLOW}}) {
+    v1::Ball* b = t.add_balls();
+    b->set_id(id);
+    b->set_kind(kind);
+  }
   v1::PlannedShot s;
   s.set_kind(v1::POT);
   s.set_route(v1::PLANT);
   s.set_object_ball("red-1");
   s.set_first_ball("red-2");
   s.set_pocket("top-left");
-  EXPECT_EQ(ShotLabel(s), "red-1 into top-left (pot, plant off red-2)");
+  EXPECT_EQ(ShotLabel(s, t), "red-1 into top-left (pot, plant off red-2)");
   s.set_route(v1::DOUBLE);
-  EXPECT_EQ(ShotLabel(s), "red-1 into top-left (pot, double)");
+  EXPECT_EQ(ShotLabel(s, t), "red-1 into top-left (pot, double)");
   s.set_kind(v1::SAFETY);
   s.clear_route();
   s.clear_pocket();
-  EXPECT_EQ(ShotLabel(s), "safety, red-2 first");
+  EXPECT_EQ(ShotLabel(s, t), "safety, red-2 first");
   s.set_kind(v1::BREAK_OFF);
-  EXPECT_EQ(ShotLabel(s), "break-off, red-2 first");
+  EXPECT_EQ(ShotLabel(s, t), "break-off, red-2 first");
+  // A foul nominates its object ball only when that is a colour.
+  s.set_kind(v1::FOUL);
+  EXPECT_EQ(ShotLabel(s, t), "foul, red-2 first");
+  s.set_object_ball("yellow");
+  EXPECT_EQ(ShotLabel(s, t), "foul, red-2 first, nominating yellow");
+  s.set_object_ball("not-on-the-table");
+  EXPECT_EQ(ShotLabel(s, t), "foul, red-2 first");
   s.set_kind(v1::ESCAPE);
   s.clear_first_ball();
-  EXPECT_EQ(ShotLabel(s), "escape, no ball hit");
+  EXPECT_EQ(ShotLabel(s, t), "escape, no ball hit");
 }
 
 }  // namespace
