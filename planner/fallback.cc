@@ -111,8 +111,9 @@ std::optional<FallbackShot> FindLegalStroke(const TableState& table, int cue, Ba
       k.heading = heading;
       k.elevation = *elevation;
       k.height = *elevation > 0 ? high : 0.0;
-      k.speed = physics::CueSpeedFor(std::clamp(v, lim.min_speed, lim.max_speed), 0.0, k.height, cue_params,
-                                     ball_params);
+      k.speed = std::clamp(physics::CueSpeedFor(std::clamp(v, lim.min_speed, lim.max_speed), 0.0, k.height,
+                                                cue_params, ball_params),
+                           lim.min_cue_speed, lim.max_cue_speed);
       physics::StrikeResult struck = physics::Strike(k, cue_params, ball_params, sim.params().cloth.g);
       if (struck.status == physics::StrikeStatus::kHop) {
         // Raised, the fastest stroke that keeps the ball on the bed (the hop goes as v^2).
@@ -120,7 +121,10 @@ std::optional<FallbackShot> FindLegalStroke(const TableState& table, int cue, Ba
         struck = physics::Strike(k, cue_params, ball_params, sim.params().cloth.g);
       }
       const physics::Shot& shot = struck.shot;
-      if (struck.status != physics::StrikeStatus::kOk || !WithinLimits(shot, lim, ball_params.radius)) continue;
+      if (struck.status != physics::StrikeStatus::kOk || !WithinLimits(shot, lim, ball_params.radius) ||
+          !CueWithinLimits(k, lim)) {
+        continue;
+      }
       const ShotSetup setup{&table, cue, ball, physics::PocketId::kBaulkLeft, on, ShotKind::kSafety, -1,
                             TouchingBallOn(table, on, *ctx.table)};
       ++simulations;

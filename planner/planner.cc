@@ -551,6 +551,12 @@ int LegalPotOf(const TableState& table, BallOn on, const ShotOutcome& out) {
 // request does not take such a pot.
 std::optional<PlannedShot> PlanRun::Verify(Worker& w, const Candidate& cand, const ShotCandidate& sc,
                                            size_t task, const physics::Interrupt& interrupt) {
+  // Every stroke answered is one the robot can play; the searches make only such
+  // strokes, and this holds them to it.
+  if (!CueWithinLimits(sc.cue, settings_.limits)) {
+    failed_verification_[task] = 1;
+    return std::nullopt;
+  }
   ShotSetup setup = SetupFor(cand);
   const TableState& table = *setup.table;
   const ShotOutcome* run = &w.full.Run(setup, sc.shot, {}, ShotSimulator::Mode::kFull, interrupt);

@@ -486,6 +486,11 @@ bool WithinLimits(const physics::Shot& shot, const RobotLimits& limits, double r
          shot.speed <= limits.max_speed;
 }
 
+bool CueWithinLimits(const physics::CueStrike& cue, const RobotLimits& limits) {
+  return cue.speed >= limits.min_cue_speed && cue.speed <= limits.max_cue_speed &&
+         cue.elevation <= limits.cue.max_elevation;
+}
+
 SpinClass SpinClassOf(const physics::Shot& shot, double radius) {
   const double rolling = shot.speed / radius;
   const double f = rolling > 0 ? shot.topspin / rolling : 0.0;

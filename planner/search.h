@@ -92,6 +92,10 @@ struct RobotLimits {
 /// (a raised cue spins the ball more per unit of speed than a level one).
 bool WithinLimits(const physics::Shot& shot, const RobotLimits& limits, double radius);
 
+/// A cue stroke within the robot's cue-term limits: its speed in [min_cue_speed,
+/// max_cue_speed] and its elevation at most cue.max_elevation.
+bool CueWithinLimits(const physics::CueStrike& cue, const RobotLimits& limits);
+
 /// Local optimiser of the second stage.
 enum class LocalAlgorithm : std::uint8_t { kBobyqa, kSubplex, kCobyla, kNone };
 const char* ToString(LocalAlgorithm a);

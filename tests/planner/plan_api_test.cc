@@ -335,6 +335,45 @@ TEST(PlanTest, ReturnsOnlyTheKindsAndRoutesAskedFor) {
             "no pot: no candidate for the ball on (red) among the shots asked for (kinds POT; routes PLANT)");
 }
 
+// The robot's cue-term limits hold for every shot answered, whichever search found
+// it: the fallback's scan of headings once played a stroke at 1.8 m/s of cue speed on
+// a table whose cue ball had no pot, for a robot whose cue goes no faster than 0.3.
+TEST(PlanTest, EveryShotKeepsToTheRobotsCueSpeedAndElevation) {
+  v1::PlanRequest scan;
+  AddBall(&scan, "cue", v1::CUE, 0.9, 2.6);
+  AddBall(&scan, "red-1", v1::RED, 1.3, 3.2);
+  AddBall(&scan, "black", v1::BLACK, 0.889, 3.245);
+  AddBall(&scan, "red-2", v1::RED, 0.3, 1.5);
+  struct Limits {
+    double min_cue_speed, max_cue_speed, max_elevation_deg;
+  };
+  for (v1::PlanRequest r : {scan, ObviousPot()}) {
+    r.set_seed(1);
+    r.set_time_budget_ms(60000);
+    r.set_max_simulations(400);
+    r.set_max_shots(5);
+    for (const Limits l : {Limits{0.1, 0.3, 25}, Limits{0.1, 0.5, 0}, Limits{4.0, 4.1, 25}, Limits{0.1, 5.0, 0}}) {
+      r.mutable_limits()->set_min_cue_speed(l.min_cue_speed);
+      r.mutable_limits()->set_max_cue_speed(l.max_cue_speed);
+      r.mutable_limits()->set_max_elevation_deg(l.max_elevation_deg);
+      v1::PlanResponse resp;
+      ASSERT_TRUE(Plan(r, &resp).ok());
+      for (const v1::PlannedShot& s : resp.shots()) {
+        EXPECT_GE(s.cue().speed(), l.min_cue_speed) << s.ShortDebugString();
+        EXPECT_LE(s.cue().speed(), l.max_cue_speed) << s.ShortDebugString();
+        EXPECT_LE(s.cue().elevation_deg(), l.max_elevation_deg + 1e-9) << s.ShortDebugString();
+      }
+      if (resp.shots_size() == 0) {
+        EXPECT_FALSE(resp.reason().empty());
+      }
+      // Within the default cue-speed range both tables have a shot, level.
+      if (l.max_cue_speed == 5.0) {
+        EXPECT_GT(resp.shots_size(), 0) << resp.reason();
+      }
+    }
+  }
+}
+
 TEST(PlanTest, AnswersWithTheTablesIds) {
   v1::PlanResponse resp;
   int progress = 0;
