@@ -96,6 +96,22 @@ void ReplyNotAllowed(httplib::Response& res, const char* allow, bool rpc) {
 // INVALID_ARGUMENT when it does not read. A body left unread closes the connection.
 ApiStatus ReadBody(const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader,
                    std::size_t limit, std::string* body) {
+  // The body's framing (RFC 9112, 6.3): chunked, or one Content-Length of digits, or
+  // neither, and then there is no body. A length given twice or not in digits leaves
+  // where the request ends unknown (a proxy may have read it otherwise): refused.
+  if (!req.has_header("Transfer-Encoding")) {
+    const std::size_t lengths = req.get_header_value_count("Content-Length");
+    if (lengths == 0) return ApiStatus::Ok();
+    const std::string length = req.get_header_value("Content-Length");
+    const bool digits = !length.empty() && length.size() <= 19 &&
+                        std::all_of(length.begin(), length.end(), [](char c) { return c >= '0' && c <= '9'; });
+    if (lengths > 1 || !digits) {
+      res.set_header("Connection", "close");
+      return ApiStatus::Invalid(lengths > 1 ? "Content-Length is given " + std::to_string(lengths) + " times"
+                                            : "Content-Length '" + Printable(length, 40) +
+                                                  "' is not a whole number of bytes");
+    }
+  }
   bool too_large = false;
   const bool read = reader([&](const char* data, std::size_t n) {
     if (body->size() + n > limit) {

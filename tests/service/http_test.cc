@@ -7,6 +7,10 @@
 #include <google/protobuf/util/json_util.h>
 #include <google/protobuf/util/message_differencer.h>
 #include <gtest/gtest.h>
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -99,6 +103,32 @@ std::vector<std::pair<int, std::string>> Envelopes(const std::string& body) {
   }
   EXPECT_EQ(at, body.size()) << "bytes after the last whole envelope";
   return out;
+}
+
+// What the server at `port` answers to the raw bytes `request` (which should ask it to
+// close the connection), read until it closes, or "" when it does not within 20 s.
+std::string RawExchange(int port, const std::string& request) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  if (fd < 0) return "";
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(static_cast<std::uint16_t>(port));
+  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  std::string answer;
+  if (::connect(fd, reinterpret_cast<const sockaddr*>(&to), sizeof(to)) == 0 &&
+      write(fd, request.data(), request.size()) == static_cast<ssize_t>(request.size())) {
+    const auto end = Clock::now() + std::chrono::seconds(20);
+    char buf[4096];
+    for (int i = 0; i < 10'000 && Clock::now() < end; ++i) {
+      pollfd p{fd, POLLIN, 0};
+      if (poll(&p, 1, 100) <= 0) continue;
+      const ssize_t n = read(fd, buf, sizeof(buf));
+      if (n <= 0) break;
+      answer.append(buf, static_cast<std::size_t>(n));
+    }
+  }
+  close(fd);
+  return answer;
 }
 
 class HttpTest : public testing::Test {
@@ -306,6 +336,30 @@ TEST_F(HttpTest, AnOversizedBodyIsRefused) {
   const auto after = Call("GetModel", "{}");
   ASSERT_TRUE(after);
   EXPECT_EQ(after->status, 200);
+}
+
+// A POST without Content-Length or Transfer-Encoding has no body (RFC 9112, 6.3):
+// GetModel answers it at once, where the server used to wait for a body until its
+// read timeout. A length given twice, or not in digits, is refused, naming it.
+TEST_F(HttpTest, ABodysFramingIsReadAsHttpSaysOrRefused) {
+  StartServer();
+  const std::string head = "POST /snooker.v1.ShotPlanner/GetModel HTTP/1.1\r\nHost: 127.0.0.1\r\n"
+                           "Content-Type: application/json\r\nConnection: close\r\n";
+  const std::string none = RawExchange(port_, head + "\r\n");
+  EXPECT_EQ(none.rfind("HTTP/1.1 200 ", 0), 0u) << none;
+  EXPECT_TRUE(Mentions(none, "\"cue\"")) << none;
+  const std::string words = RawExchange(port_, head + "Content-Length: abc\r\n\r\n{}");
+  EXPECT_EQ(words.rfind("HTTP/1.1 400 ", 0), 0u) << words;
+  EXPECT_TRUE(Mentions(words, "Content-Length 'abc' is not a whole number of bytes")) << words;
+  const std::string negative = RawExchange(port_, head + "Content-Length: -5\r\n\r\n{}");
+  EXPECT_EQ(negative.rfind("HTTP/1.1 400 ", 0), 0u) << negative;
+  EXPECT_TRUE(Mentions(negative, "Content-Length '-5'")) << negative;
+  const std::string twice = RawExchange(port_, head + "Content-Length: 2\r\nContent-Length: 5\r\n\r\n{}");
+  EXPECT_EQ(twice.rfind("HTTP/1.1 400 ", 0), 0u) << twice;
+  EXPECT_TRUE(Mentions(twice, "Content-Length is given 2 times")) << twice;
+  // One length of digits reads as before.
+  const std::string two = RawExchange(port_, head + "Content-Length: 2\r\n\r\n{}");
+  EXPECT_EQ(two.rfind("HTTP/1.1 200 ", 0), 0u) << two;
 }
 
 TEST_F(HttpTest, AOneMillisecondTimeoutEndsABigPlanAsGrpcsDeadlineDoes) {
