@@ -898,6 +898,9 @@ void PlanRun::Conclude() {
   const bool cancelled = request_.cancel != nullptr && request_.cancel->load();
   if (!answer_.shots.empty()) {
     answer_.status = cancelled ? PlanStatus::kCancelled : PlanStatus::kOk;
+    // Why no pot was searched says nothing against a stroke the fallback found that
+    // pots a ball after all (it is answered as the pot it is).
+    answer_.reason.clear();
     if (cancelled) {
       answer_.reason = "cancelled: the best shots found so far";
     } else if (answer_.shots.front().kind == ShotKind::kFoul) {

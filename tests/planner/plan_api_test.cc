@@ -374,6 +374,31 @@ TEST(PlanTest, EveryShotKeepsToTheRobotsCueSpeedAndElevation) {
   }
 }
 
+// A cue ball in a ring of six reds 0.5 mm off: no direct pot survives pruning, and
+// the fallback's scan finds a stroke that pots a red. The answer is that pot, and its
+// reason no longer says "no pot" beside it.
+TEST(PlanTest, AStrokeThatPotsIsNotAnsweredWithNoPotAsItsReason) {
+  v1::PlanRequest r;
+  const double radius = physics::BallParams{}.radius;
+  AddBall(&r, "cue", v1::CUE, 0.9, 1.6);
+  for (int i = 0; i < 6; ++i) {
+    const double a = i * physics::kPi / 3 + 0.2;
+    AddBall(&r, "r" + std::to_string(i), v1::RED, 0.9 + 2.02 * radius * std::cos(a), 1.6 + 2.02 * radius * std::sin(a));
+  }
+  AddBall(&r, "black", v1::BLACK, 0.889, 3.245);
+  r.set_seed(1);
+  r.set_time_budget_ms(60000);
+  r.set_max_simulations(400);
+  v1::PlanResponse resp;
+  ASSERT_TRUE(Plan(r, &resp).ok());
+  ASSERT_GT(resp.shots_size(), 0) << resp.reason();
+  if (resp.shots(0).kind() == v1::FOUL) {
+    EXPECT_NE(resp.reason().find("the foul that costs least"), std::string::npos) << resp.reason();
+  } else {
+    EXPECT_EQ(resp.reason(), "") << resp.shots(0).ShortDebugString();
+  }
+}
+
 TEST(PlanTest, AnswersWithTheTablesIds) {
   v1::PlanResponse resp;
   int progress = 0;
