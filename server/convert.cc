@@ -217,8 +217,9 @@ std::string WhyMoved(const std::vector<physics::BallPlacement>& before, std::siz
 }
 
 // A ball's position: both coordinates given (a missing one would read as 0), finite,
-// and on the table (the centre within the cushion noses' rectangle: a ball beyond
-// it is not on the table at all, whatever the vision repair could do).
+// and on the table (the centre within the cushion noses' rectangle, or in a pocket's
+// mouth where a ball stops on the lip: a ball elsewhere beyond it is not on the table
+// at all, whatever the vision repair could do).
 std::optional<FieldError> CheckPosition(const v1::Ball& b, const std::string& where,
                                         const physics::TableModel& table) {
   const std::string ball = "(ball " + QuoteId(b.id()) + ")";
@@ -232,10 +233,10 @@ std::optional<FieldError> CheckPosition(const v1::Ball& b, const std::string& wh
     return FieldError{where + ".position", at, "must be finite, in metres"};
   }
   const double w = table.spec().width, l = table.spec().length;
-  if (p.x() < 0 || p.x() > w || p.y() < 0 || p.y() > l) {
+  if ((p.x() < 0 || p.x() > w || p.y() < 0 || p.y() > l) && !table.InPocketMouth(physics::Vec2(p.x(), p.y()))) {
     return FieldError{where + ".position", at,
                       "is off the table: the centre must lie on the bed, x in [0, " + FormatNumber(w) + "] m and y in [0, " +
-                          FormatNumber(l) + "] m"};
+                          FormatNumber(l) + "] m, or on a pocket's lip"};
   }
   return std::nullopt;
 }

@@ -34,6 +34,7 @@ PlacementRepair RepairPlacement(const TableModel& table, std::span<BallPlacement
       problems.push_back(name(i) + ": position not finite");
       continue;
     }
+    if (table.InPocketMouth(balls[i].r)) continue;  // on a pocket's lip
     for (int axis = 0; axis < 2; ++axis) {
       const double x = balls[i].r[axis];
       const double past = std::max(lo[axis] - x, x - hi[axis]);
@@ -83,6 +84,7 @@ PlacementRepair RepairPlacement(const TableModel& table, std::span<BallPlacement
       }
     }
     for (std::size_t i = 0; i < n; ++i) {
+      if (table.InPocketMouth(r[i])) continue;
       for (int axis = 0; axis < 2; ++axis) {
         double& x = r[i][axis];
         if (x < lo[axis] - TableModel::kPlacementTolerance) x = lo[axis], clean = false;

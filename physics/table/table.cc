@@ -245,6 +245,33 @@ double TableModel::cushion_contact_distance() const {
   return std::sqrt(std::max(0.0, radius_ * radius_ - lift * lift));
 }
 
+bool TableModel::InPocketMouth(const Vec2& r) const {
+  const double c = cushion_contact_distance();
+  if (r.x() >= c && r.y() >= c && r.x() <= spec_.width - c && r.y() <= spec_.length - c) return false;
+  for (const Pocket& p : pockets_) {
+    const PocketShape& shape = Layouts()[static_cast<int>(p.id)].corner ? spec_.corner : spec_.middle;
+    // The mouth: across, within its width; along the axis, from the noses' line
+    // (less the contact distance) to the capture circle's centre.
+    const Vec2 d = r - p.mouth_centre;
+    const Vec2 across(-p.axis.y(), p.axis.x());
+    const double depth = d.dot(p.axis);
+    if (std::abs(d.dot(across)) > shape.mouth_width / 2 || depth < -c || depth > shape.fall_depth + shape.capture_radius) {
+      continue;
+    }
+    if ((r - p.capture_centre).norm() <= p.capture_radius) return false;  // it drops
+    for (const CushionSegment& seg : segments_) {
+      const Vec2 along = seg.p1 - seg.p0;
+      const double u = (r - seg.p0).dot(along);
+      if (u >= 0 && u <= along.squaredNorm() && seg.normal.dot(r - seg.p0) < c - kPlacementTolerance) return false;
+    }
+    for (const JawCircle& jaw : jaws_) {
+      if ((r - jaw.centre).norm() < jaw.radius + c - kPlacementTolerance) return false;
+    }
+    return true;
+  }
+  return false;
+}
+
 std::string TableModel::ValidatePlacement(std::span<const BallPlacement> balls,
                                           std::size_t max_problems) const {
   std::ostringstream out;
@@ -283,6 +310,7 @@ std::string TableModel::ValidatePlacement(std::span<const BallPlacement> balls,
       }
       continue;
     }
+    if (InPocketMouth(p)) continue;  // on a pocket's lip, past the noses' line
     for (const Limit& lim : limits) {
       const double x = p[lim.axis];
       if (lim.sign * (x - lim.bound) >= -tol) continue;

@@ -219,10 +219,16 @@ class TableModel {
   /// Problems ValidatePlacement lists by default; the rest are counted.
   static constexpr std::size_t kMaxPlacementProblems = 5;
 
+  /// Whether a ball centred at `r` rests in a pocket's mouth, past the line of the
+  /// cushion noses: between the knuckles or the jaw walls and clear of them by
+  /// cushion_contact_distance(), short of the capture circle. The simulator leaves
+  /// balls there (a ball that stops on the lip), so such a place is a placement.
+  bool InPocketMouth(const Vec2& r) const;
+
   /// Empty when every ball lies inside the playing area by at least
-  /// cushion_contact_distance() and no two overlap (both within
-  /// kPlacementTolerance); otherwise a message naming the first `max_problems`
-  /// offending balls and values, then "and N more" (its length is bounded by
+  /// cushion_contact_distance() or in a pocket's mouth (InPocketMouth), and no two
+  /// overlap (both within kPlacementTolerance); otherwise a message naming the first
+  /// `max_problems` offending balls and values, then "and N more" (its length is bounded by
   /// max_problems and the names' lengths, whatever the number of balls). More than
   /// limits::kMaxBalls balls are refused at once, before the quadratic overlap check.
   std::string ValidatePlacement(std::span<const BallPlacement> balls,

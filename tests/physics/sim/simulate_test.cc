@@ -45,6 +45,34 @@ TEST_F(SimulateTest, StraightPotIntoEachPocketDrops) {
   }
 }
 
+// A ball rolled slowly at each pocket along its axis stops short, on the lip past the
+// line of the cushion noses, or drops. Wherever it stops, the table takes that place
+// as a placement: a table the simulator leaves is one the service can plan from (a
+// ball on the lip was refused as past the cushion contact distance).
+TEST_F(SimulateTest, EveryPlaceABallStopsInAPocketsMouthIsAPlacement) {
+  const double c = table_.cushion_contact_distance();
+  for (const Pocket& p : table_.pockets()) {
+    int on_lip = 0, dropped = 0;
+    for (int k = 0; k < 120; ++k) {
+      const double v = 0.20 + 0.001 * k;
+      Simulator sim(table_, params_);
+      ASSERT_EQ(sim.Run(std::vector<BallState>{Rolling(p.mouth_centre - 0.3 * p.axis, p.axis, v)}), SimStatus::kAtRest);
+      if (sim.pocket_of(0) >= 0) {
+        ++dropped;
+        continue;
+      }
+      const Vec2 end = sim.final_balls()[0].r;
+      const bool past = end.x() < c || end.y() < c || end.x() > table_.spec().width - c ||
+                        end.y() > table_.spec().length - c;
+      on_lip += past ? 1 : 0;
+      EXPECT_EQ(past, table_.InPocketMouth(end)) << ToString(p.id) << " v " << v;
+      EXPECT_EQ(table_.ValidatePlacement(std::vector<BallPlacement>{{"ball", end}}), "") << ToString(p.id) << " v " << v;
+    }
+    EXPECT_GT(on_lip, 0) << ToString(p.id);
+    EXPECT_GT(dropped, 0) << ToString(p.id);
+  }
+}
+
 // A ball 3 cm off the right cushion, struck straight along it, runs along the
 // cushion into the top-right corner.
 TEST_F(SimulateTest, StraightPotAlongTheCushionIntoTheCorner) {

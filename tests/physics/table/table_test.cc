@@ -117,6 +117,41 @@ TEST_F(TableTest, PlacementMessagesNameTheBallAndValue) {
   EXPECT_EQ(table_.ValidatePlacement(touching), "");
 }
 
+// A pocket's mouth past the line of the noses holds a ball on the lip: along the axis
+// from the nose line to the capture circle. Inside the capture circle, against a
+// knuckle, or behind a cushion beside the mouth is no place for a ball.
+TEST_F(TableTest, APocketsMouthHoldsABallOnTheLipAndNowhereBehindTheCushions) {
+  const double c = table_.cushion_contact_distance();
+  for (const Pocket& p : table_.pockets()) {
+    const Vec2 across(-p.axis.y(), p.axis.x());
+    // Where the axis crosses the noses' line (c inside it), and where the capture circle begins.
+    const double inside = (p.capture_centre - p.mouth_centre).dot(p.axis) - p.capture_radius;
+    for (double depth = -0.004; depth < inside - 1e-4; depth += 0.001) {
+      const Vec2 r = p.mouth_centre + depth * p.axis;
+      const bool past = r.x() < c || r.y() < c || r.x() > W() - c || r.y() > L() - c;
+      EXPECT_EQ(table_.InPocketMouth(r), past) << ToString(p.id) << " depth " << depth;
+      EXPECT_EQ(table_.ValidatePlacement(std::vector<BallPlacement>{{"ball", r}}), "") << ToString(p.id) << depth;
+    }
+    EXPECT_FALSE(table_.InPocketMouth(p.capture_centre)) << ToString(p.id);
+    const Vec2 deep = p.mouth_centre + (inside + 1e-4) * p.axis;
+    EXPECT_NE(table_.ValidatePlacement(std::vector<BallPlacement>{{"ball", deep}}), "") << ToString(p.id);
+    for (const JawCircle& jaw : table_.jaws()) {
+      if (jaw.pocket != p.id) continue;
+      // Against the knuckle from the mouth's middle: 1 mm short of the contact distance.
+      const Vec2 to = (p.mouth_centre - jaw.centre).normalized();
+      const Vec2 against = jaw.centre + (jaw.radius + c - 0.001) * to;
+      EXPECT_FALSE(table_.InPocketMouth(against)) << ToString(p.id);
+    }
+    // Beside the mouth, behind the cushion: past the noses' line by 5 mm, a mouth's
+    // width along it.
+    for (const double side : {-1.0, 1.0}) {
+      const Vec2 behind = p.mouth_centre + 0.005 * p.axis + side * 0.09 * across;
+      EXPECT_FALSE(table_.InPocketMouth(behind)) << ToString(p.id);
+      EXPECT_NE(table_.ValidatePlacement(std::vector<BallPlacement>{{"ball", behind}}), "") << ToString(p.id);
+    }
+  }
+}
+
 TEST_F(TableTest, NormalsAreUnitAndPointToTheBalls) {
   const Vec2 centre(W() / 2, L() / 2);
   for (const CushionSegment& s : table_.segments()) {
