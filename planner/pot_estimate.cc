@@ -71,10 +71,20 @@ double TypicalContactSpeed(double distance, double cut) {
 
 std::optional<PocketLine> LineIntoPocket(const PocketModel& pockets, const Vec2& from, physics::PocketId pocket,
                                          double arrival_speed) {
-  const Vec2 q = pockets.table().pocket(pocket).mouth_centre - from;
+  const physics::Pocket& p = pockets.table().pocket(pocket);
+  const Vec2 q = p.mouth_centre - from;
   const double l0 = q.norm();
-  if (!(l0 > 0)) return std::nullopt;
   PocketLine line;
+  // A ball within a radius of the mouth's line, or past it on the lip: the line in is
+  // the pocket's axis, straight in (the mouth's centre may be beside or behind it).
+  if (-q.dot(p.axis) > -pockets.table().ball_radius()) {
+    line.direction = Direction(p.axis);
+    line.window = pockets.Window(pocket, line.direction, arrival_speed);
+    if (line.window.empty) return std::nullopt;
+    line.distance = std::max(0.0, q.dot(p.axis));
+    return line;
+  }
+  if (!(l0 > 0)) return std::nullopt;
   // The line whose offset at the mouth is the window's centre: offset =
   // -l0 sin(phi_q - theta).
   double theta = Direction(q);

@@ -399,6 +399,42 @@ TEST(PlanTest, AStrokeThatPotsIsNotAnsweredWithNoPotAsItsReason) {
   }
 }
 
+// A ball stopped on a pocket's lip, past the line of the cushion noses, is where the
+// simulator leaves one; a table with it is planned from. The red there is the easy
+// pot it is, and a cue ball there still gets a stroke.
+TEST(PlanTest, ABallOnAPocketsLipIsPlannedFrom) {
+  const physics::TableModel& table = physics::DefaultTable();
+  const physics::Pocket& middle = table.pocket(physics::PocketId::kMiddleLeft);
+  const physics::Vec2 lip = middle.mouth_centre + 0.003 * middle.axis;
+  ASSERT_TRUE(table.InPocketMouth(lip));
+  const physics::Vec2 black = table.spot(physics::Colour::kBlack);
+  v1::PlanRequest red_on_lip;
+  AddBall(&red_on_lip, "cue", v1::CUE, 0.6, 1.2);
+  AddBall(&red_on_lip, "red-1", v1::RED, lip.x(), lip.y());
+  AddBall(&red_on_lip, "black", v1::BLACK, black.x(), black.y());
+  v1::PlanRequest cue_on_lip;
+  AddBall(&cue_on_lip, "cue", v1::CUE, lip.x(), lip.y());
+  AddBall(&cue_on_lip, "red-1", v1::RED, 0.9, 2.5);
+  AddBall(&cue_on_lip, "black", v1::BLACK, black.x(), black.y());
+  for (v1::PlanRequest* r : {&red_on_lip, &cue_on_lip}) {
+    r->set_seed(1);
+    r->set_time_budget_ms(60000);
+    r->set_max_simulations(600);
+    v1::PlanResponse resp;
+    const ApiStatus st = Plan(*r, &resp);
+    ASSERT_TRUE(st.ok()) << st.message;
+    ASSERT_GT(resp.shots_size(), 0) << resp.reason();
+    for (const v1::PlannedShot& s : resp.shots()) {
+      EXPECT_TRUE(std::isfinite(s.expected_points()) && std::isfinite(s.speed())) << s.ShortDebugString();
+    }
+  }
+  v1::PlanResponse pot;
+  ASSERT_TRUE(Plan(red_on_lip, &pot).ok());
+  EXPECT_EQ(pot.shots(0).kind(), v1::POT) << pot.shots(0).ShortDebugString();
+  EXPECT_EQ(pot.shots(0).object_ball(), "red-1");
+  EXPECT_GT(pot.shots(0).pot_probability(), 0.9) << pot.shots(0).ShortDebugString();
+}
+
 TEST(PlanTest, AnswersWithTheTablesIds) {
   v1::PlanResponse resp;
   int progress = 0;
