@@ -96,13 +96,19 @@ class CutWatch {
 Schedule MakeSchedule(const PlannerConfig& config, const PlanRequest& request, Clock::time_point start) {
   const auto budget = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(request.time_budget));
+  // The time the plan has: its budget, or less when the caller's deadline comes
+  // first. The stages share out that time, so that a deadline shorter than the
+  // budget still leaves the verification and the Monte Carlo their parts of it.
+  const Clock::duration window =
+      request.deadline - start < budget ? std::max(Clock::duration::zero(), request.deadline - start) : budget;
   // The work ends a little before the budget: the last simulation in flight, the
   // threads' join and the answer's assembly come after it.
   const Clock::time_point budget_end =
       start + std::chrono::duration_cast<Clock::duration>(budget * config.end_share);
-  const Clock::time_point end = std::min(budget_end, request.deadline);
+  const Clock::time_point end =
+      std::min(request.deadline, start + std::chrono::duration_cast<Clock::duration>(window * config.end_share));
   auto at = [&](double share) {
-    return std::min(end, start + std::chrono::duration_cast<Clock::duration>(budget * share));
+    return std::min(end, start + std::chrono::duration_cast<Clock::duration>(window * share));
   };
   // Lookahead takes its share out of the search's: one-ply and two-ply plans spend
   // the same time.
@@ -118,8 +124,9 @@ Schedule MakeSchedule(const PlannerConfig& config, const PlanRequest& request, C
   // shares the work out exactly as this one does.
   s.simulation_cap = request.max_simulations > 0
                          ? request.max_simulations
-                         : std::max<std::int64_t>(1, std::llround(config.simulations_per_ms * request.time_budget *
-                                                                  1e3 * request.threads));
+                         : std::max<std::int64_t>(1, std::llround(config.simulations_per_ms *
+                                                                  std::chrono::duration<double, std::milli>(window).count() *
+                                                                  request.threads));
   const double total = static_cast<double>(s.simulation_cap);
   s.search_simulations = total * (config.search_share - lookahead);
   s.lookahead_simulations = total * lookahead;

@@ -113,7 +113,9 @@ struct PlanRequest {
   int monte_carlo_samples = 48;
 
   /// The caller's own deadline (e.g. an RPC's): the plan ends by the earlier of
-  /// this and start + time_budget, except that a plan with no shot verified by then
+  /// this and start + time_budget, its stages sharing out the time to the earlier
+  /// (and a plan without max_simulations capped by what that time buys), except that
+  /// a plan with no shot verified by then
   /// runs its fallback scan (fallback.h, capped in simulations) and verifies its
   /// stroke until this deadline: a robot gets a stroke whenever the deadline allows.
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
@@ -254,8 +256,9 @@ struct PlanAnswer {
   std::int64_t evaluations = 0;
   double elapsed = 0;
   /// The simulations the plan could run: the request's max_simulations, or what its
-  /// time budget buys (PlannerConfig::simulations_per_ms, whole simulations). The
-  /// stages' shares of the work follow from it alone.
+  /// time budget (or the deadline, when earlier) buys
+  /// (PlannerConfig::simulations_per_ms, whole simulations). The stages' shares of the
+  /// work follow from it alone.
   std::int64_t simulation_cap = 0;
   /// The clock (the budget's stage ends, the caller's deadline) or the cancel flag
   /// stopped some of the work before the caps did, so another run may differ. When

@@ -530,6 +530,25 @@ TEST(PlannerTest, ACueBallTheRobotCannotPlayAtTheBallOnStillGetsAStroke) {
   EXPECT_TRUE(WithinLimits(s.shot, r.limits, kR));
 }
 
+// A caller's deadline before the end of the budget: the stages share out the time to
+// the deadline, as they would a budget that short, so the search leaves the
+// verification its part (it used to search until the deadline and verify nothing),
+// and what the plan may simulate is what that time buys.
+TEST(PlannerTest, ADeadlineBeforeTheBudgetsEndIsSharedOutAsTheBudgetWouldBe) {
+  Rng rng(11);
+  PlanRequest r;
+  r.table = RandomFrame(rng, 15, Table());
+  r.time_budget = 20;
+  r.threads = 1;
+  const auto window = std::chrono::milliseconds(1500);
+  r.deadline = std::chrono::steady_clock::now() + window;
+  const PlanAnswer a = Planner::Default().Plan(r);
+  EXPECT_EQ(a.status, PlanStatus::kOk) << a.reason;
+  EXPECT_FALSE(a.shots.empty()) << a.reason;
+  EXPECT_GE(a.simulation_cap, 1);
+  EXPECT_LE(a.simulation_cap, std::llround(Planner::Default().config().simulations_per_ms * 1500.0));
+}
+
 TEST(PlannerTest, TheBudgetRunningOutIsNotTheCallersDeadline) {
   // A budget far too small for a pot on a full frame, with no deadline of the
   // caller's: whatever the timing, the plan ends by its budget, never by a deadline.
