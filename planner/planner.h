@@ -115,9 +115,9 @@ struct PlanRequest {
   /// The caller's own deadline (e.g. an RPC's): the plan ends by the earlier of
   /// this and start + time_budget, its stages sharing out the time to the earlier
   /// (and a plan without max_simulations capped by what that time buys), except that
-  /// a plan with no shot verified by then
-  /// runs its fallback scan (fallback.h, capped in simulations) and verifies its
-  /// stroke until this deadline: a robot gets a stroke whenever the deadline allows.
+  /// a plan with no shot verified by then runs its fallback scan (fallback.h, capped
+  /// in simulations) and verifies its stroke until this deadline: a robot gets a
+  /// stroke whenever the deadline allows.
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
   /// Set from another thread to stop the plan as soon as possible. Optional.
   const std::atomic<bool>* cancel = nullptr;
