@@ -75,9 +75,10 @@ std::optional<PocketLine> LineIntoPocket(const PocketModel& pockets, const Vec2&
   const Vec2 q = p.mouth_centre - from;
   const double l0 = q.norm();
   PocketLine line;
-  // A ball within a radius of the mouth's line, or past it on the lip: the line in is
-  // the pocket's axis, straight in (the mouth's centre may be beside or behind it).
-  if (-q.dot(p.axis) > -pockets.table().ball_radius()) {
+  // A ball past the mouth's line, on this pocket's lip: the line in is the pocket's
+  // axis, straight in (the mouth's centre is behind it). Balls on the bed keep the line
+  // through the mouth's window.
+  if (q.dot(p.axis) < 0 && pockets.table().InPocketMouth(from)) {
     line.direction = Direction(p.axis);
     line.window = pockets.Window(pocket, line.direction, arrival_speed);
     if (line.window.empty) return std::nullopt;
