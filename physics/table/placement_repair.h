@@ -9,7 +9,10 @@
 // pair that overlaps moves apart along its line of centres, each ball by half the
 // overlap; a ball past a cushion moves straight back onto its line. For an isolated
 // pair or ball that is the least displacement that resolves it; for a touching group
-// the sweeps settle near it. What ValidatePlacement accepts (within its 1e-9 m
+// the sweeps settle near it. The tolerance bounds each overlap and overshoot, not
+// each move: along a row of touching balls pressed against a cushion the moves add
+// up, and a ball may move further than the tolerance (RepairedBall::distance says how
+// far). What ValidatePlacement accepts (within its 1e-9 m
 // tolerance) is left exactly as it is. Capped at kMaxRepairSweeps; a placement the sweeps cannot
 // resolve is reported, never returned half repaired.
 #pragma once

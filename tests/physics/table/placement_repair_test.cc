@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace snooker::physics {
@@ -42,6 +44,25 @@ TEST_F(RepairTest, BallPastTheCushionMovesBackOntoTheBed) {
   EXPECT_NEAR(fix.moved[0].distance, 3e-4, kPosTol);
   EXPECT_DOUBLE_EQ(balls[0].r.x(), c_);
   EXPECT_DOUBLE_EQ(balls[0].r.y(), 2.0);
+}
+
+// The tolerance bounds each overlap and overshoot, not each move: in a row of touching
+// balls pressed against a cushion the moves add up along the row. Five balls from the
+// left cushion, each overlapping the next by 0.9 mm: the row must grow by 3.6 mm, and
+// the cushion holds its first ball, so the far ball moves at least that far, more
+// than the 1 mm tolerance, and its move is reported.
+TEST_F(RepairTest, MovesAddUpAlongARowPressedAgainstACushion) {
+  constexpr double kOverlap = 9e-4;
+  std::vector<BallPlacement> balls;
+  for (int k = 0; k < 5; ++k) balls.push_back({"red-" + std::to_string(k + 1), {c_ + k * (2 * r_ - kOverlap), 1.5}});
+  const PlacementRepair fix = RepairPlacement(table_, balls, kTolerance);
+  ASSERT_TRUE(fix.error.empty()) << fix.error;
+  EXPECT_TRUE(table_.ValidatePlacement(balls).empty()) << table_.ValidatePlacement(balls);
+  double farthest = 0;
+  for (const RepairedBall& m : fix.moved) farthest = std::max(farthest, m.distance);
+  EXPECT_GE(farthest, 4 * kOverlap - 1e-6);
+  EXPECT_GT(farthest, kTolerance);
+  EXPECT_GE(balls.back().r.x() - balls.front().r.x(), 8 * r_ - 4 * kPosTol);  // four gaps
 }
 
 // A valid placement is left exactly as it is.
