@@ -78,7 +78,7 @@ std::optional<PocketLine> LineIntoPocket(const PocketModel& pockets, const Vec2&
   // A ball past the mouth's line, on this pocket's lip: the line in is the pocket's
   // axis, straight in (the mouth's centre is behind it). Balls on the bed keep the line
   // through the mouth's window.
-  if (q.dot(p.axis) < 0 && pockets.table().InPocketMouth(from)) {
+  if (q.dot(p.axis) < 0 && pockets.table().PocketMouthAt(from) == pocket) {
     line.direction = Direction(p.axis);
     line.window = pockets.Window(pocket, line.direction, arrival_speed);
     if (line.window.empty) return std::nullopt;

@@ -245,9 +245,9 @@ double TableModel::cushion_contact_distance() const {
   return std::sqrt(std::max(0.0, radius_ * radius_ - lift * lift));
 }
 
-bool TableModel::InPocketMouth(const Vec2& r) const {
+std::optional<PocketId> TableModel::PocketMouthAt(const Vec2& r) const {
   const double c = cushion_contact_distance();
-  if (r.x() >= c && r.y() >= c && r.x() <= spec_.width - c && r.y() <= spec_.length - c) return false;
+  if (r.x() >= c && r.y() >= c && r.x() <= spec_.width - c && r.y() <= spec_.length - c) return std::nullopt;
   for (const Pocket& p : pockets_) {
     const PocketShape& shape = Layouts()[static_cast<int>(p.id)].corner ? spec_.corner : spec_.middle;
     // The mouth: across, within its width; along the axis, from the noses' line
@@ -258,18 +258,20 @@ bool TableModel::InPocketMouth(const Vec2& r) const {
     if (std::abs(d.dot(across)) > shape.mouth_width / 2 || depth < -c || depth > shape.fall_depth + shape.capture_radius) {
       continue;
     }
-    if ((r - p.capture_centre).norm() <= p.capture_radius) return false;  // it drops
+    if ((r - p.capture_centre).norm() <= p.capture_radius) return std::nullopt;  // it drops
     for (const CushionSegment& seg : segments_) {
       const Vec2 along = seg.p1 - seg.p0;
       const double u = (r - seg.p0).dot(along);
-      if (u >= 0 && u <= along.squaredNorm() && seg.normal.dot(r - seg.p0) < c - kPlacementTolerance) return false;
+      if (u >= 0 && u <= along.squaredNorm() && seg.normal.dot(r - seg.p0) < c - kPlacementTolerance) {
+        return std::nullopt;
+      }
     }
     for (const JawCircle& jaw : jaws_) {
-      if ((r - jaw.centre).norm() < jaw.radius + c - kPlacementTolerance) return false;
+      if ((r - jaw.centre).norm() < jaw.radius + c - kPlacementTolerance) return std::nullopt;
     }
-    return true;
+    return p.id;
   }
-  return false;
+  return std::nullopt;
 }
 
 std::string TableModel::ValidatePlacement(std::span<const BallPlacement> balls,

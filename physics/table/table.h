@@ -29,6 +29,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -223,7 +224,9 @@ class TableModel {
   /// cushion noses: between the knuckles or the jaw walls and clear of them by
   /// cushion_contact_distance(), short of the capture circle. The simulator leaves
   /// balls there (a ball that stops on the lip), so such a place is a placement.
-  bool InPocketMouth(const Vec2& r) const;
+  bool InPocketMouth(const Vec2& r) const { return PocketMouthAt(r).has_value(); }
+  /// The pocket in whose mouth a ball centred at `r` rests (InPocketMouth), if any.
+  std::optional<PocketId> PocketMouthAt(const Vec2& r) const;
 
   /// Empty when every ball lies inside the playing area by at least
   /// cushion_contact_distance() or in a pocket's mouth (InPocketMouth), and no two

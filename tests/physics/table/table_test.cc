@@ -130,6 +130,9 @@ TEST_F(TableTest, APocketsMouthHoldsABallOnTheLipAndNowhereBehindTheCushions) {
       const Vec2 r = p.mouth_centre + depth * p.axis;
       const bool past = r.x() < c || r.y() < c || r.x() > W() - c || r.y() > L() - c;
       EXPECT_EQ(table_.InPocketMouth(r), past) << ToString(p.id) << " depth " << depth;
+      if (past) {  // this pocket's mouth, not another's
+        EXPECT_EQ(table_.PocketMouthAt(r), p.id) << ToString(p.id) << " depth " << depth;
+      }
       EXPECT_EQ(table_.ValidatePlacement(std::vector<BallPlacement>{{"ball", r}}), "") << ToString(p.id) << depth;
     }
     EXPECT_FALSE(table_.InPocketMouth(p.capture_centre)) << ToString(p.id);
