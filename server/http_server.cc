@@ -64,6 +64,20 @@ std::string Printable(std::string_view text, std::size_t max = 200) {
 
 // --- Answers -------------------------------------------------------------------------
 
+// What an answer of cpp-httplib's own with `status` refused, for its body.
+std::string RefusalMessage(const httplib::Request& req, int status) {
+  switch (status) {
+    case 400:
+      return req.method.empty() ? "the request is not HTTP/1.x that this server reads"
+                                : "method " + Printable(req.method, 16) +
+                                      " is not served here (GET, HEAD, POST, OPTIONS), or the request does not read";
+    case 413: return "the request body is larger than " + std::to_string(limits::kMaxRequestBytes) + " bytes";
+    case 414:
+      return "the request's URI is longer than " + std::to_string(CPPHTTPLIB_REQUEST_URI_MAX_LENGTH) + " bytes";
+    default: return "refused with HTTP status " + std::to_string(status);
+  }
+}
+
 void ReplyText(httplib::Response& res, int status, const std::string& text) {
   res.status = status;
   res.set_content(text + "\n", "text/plain; charset=utf-8");
@@ -356,6 +370,24 @@ void HttpServer::Impl::Configure() {
     ReplyText(res, 404, "not found");
     return httplib::Server::HandlerResponse::Handled;
   });
+  // What cpp-httplib refuses before any handler runs (a method it does not serve, a
+  // request line it cannot read, a URI longer than it reads) comes with an empty body:
+  // the answer then says what was refused, as a Connect error on the service's paths
+  // and as text elsewhere (a URI too long is refused before its path is read: text).
+  // Answers of ours keep their bodies.
+  s.set_error_handler(httplib::Server::HandlerWithResponse([](const httplib::Request& req, httplib::Response& res) {
+    if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
+    const std::string message = RefusalMessage(req, res.status);
+    // The request was not read through: nothing after it on the connection can be.
+    res.set_header("Connection", "close");
+    if (req.path.starts_with(connect::kServicePath)) {
+      const std::string_view code = res.status == 413 ? "resource_exhausted" : "invalid_argument";
+      res.set_content(connect::ErrorJson({code, res.status, message}), "application/json");
+    } else {
+      res.set_content(message + "\n", "text/plain; charset=utf-8");
+    }
+    return httplib::Server::HandlerResponse::Handled;
+  }));
   s.Get(".*", [this](const httplib::Request& req, httplib::Response& res) { OnGet(req, res); });
   s.Options(".*", [this](const httplib::Request& req, httplib::Response& res) { OnOptions(req, res); });
   auto body = [this](const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader) {

@@ -363,6 +363,33 @@ TEST_F(HttpTest, ABodysFramingIsReadAsHttpSaysOrRefused) {
   }
 }
 
+// What cpp-httplib refuses before any handler of ours runs is answered with a body
+// that says what was refused: a Connect error on the service's paths, text elsewhere.
+TEST_F(HttpTest, RefusalsBeforeRoutingSayWhatWasRefused) {
+  StartServer();
+  const std::string tail = " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n";
+  struct Case {
+    std::string request_line;
+    const char* status;
+    std::vector<const char*> mentions;
+  };
+  const std::string long_path = "/" + std::string(CPPHTTPLIB_REQUEST_URI_MAX_LENGTH + 10, 'a');
+  for (const Case& c : {Case{"TRACE /", "400", {"method TRACE is not served", "text/plain", "Connection: close"}},
+                        Case{"TRACE /snooker.v1.ShotPlanner/Plan", "400",
+                             {"\"code\": \"invalid_argument\"", "method TRACE", "application/json"}},
+                        Case{"GET " + long_path, "414", {"longer than 8192 bytes", "Connection: close"}}}) {
+    const std::string answer = RawExchange(port_, c.request_line + tail);
+    const std::string shown = c.request_line.substr(0, 60);
+    EXPECT_EQ(answer.rfind(std::string("HTTP/1.1 ") + c.status + " ", 0), 0u) << shown << "\n" << answer;
+    for (const char* mention : c.mentions) EXPECT_TRUE(Mentions(answer, mention)) << shown << "\n" << answer;
+  }
+  // Answers of the server's own keep their bodies.
+  const auto res = Client().Get("/nothing-here");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 404);
+  EXPECT_EQ(res->body, "not found\n");
+}
+
 TEST_F(HttpTest, AOneMillisecondTimeoutEndsABigPlanAsGrpcsDeadlineDoes) {
   StartServer();
   const auto start = Clock::now();
