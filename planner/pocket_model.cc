@@ -25,6 +25,12 @@ constexpr double kStartDistances[] = {0.5, 0.25, 0.12};
 // A ball this far from the mouth centre and moving away from it has missed. m.
 constexpr double kGiveUpDistance = 0.3;
 
+// A serial number no other model of this process has (PocketModel::serial).
+std::uint64_t NextSerial() {
+  static std::atomic<std::uint64_t> built{0};
+  return ++built;
+}
+
 bool IsCorner(PocketId id) { return id != PocketId::kMiddleLeft && id != PocketId::kMiddleRight; }
 
 Vec2 Rotate(const Vec2& v, double a) {
@@ -36,9 +42,39 @@ Vec2 Rotate(const Vec2& v, double a) {
 
 PocketModel::PocketModel(const physics::TableModel& table, const physics::SimParams& params,
                          const Options& options)
-    : table_(table), params_(params), options_(options) {
-  static std::atomic<std::uint64_t> built{0};
-  serial_ = ++built;
+    : table_(table), params_(params), options_(options), serial_(NextSerial()) {
+  SizeGrids();
+  MeasureCells();
+}
+
+PocketModel::PocketModel(const physics::TableModel& table, const physics::SimParams& params,
+                         const Options& options, const std::vector<PocketWindow>& cells)
+    : table_(table), params_(params), options_(options), serial_(NextSerial()) {
+  if (SizeGrids() != cells.size()) {
+    MeasureCells();
+    return;
+  }
+  auto next = cells.begin();
+  for (AngleGrid* g : {&corner_, &middle_}) {
+    std::copy(next, next + static_cast<std::ptrdiff_t>(g->cells.size()), g->cells.begin());
+    next += static_cast<std::ptrdiff_t>(g->cells.size());
+  }
+}
+
+std::size_t PocketModel::SizeGrids() {
+  std::size_t total = 0;
+  for (const bool corner : {true, false}) {
+    AngleGrid& g = corner ? corner_ : middle_;
+    g.max_angle = corner ? options_.corner_max_angle : options_.middle_max_angle;
+    g.reach_cosine = std::cos(std::min(physics::kPi, g.max_angle + 0.1));
+    g.count = 2 * static_cast<int>(std::lround(g.max_angle / options_.angle_step)) + 1;
+    g.cells.assign(static_cast<size_t>(g.count) * options_.arrival_speeds.size(), PocketWindow{});
+    total += g.cells.size();
+  }
+  return total;
+}
+
+void PocketModel::MeasureCells() {
   // Every cell is independent: two threads (one simulator each) share them, and the
   // table is the same whichever thread measured a cell.
   struct Cell {
@@ -48,11 +84,7 @@ PocketModel::PocketModel(const physics::TableModel& table, const physics::SimPar
   };
   std::vector<Cell> cells;
   for (const bool corner : {true, false}) {
-    AngleGrid& g = corner ? corner_ : middle_;
-    g.max_angle = corner ? options_.corner_max_angle : options_.middle_max_angle;
-    g.reach_cosine = std::cos(std::min(physics::kPi, g.max_angle + 0.1));
-    g.count = 2 * static_cast<int>(std::lround(g.max_angle / options_.angle_step)) + 1;
-    g.cells.resize(static_cast<size_t>(g.count) * options_.arrival_speeds.size());
+    const AngleGrid& g = Grid(corner);
     for (size_t s = 0; s < options_.arrival_speeds.size(); ++s) {
       for (int a = 0; a < g.count; ++a) cells.push_back({corner, s, a});
     }
@@ -75,8 +107,14 @@ PocketModel::PocketModel(const physics::TableModel& table, const physics::SimPar
 }
 
 const PocketModel& PocketModel::Default() {
-  static const PocketModel model(physics::DefaultTable(), physics::SimParams{}, Options{});
+  static const PocketModel model(physics::DefaultTable(), physics::SimParams{}, Options{}, DefaultCells());
   return model;
+}
+
+std::vector<PocketWindow> PocketModel::Cells() const {
+  std::vector<PocketWindow> cells(corner_.cells);
+  cells.insert(cells.end(), middle_.cells.begin(), middle_.cells.end());
+  return cells;
 }
 
 double PocketModel::angle_at(bool corner, int angle_index) const {

@@ -15,10 +15,13 @@
 // symmetric), so one pocket of each kind is tabulated.
 //
 // Resolution (angle step, offset step, bisection depth) is a parameter with a cost:
-// the default table takes about 4000 single-ball simulations, once per process, on
-// two threads.
+// the default table takes about 4000 single-ball simulations on two threads. So the
+// default model's windows are measured once, when the physics changes, and compiled
+// in (pocket_model_default.cc, written by scripts/pocket-windows); a test measures
+// them again and must find them the same to the bit.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -54,7 +57,13 @@ class PocketModel {
 
   PocketModel(const physics::TableModel& table, const physics::SimParams& params,
               const Options& options);
-  /// The model of DefaultTable() and default SimParams, built on first use (thread-safe).
+  /// The model with the windows `cells`, measured before for the same table, params and
+  /// options (as Cells() gives them): no simulation, simulations() 0. Cells of another
+  /// count than the options' grid are measured instead.
+  PocketModel(const physics::TableModel& table, const physics::SimParams& params,
+              const Options& options, const std::vector<PocketWindow>& cells);
+  /// The model of DefaultTable(), default SimParams and Options, made on first use
+  /// (thread-safe) from the windows compiled in.
   static const PocketModel& Default();
 
   /// The window of pocket `id` for a ball travelling in direction `direction` (rad,
@@ -70,6 +79,9 @@ class PocketModel {
   double ReachCosine(physics::PocketId id) const;
   /// The window at grid cell (kind, angle index, speed index), for reports and tests.
   PocketWindow Cell(bool corner, int angle_index, int speed_index) const;
+  /// Every cell's window: the corners' grid, then the middles', each by speed, then by
+  /// angle.
+  std::vector<PocketWindow> Cells() const;
   int angle_count(bool corner) const { return Grid(corner).count; }
   double angle_at(bool corner, int angle_index) const;
   const Options& options() const { return options_; }
@@ -88,6 +100,11 @@ class PocketModel {
     std::vector<PocketWindow> cells;  // [speed][angle]
   };
   const AngleGrid& Grid(bool corner) const { return corner ? corner_ : middle_; }
+  /// Sizes both grids for the options (their cells empty); the cells' count.
+  std::size_t SizeGrids();
+  void MeasureCells();
+  /// The default model's windows as measured (pocket_model_default.cc).
+  static std::vector<PocketWindow> DefaultCells();
   PocketWindow Measure(physics::Simulator& sim, physics::PocketId id, double approach,
                        double speed, long* count) const;
   bool Drops(physics::Simulator& sim, physics::PocketId id, double approach, double speed,

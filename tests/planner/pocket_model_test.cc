@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "planner/geometry.h"
 #include "tests/support/thread_limit.h"
@@ -144,6 +145,41 @@ std::string Windows(const PocketModel& m) {
     }
   }
   return text + " " + std::to_string(m.simulations());
+}
+
+// The default model is made from the windows compiled in (pocket_model_default.cc),
+// with no simulation. Measured again here, they must be the same to the bit: when the
+// physics moves a window, scripts/pocket-windows writes them again.
+TEST(PocketModelTest, TheCompiledInDefaultWindowsAreWhatTheSimulatorMeasures) {
+  EXPECT_EQ(Model().simulations(), 0) << "the default model simulated: its compiled-in windows do not fit its grid";
+  const PocketModel measured(physics::DefaultTable(), physics::SimParams{}, PocketModel::Options{});
+  EXPECT_GT(measured.simulations(), 1000);
+  const std::vector<PocketWindow> saved = Model().Cells(), now = measured.Cells();
+  ASSERT_EQ(saved.size(), now.size());
+  for (std::size_t i = 0; i < saved.size(); ++i) {
+    EXPECT_TRUE(saved[i].empty == now[i].empty && saved[i].lo == now[i].lo && saved[i].hi == now[i].hi)
+        << "cell " << i << ": compiled in " << saved[i].lo << " .. " << saved[i].hi << (saved[i].empty ? " (empty)" : "")
+        << ", measured " << now[i].lo << " .. " << now[i].hi << (now[i].empty ? " (empty)" : "")
+        << "; run scripts/pocket-windows";
+  }
+}
+
+// Windows of another grid than the options' are not taken: the model measures its own.
+TEST(PocketModelTest, WindowsOfAnotherGridAreMeasuredAgain) {
+  PocketModel::Options coarse;
+  coarse.angle_step = 15.0 * physics::kPi / 180;
+  coarse.arrival_speeds = {0.5, 2.0};
+  coarse.bisections = 2;
+  const PocketModel measured(physics::DefaultTable(), physics::SimParams{}, coarse);
+  const PocketModel given(physics::DefaultTable(), physics::SimParams{}, coarse, Model().Cells());
+  EXPECT_EQ(given.simulations(), measured.simulations());
+  EXPECT_EQ(Windows(given), Windows(measured));
+  const PocketModel copied(physics::DefaultTable(), physics::SimParams{}, coarse, measured.Cells());
+  EXPECT_EQ(copied.simulations(), 0);
+  EXPECT_NE(copied.serial(), measured.serial());
+  // The same windows (Windows' last word is the count of simulations).
+  const std::string a = Windows(copied), b = Windows(measured);
+  EXPECT_EQ(a.substr(0, a.rfind(' ')), b.substr(0, b.rfind(' ')));
 }
 
 // The model measures its cells on a second thread where the system has one; where it
