@@ -129,6 +129,9 @@ class ShotPlannerService final : public ShotPlannerRawService {
                                       grpc::ByteBuffer* response) override;
 
   CallCounts counts() const;
+  /// The lock of options.log: every line of the process's transports is written
+  /// under it (WriteLogLine), so that lines of gRPC and HTTP calls never interleave.
+  std::mutex& log_mutex() { return log_mu_; }
   /// Runs what is queued and joins the workers. Call after grpc::Server::Shutdown
   /// returned (every call then has an answer).
   void StopWorkers() { pool_.Stop(); }

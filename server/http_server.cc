@@ -297,7 +297,6 @@ struct HttpServer::Impl {
   bool shutting_down = false;
   std::set<std::shared_ptr<ShotPlannerService::TransportCall>> in_flight;
   std::once_flag finished;
-  std::mutex log_mu;
 
   void Configure();
   void OnGet(const httplib::Request& req, httplib::Response& res);
@@ -574,7 +573,7 @@ void HttpServer::Impl::Log(const httplib::Request& req, const httplib::Response&
   const Clock::time_point arrival = std::exchange(t_arrival, Clock::time_point{});
   const std::string request_id = std::exchange(t_request_id, std::string());
   if (std::exchange(t_logged, false) || log == nullptr) return;
-  WriteLogLine(*log, log_mu, [&](std::ostream& line) {
+  WriteLogLine(*log, service->log_mutex(), [&](std::ostream& line) {
     line << "snooker: http method=" << Printable(req.method, 16) << " path=" << Printable(req.path)
          << " peer=" << PeerOf(req);
     if (!request_id.empty()) line << " request_id=" << request_id;
@@ -646,7 +645,7 @@ std::unique_ptr<HttpServer> HttpServer::Start(ShotPlannerService* service, const
     std::string why;
     impl->certificate_expiry = CertificateExpiry(options.tls->cert_chain_pem);
     if (options.tls->reload_interval.count() > 0) {
-      impl->tls_reloader = std::make_unique<TlsReloader>(*options.tls, options.log, &impl->log_mu);
+      impl->tls_reloader = std::make_unique<TlsReloader>(*options.tls, "tls", options.log, &service->log_mutex());
     }
     TlsReloader* reloader = impl->tls_reloader.get();
     impl->http = std::make_unique<httplib::SSLServer>([&](SSL_CTX& ctx) {

@@ -29,18 +29,17 @@ constexpr int kMaxStreamsPerConnection = 1024;
 // Request metadata (headers) per call, bytes.
 constexpr int kMaxMetadataBytes = 16 * 1024;
 
-std::shared_ptr<grpc::ServerCredentials> Credentials(const ServerOptions& options) {
+// `files`: where gRPC reads a reloaded set (null: the options' text, for the server's life).
+std::shared_ptr<grpc::ServerCredentials> Credentials(const ServerOptions& options, const GrpcTlsFiles* files) {
   if (!options.tls) return grpc::InsecureServerCredentials();
-  if (options.tls->reload_interval.count() > 0) {
-    // gRPC's own watcher reads the files, and again every interval (Start has
-    // checked the text read from them).
+  if (files != nullptr) {
+    // gRPC's own watcher reads the files every interval; they hold only sets that load.
     namespace ex = grpc::experimental;
-    const TlsOptions& tls = *options.tls;
     ex::TlsServerCredentialsOptions o(std::make_shared<ex::FileWatcherCertificateProvider>(
-        tls.private_key_file, tls.cert_chain_file, tls.client_ca_file,
-        static_cast<unsigned>(tls.reload_interval.count())));
+        files->identity_file(), files->identity_file(), files->ca_file(),
+        static_cast<unsigned>(options.tls->reload_interval.count())));
     o.watch_identity_key_cert_pairs();
-    if (tls.client_ca_file.empty()) {
+    if (files->ca_file().empty()) {
       o.set_cert_request_type(GRPC_SSL_DONT_REQUEST_CLIENT_CERTIFICATE);
     } else {
       o.watch_root_certs();
@@ -120,8 +119,13 @@ std::unique_ptr<Server> Server::Start(const ServerOptions& options, std::string*
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   std::unique_ptr<Server> s(new Server(options));
+  if (options.tls && options.tls->reload_interval.count() > 0) {
+    std::string why;
+    s->tls_files_ = GrpcTlsFiles::Start(*options.tls, options.log, &s->service_.log_mutex(), &why);
+    if (s->tls_files_ == nullptr) return fail("cannot listen on " + options.address + " with TLS: " + why);
+  }
   grpc::ServerBuilder builder;
-  builder.AddListeningPort(options.address, Credentials(options), &s->port_);
+  builder.AddListeningPort(options.address, Credentials(options, s->tls_files_.get()), &s->port_);
   builder.AddChannelArgument(GRPC_ARG_MAX_CONCURRENT_STREAMS, kMaxStreamsPerConnection);
   builder.AddChannelArgument(GRPC_ARG_MAX_METADATA_SIZE, kMaxMetadataBytes);
   // Pings on quiet connections, with or without calls, as often as they fall due

@@ -24,6 +24,8 @@
 
 namespace snooker::server {
 
+class GrpcTlsFiles;  // tls_context.h
+
 /// The health-check service name under which ShotPlanner reports SERVING.
 inline constexpr const char* kServiceName = "snooker.v1.ShotPlanner";
 
@@ -101,6 +103,7 @@ class Server {
  private:
   explicit Server(const ServerOptions& options);
   ShotPlannerService service_;
+  std::unique_ptr<GrpcTlsFiles> tls_files_;  // before server_, whose certificate watcher reads them
   std::unique_ptr<grpc::Server> server_;
   std::unique_ptr<HttpServer> http_;  // after service_: its calls run there
   std::chrono::milliseconds shutdown_grace_;

@@ -3,8 +3,13 @@
 #include <openssl/err.h>
 #include <openssl/pem.h>
 #include <openssl/x509.h>
+#include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <ctime>
 #include <utility>
 
@@ -23,6 +28,7 @@ struct TlsMaterial {
   X509_STORE* ca_store = nullptr;  // null: clients are not asked for a certificate
   STACK_OF(X509_NAME)* ca_names = nullptr;
   std::optional<std::int64_t> expiry;  // the leaf's notAfter, Unix s
+  std::string cert_pem, key_pem, ca_pem;  // the text it was read from
 
   TlsMaterial() = default;
   TlsMaterial(const TlsMaterial&) = delete;
@@ -104,6 +110,9 @@ std::shared_ptr<const TlsMaterial> LoadMaterial(const std::string& cert_pem, con
     if (cas == 0 || !ca_ok) return fail("the client CA is not valid PEM");
   }
   ERR_clear_error();
+  m->cert_pem = cert_pem;
+  m->key_pem = key_pem;
+  m->ca_pem = ca_pem;
   return m;
 }
 
@@ -145,8 +154,9 @@ std::optional<std::int64_t> CertificateExpiry(const std::string& cert_chain_pem)
   return expiry;
 }
 
-TlsReloader::TlsReloader(const TlsOptions& tls, std::ostream* log, std::mutex* log_mu)
+TlsReloader::TlsReloader(const TlsOptions& tls, std::string label, std::ostream* log, std::mutex* log_mu)
     : files_{tls.cert_chain_file, tls.private_key_file, tls.client_ca_file},
+      label_(std::move(label)),
       interval_(tls.reload_interval),
       log_(log),
       log_mu_(log_mu) {
@@ -183,11 +193,11 @@ std::optional<std::int64_t> TlsReloader::Expiry(std::optional<std::int64_t> star
   return m != nullptr ? m->expiry : start_expiry;
 }
 
-std::shared_ptr<const TlsMaterial> TlsReloader::Current() {
+std::shared_ptr<const TlsMaterial> TlsReloader::Current(bool now) {
   std::lock_guard<std::mutex> lock(mu_);
-  const auto now = std::chrono::steady_clock::now();
-  if (now < next_check_) return material_;
-  next_check_ = now + interval_;
+  const auto t = std::chrono::steady_clock::now();
+  if (!now && t < next_check_) return material_;
+  next_check_ = t + interval_;
   Stamp stamps[3];
   bool changed = false;
   for (int i = 0; i < 3; ++i) {
@@ -206,19 +216,123 @@ std::shared_ptr<const TlsMaterial> TlsReloader::Current() {
   if (m == nullptr) {
     // The stamps stay as they were, so that a set written in several steps is taken
     // once it is whole.
-    if (why != refused_) Say("snooker: tls kept the certificate in use; its files changed but " + why + "\n");
+    if (why != refused_) Say("snooker: " + label_ + " kept the certificate in use; its files changed but " + why + "\n");
     refused_ = why;
     return material_;
   }
   for (int i = 0; i < 3; ++i) stamps_[i] = stamps[i];
   material_ = std::move(m);
   refused_.clear();
-  Say("snooker: tls serves the certificate read again from " + files_[0] + "\n");
+  Say("snooker: " + label_ + " serves the certificate read again from " + files_[0] + "\n");
   return material_;
 }
 
 void TlsReloader::Say(const std::string& line) {
   if (log_ != nullptr && log_mu_ != nullptr) WriteLogLine(*log_, *log_mu_, [&](std::ostream& out) { out << line; });
+}
+
+namespace {
+
+// The text of a set as gRPC reads it: the certificate chain, then its key, in one file
+// (OpenSSL's readers of each skip the other's blocks).
+std::string IdentityText(const std::string& cert_pem, const std::string& key_pem) {
+  std::string text = cert_pem;
+  if (!text.empty() && text.back() != '\n') text += '\n';
+  return text + key_pem;
+}
+
+std::string SystemError(const char* what) { return std::string(what) + ": " + std::strerror(errno); }
+
+}  // namespace
+
+GrpcTlsFiles::GrpcTlsFiles(const TlsOptions& tls, std::ostream* log, std::mutex* log_mu)
+    : reloader_(tls, "tls for gRPC", log, log_mu), interval_(tls.reload_interval), log_(log), log_mu_(log_mu) {}
+
+std::unique_ptr<GrpcTlsFiles> GrpcTlsFiles::Start(const TlsOptions& tls, std::ostream* log, std::mutex* log_mu,
+                                                  std::string* why) {
+  std::unique_ptr<GrpcTlsFiles> f(new GrpcTlsFiles(tls, log, log_mu));
+  if (!Replace(IdentityText(tls.cert_chain_pem, tls.private_key_pem), &f->identity_fd_, why)) return nullptr;
+  f->identity_path_ = "/proc/self/fd/" + std::to_string(f->identity_fd_);
+  if (!tls.client_ca_pem.empty()) {
+    if (!Replace(tls.client_ca_pem, &f->ca_fd_, why)) return nullptr;
+    f->ca_path_ = "/proc/self/fd/" + std::to_string(f->ca_fd_);
+  }
+  // gRPC reads them by path: check that the path reaches them.
+  std::string text;
+  if (!ReadInputFile(f->identity_path_, &text, why)) {
+    *why = "cannot read the in-memory certificate file '" + f->identity_path_ + "': " + *why;
+    return nullptr;
+  }
+  if (text != IdentityText(tls.cert_chain_pem, tls.private_key_pem)) {
+    *why = "the in-memory certificate file '" + f->identity_path_ + "' does not read back as written";
+    return nullptr;
+  }
+  f->thread_ = std::thread([p = f.get()] { p->Watch(); });
+  return f;
+}
+
+GrpcTlsFiles::~GrpcTlsFiles() {
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  if (thread_.joinable()) thread_.join();
+  for (int fd : {identity_fd_, ca_fd_}) {
+    if (fd >= 0) close(fd);
+  }
+}
+
+bool GrpcTlsFiles::Replace(const std::string& text, int* fd, std::string* why) {
+  const int fresh = memfd_create("snooker-tls", MFD_CLOEXEC);
+  if (fresh < 0) {
+    *why = SystemError("cannot make an in-memory certificate file");
+    return false;
+  }
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = write(fresh, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      *why = SystemError("cannot write an in-memory certificate file");
+      close(fresh);
+      return false;
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (*fd < 0) {
+    *fd = fresh;
+    return true;
+  }
+  // dup2 replaces the file behind *fd in one step: a reader opens the old or the new.
+  const bool ok = dup3(fresh, *fd, O_CLOEXEC) >= 0;
+  if (!ok) *why = SystemError("cannot put an in-memory certificate file in place");
+  close(fresh);
+  return ok;
+}
+
+void GrpcTlsFiles::Watch() {
+  std::unique_lock<std::mutex> lock(mu_);
+  while (!wake_.wait_for(lock, interval_, [&] { return stop_; })) {
+    lock.unlock();
+    const auto m = reloader_.Current(/*now=*/true);
+    if (m != nullptr && m != written_) {
+      std::string why;
+      // gRPC takes the client CA and the certificate each as it reads them, as it
+      // would from the operator's files.
+      const bool ok = (m->ca_pem.empty() || Replace(m->ca_pem, &ca_fd_, &why)) &&
+                      Replace(IdentityText(m->cert_pem, m->key_pem), &identity_fd_, &why);
+      if (ok) {
+        written_ = m;
+      } else if (log_ != nullptr && log_mu_ != nullptr) {
+        // written_ stays: the next interval tries again.
+        WriteLogLine(*log_, *log_mu_, [&](std::ostream& out) {
+          out << "snooker: tls for gRPC kept the certificate in use; " << why << "\n";
+        });
+      }
+    }
+    lock.lock();
+  }
 }
 
 }  // namespace snooker::server

@@ -1,8 +1,9 @@
-// HTTPS's certificates in OpenSSL: the context's certificate, key and client CA from
-// TlsOptions' PEM text, and, when the options name their files and a reload
-// interval, the same read again from the files as they change, so that a rotated
-// certificate is served without a restart (gRPC's side of the same is gRPC's own
-// file watcher, server.cc).
+// The server's certificates in OpenSSL: HTTPS's context (the certificate, key and
+// client CA from TlsOptions' PEM text) and, when the options name their files and a
+// reload interval, the same read again from the files as they change, so that a
+// rotated certificate is served without a restart: by HTTPS at its handshakes
+// (TlsReloader), by gRPC through in-memory files that hold only whole sets
+// (GrpcTlsFiles).
 #pragma once
 
 #include <chrono>
@@ -11,7 +12,9 @@
 #include <mutex>
 #include <optional>
 #include <ostream>
+#include <condition_variable>
 #include <string>
+#include <thread>
 
 #include <openssl/ssl.h>
 
@@ -40,8 +43,9 @@ std::optional<std::int64_t> CertificateExpiry(const std::string& cert_chain_pem)
 /// does not load leaves the last good one in use and is said once in the log.
 class TlsReloader {
  public:
-  /// `log` (may be null) gets a line for each set taken or refused, under `log_mu`.
-  TlsReloader(const TlsOptions& tls, std::ostream* log, std::mutex* log_mu);
+  /// `log` (may be null) gets a line for each set taken or refused, under `log_mu`,
+  /// that begins "snooker: LABEL " (LABEL says whose set it is).
+  TlsReloader(const TlsOptions& tls, std::string label, std::ostream* log, std::mutex* log_mu);
   ~TlsReloader();
   TlsReloader(const TlsReloader&) = delete;
   TlsReloader& operator=(const TlsReloader&) = delete;
@@ -54,6 +58,10 @@ class TlsReloader {
   /// or `start_expiry`, the context's own certificate's.
   std::optional<std::int64_t> Expiry(std::optional<std::int64_t> start_expiry);
 
+  /// The set in use, after reading the files again if they are due (or at once, with
+  /// `now`); null while it is the start's (TlsOptions' text).
+  std::shared_ptr<const TlsMaterial> Current(bool now = false);
+
  private:
   struct Stamp {
     long long mtime_ns = -1;
@@ -62,10 +70,10 @@ class TlsReloader {
   };
   static Stamp StampOf(const std::string& path);
   static int OnCertificate(SSL* ssl, void* self);
-  std::shared_ptr<const TlsMaterial> Current();
   void Say(const std::string& line);
 
   std::string files_[3];  // the certificate, its key, the client CA (empty: none)
+  std::string label_;
   std::chrono::steady_clock::duration interval_;
   std::ostream* log_;
   std::mutex* log_mu_;
@@ -74,6 +82,52 @@ class TlsReloader {
   Stamp stamps_[3];
   std::shared_ptr<const TlsMaterial> material_;  // null: the context's own (the start's)
   std::string refused_;                          // the last refusal said, not to repeat it
+};
+
+/// The files gRPC's certificate watcher (FileWatcherCertificateProvider) reads when
+/// certificates are reloaded. That watcher takes whatever the files hold at its check:
+/// a key written before its certificate, or one that is not the certificate's, is then
+/// served and no handshake succeeds; a FIFO in place of a file is opened and waited on,
+/// and the server's shutdown waits with it. So gRPC does not read the operator's files.
+/// A TlsReloader reads them, every reload interval on a thread of this, and each set it
+/// takes is written to in-memory files (memfd_create) that gRPC reads as
+/// /proc/self/fd/N: the certificate chain and its key in one file, replaced whole
+/// (dup2) so that gRPC never reads half a set, and the client CA in another. A set
+/// that does not load leaves the files, and gRPC's handshakes, as they were.
+class GrpcTlsFiles {
+ public:
+  /// The files, holding `tls`'s text (the start's set, which must load), and the
+  /// thread that watches the operator's files; null with *why if the system gives
+  /// no such files (no memfd, no /proc).
+  static std::unique_ptr<GrpcTlsFiles> Start(const TlsOptions& tls, std::ostream* log, std::mutex* log_mu,
+                                             std::string* why);
+  ~GrpcTlsFiles();  // stops the thread and closes the files: destroy after gRPC's server
+  GrpcTlsFiles(const GrpcTlsFiles&) = delete;
+  GrpcTlsFiles& operator=(const GrpcTlsFiles&) = delete;
+
+  /// The certificate chain and its key, both in this one file.
+  const std::string& identity_file() const { return identity_path_; }
+  /// The client CA's file; empty when clients are not asked for a certificate.
+  const std::string& ca_file() const { return ca_path_; }
+
+ private:
+  GrpcTlsFiles(const TlsOptions& tls, std::ostream* log, std::mutex* log_mu);
+  void Watch();
+  /// Writes `text` to a new in-memory file and puts it in place of `*fd` (the first
+  /// time, makes `*fd` that file); false with *why.
+  static bool Replace(const std::string& text, int* fd, std::string* why);
+
+  TlsReloader reloader_;
+  std::chrono::seconds interval_;
+  std::ostream* log_;
+  std::mutex* log_mu_;
+  int identity_fd_ = -1, ca_fd_ = -1;
+  std::string identity_path_, ca_path_;
+  std::shared_ptr<const TlsMaterial> written_;  // the set in the files (null: the start's)
+  std::mutex mu_;
+  std::condition_variable wake_;
+  bool stop_ = false;
+  std::thread thread_;  // last: it uses the members above
 };
 
 }  // namespace snooker::server
