@@ -12,6 +12,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <system_error>
 #include <thread>
 #include <utility>
 
@@ -211,8 +212,10 @@ struct StreamState {
     changed.notify_all();
   }
   // The connection's thread: waits for the next message and writes it; false when
-  // the client is gone.
-  bool WriteNext(httplib::DataSink& sink) {
+  // the client is gone. `*progress_sent` says whether a progress message went out
+  // (counted by the caller, which knows whether the service is still there).
+  bool WriteNext(httplib::DataSink& sink, bool* progress_sent) {
+    *progress_sent = false;
     std::unique_lock<std::mutex> lock(mu);
     changed.wait(lock, [this] { return next.has_value() || completed; });
     if (next) {
@@ -225,7 +228,7 @@ struct StreamState {
       writing = false;
       next = std::move(pending);
       pending.reset();
-      if (ok) service->CountProgress(true);
+      *progress_sent = ok;
       return ok;
     }
     std::string tail = status.ok() ? std::move(final_envelope) : std::string();
@@ -295,8 +298,21 @@ struct HttpServer::Impl {
   std::mutex mu;
   std::condition_variable idle;
   bool shutting_down = false;
+  // Set when the stop gave up on a connection (a client that trickles): the service
+  // and the log may be gone before that connection's handlers run to their end, so
+  // they no longer touch them, and this object outlives them (HttpServer's destructor).
+  bool orphaned = false;
   std::set<std::shared_ptr<ShotPlannerService::TransportCall>> in_flight;
   std::once_flag finished;
+
+  // Runs `use` (brief: it touches the service or the log) unless orphaned; false then.
+  template <typename Use>
+  bool WithService(Use&& use) {
+    std::lock_guard<std::mutex> lock(mu);
+    if (orphaned) return false;
+    use();
+    return true;
+  }
 
   void Configure();
   void OnGet(const httplib::Request& req, httplib::Response& res);
@@ -305,12 +321,14 @@ struct HttpServer::Impl {
   void Unary(const connect::UnaryProcedure& procedure, const httplib::Request& req, httplib::Response& res,
              std::string body, const ApiStatus& read);
   void Stream(const httplib::Request& req, httplib::Response& res, std::string body, const ApiStatus& read);
-  std::shared_ptr<ShotPlannerService::TransportCall> NewCall(const httplib::Request& req, std::string_view method,
-                                                            std::optional<std::chrono::milliseconds> timeout,
-                                                            std::size_t request_bytes, bool is_plan);
-  bool Admit(const std::shared_ptr<ShotPlannerService::TransportCall>& call);
+  // A new call in flight, or nullptr once the server shuts down.
+  std::shared_ptr<ShotPlannerService::TransportCall> Admit(const httplib::Request& req, std::string_view method,
+                                                          std::optional<std::chrono::milliseconds> timeout,
+                                                          std::size_t request_bytes, bool is_plan);
   void Release(const std::shared_ptr<ShotPlannerService::TransportCall>& call);
   void Log(const httplib::Request& req, const httplib::Response& res);
+  void WriteLine(const httplib::Request& req, const httplib::Response& res, Clock::time_point arrival,
+                 const std::string& request_id);
   void Stop(Clock::time_point deadline);
 };
 
@@ -409,8 +427,15 @@ void HttpServer::Impl::OnGet(const httplib::Request& req, httplib::Response& res
   if (req.path == "/metrics") {
     res.status = 200;
     res.set_header("Cache-Control", "no-store");
-    const auto expiry = tls_reloader != nullptr ? tls_reloader->Expiry(certificate_expiry) : certificate_expiry;
-    res.set_content(MetricsText(service->counts(), expiry), "text/plain; version=0.0.4; charset=utf-8");
+    std::string text;
+    if (!WithService([&] {  // the reloader logs under the service's lock
+          const auto expiry =
+              tls_reloader != nullptr ? tls_reloader->Expiry(certificate_expiry) : certificate_expiry;
+          text = MetricsText(service->counts(), expiry);
+        })) {
+      return ReplyText(res, 503, "NOT_SERVING");
+    }
+    res.set_content(std::move(text), "text/plain; version=0.0.4; charset=utf-8");
     return;
   }
   if (req.path.starts_with(connect::kServicePath)) return ReplyNotAllowed(res, "POST, OPTIONS", true);
@@ -454,9 +479,13 @@ void HttpServer::Impl::OnBody(const httplib::Request& req, httplib::Response& re
                                          404));
 }
 
-std::shared_ptr<ShotPlannerService::TransportCall> HttpServer::Impl::NewCall(
+std::shared_ptr<ShotPlannerService::TransportCall> HttpServer::Impl::Admit(
     const httplib::Request& req, std::string_view method, std::optional<std::chrono::milliseconds> timeout,
     std::size_t request_bytes, bool is_plan) {
+  // Under the lock: the stop, which sets shutting_down first, then waits for the calls
+  // in flight, does not return while the service is in use here.
+  std::lock_guard<std::mutex> lock(mu);
+  if (shutting_down) return nullptr;
   auto call = std::make_shared<ShotPlannerService::TransportCall>();
   call->method = std::string(method);
   call->peer = PeerOf(req);
@@ -466,14 +495,8 @@ std::shared_ptr<ShotPlannerService::TransportCall> HttpServer::Impl::NewCall(
   call->request_bytes = request_bytes;
   call->is_plan = is_plan;
   call->log_extra = tls ? " transport=https" : " transport=http";
-  return call;
-}
-
-bool HttpServer::Impl::Admit(const std::shared_ptr<ShotPlannerService::TransportCall>& call) {
-  std::lock_guard<std::mutex> lock(mu);
-  if (shutting_down) return false;
   in_flight.insert(call);
-  return true;
+  return call;
 }
 
 void HttpServer::Impl::Release(const std::shared_ptr<ShotPlannerService::TransportCall>& call) {
@@ -495,8 +518,8 @@ void HttpServer::Impl::Unary(const connect::UnaryProcedure& procedure, const htt
   std::optional<std::chrono::milliseconds> timeout;
   if (!read.ok()) return ReplyError(res, connect::ErrorOf(read));
   if (ApiStatus st = CheckCallHeaders(req, &timeout); !st.ok()) return ReplyError(res, connect::ErrorOf(st));
-  auto call = NewCall(req, procedure.name, timeout, body.size(), procedure.is_plan);
-  if (!Admit(call)) return ReplyError(res, connect::Unavailable("the server is shutting down"));
+  auto call = Admit(req, procedure.name, timeout, body.size(), procedure.is_plan);
+  if (call == nullptr) return ReplyError(res, connect::Unavailable("the server is shutting down"));
   auto result = std::make_shared<UnaryResult>();
   service->Submit(
       call,
@@ -540,8 +563,8 @@ void HttpServer::Impl::Stream(const httplib::Request& req, httplib::Response& re
   if (st.ok()) st = CheckCallHeaders(req, &timeout);
   if (st.ok()) st = connect::OpenEnvelope(body, &message);
   if (!st.ok()) return ReplyEndStream(res, *codec, connect::ErrorOf(st));
-  auto call = NewCall(req, connect::kPlanStream, timeout, body.size(), true);
-  if (!Admit(call)) return ReplyEndStream(res, *codec, connect::Unavailable("the server is shutting down"));
+  auto call = Admit(req, connect::kPlanStream, timeout, body.size(), true);
+  if (call == nullptr) return ReplyEndStream(res, *codec, connect::Unavailable("the server is shutting down"));
   auto state = std::make_shared<StreamState>();
   state->service = service;
   service->Submit(
@@ -562,7 +585,12 @@ void HttpServer::Impl::Stream(const httplib::Request& req, httplib::Response& re
   res.status = 200;
   res.set_chunked_content_provider(
       connect::StreamingContentType(*codec),
-      [state](std::size_t, httplib::DataSink& sink) { return state->WriteNext(sink); },
+      [this, state](std::size_t, httplib::DataSink& sink) {
+        bool progress_sent = false;
+        const bool ok = state->WriteNext(sink, &progress_sent);
+        if (progress_sent) WithService([&] { service->CountProgress(true); });
+        return ok;
+      },
       [this, call](bool success) {
         if (!success) call->cancel.store(true);  // the client is gone: stop planning
         Release(call);
@@ -573,6 +601,11 @@ void HttpServer::Impl::Log(const httplib::Request& req, const httplib::Response&
   const Clock::time_point arrival = std::exchange(t_arrival, Clock::time_point{});
   const std::string request_id = std::exchange(t_request_id, std::string());
   if (std::exchange(t_logged, false) || log == nullptr) return;
+  WithService([&] { WriteLine(req, res, arrival, request_id); });
+}
+
+void HttpServer::Impl::WriteLine(const httplib::Request& req, const httplib::Response& res,
+                                 Clock::time_point arrival, const std::string& request_id) {
   WriteLogLine(*log, service->log_mutex(), [&](std::ostream& line) {
     line << "snooker: http method=" << Printable(req.method, 16) << " path=" << Printable(req.path)
          << " peer=" << PeerOf(req);
@@ -597,21 +630,34 @@ void HttpServer::Impl::Stop(Clock::time_point deadline) {
   }
   http->stop();
   // Connections end after their request, an idle one within the keep-alive
-  // timeout. One that still reads or writes after that (a client that trickles)
-  // is left to the process's exit: the server's objects are kept for it.
+  // timeout. One that still reads or writes after that (a client that trickles) is
+  // not waited for: its handlers leave the service and the log alone from here on,
+  // and this object lives until the listener ends (HttpServer's destructor).
   const auto wait = std::chrono::seconds(limits::kHttpKeepAliveSeconds + limits::kHttpIoTimeoutSeconds + 1);
   if (listener_done.wait_for(wait) == std::future_status::ready) {
     listener.join();
   } else {
-    listener.detach();
-    (void)http.release();
-    (void)tls_reloader.release();
+    std::lock_guard<std::mutex> lock(mu);
+    orphaned = true;
   }
 }
 
 HttpServer::HttpServer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 
-HttpServer::~HttpServer() { Finish(Clock::now()); }
+HttpServer::~HttpServer() {
+  Finish(Clock::now());
+  if (!impl_->orphaned) return;
+  // The listener still serves a connection: it and this object go when it ends.
+  Impl* impl = impl_.release();
+  try {
+    std::thread([impl] {
+      const std::unique_ptr<Impl> owned(impl);
+      owned->listener.join();
+    }).detach();
+  } catch (const std::system_error&) {
+    // No thread to wait with: the objects are left to the process's exit.
+  }
+}
 
 int HttpServer::port() const { return impl_->port; }
 

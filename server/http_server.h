@@ -78,7 +78,11 @@ class HttpServer {
   void BeginShutdown();
   /// Lets the calls in flight finish until `deadline`, then cancels the rest (they
   /// stop at their next interrupt check and answer canceled), waits for their
-  /// answers, closes the listener and its connections. Later calls do nothing.
+  /// answers, closes the listener and its connections. Later calls do nothing. A
+  /// connection still reading or writing after the keep-alive and I/O timeouts (a
+  /// client that trickles) is not waited for: from then on its requests are refused
+  /// as the shutdown's and touch neither the service nor the log, and the listener's
+  /// objects stay until it ends, so the service may be destroyed after Finish.
   void Finish(std::chrono::steady_clock::time_point deadline);
 
   struct Impl;

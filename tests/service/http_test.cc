@@ -14,12 +14,14 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
 #include <future>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -105,28 +107,45 @@ std::vector<std::pair<int, std::string>> Envelopes(const std::string& body) {
   return out;
 }
 
-// What the server at `port` answers to the raw bytes `request` (which should ask it to
-// close the connection), read until it closes, or "" when it does not within 20 s.
-std::string RawExchange(int port, const std::string& request) {
+// A socket connected to the server at `port` on loopback, or -1.
+int ConnectLoopback(int port) {
   const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  if (fd < 0) return "";
+  if (fd < 0) return -1;
   sockaddr_in to{};
   to.sin_family = AF_INET;
   to.sin_port = htons(static_cast<std::uint16_t>(port));
   to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (::connect(fd, reinterpret_cast<const sockaddr*>(&to), sizeof(to)) == 0) return fd;
+  close(fd);
+  return -1;
+}
+
+bool WriteAll(int fd, std::string_view bytes) {
+  return write(fd, bytes.data(), bytes.size()) == static_cast<ssize_t>(bytes.size());
+}
+
+// What arrives on `fd` until the peer closes it, or until 20 s have passed.
+std::string ReadUntilClosed(int fd) {
   std::string answer;
-  if (::connect(fd, reinterpret_cast<const sockaddr*>(&to), sizeof(to)) == 0 &&
-      write(fd, request.data(), request.size()) == static_cast<ssize_t>(request.size())) {
-    const auto end = Clock::now() + std::chrono::seconds(20);
-    char buf[4096];
-    for (int i = 0; i < 10'000 && Clock::now() < end; ++i) {
-      pollfd p{fd, POLLIN, 0};
-      if (poll(&p, 1, 100) <= 0) continue;
-      const ssize_t n = read(fd, buf, sizeof(buf));
-      if (n <= 0) break;
-      answer.append(buf, static_cast<std::size_t>(n));
-    }
+  const auto end = Clock::now() + std::chrono::seconds(20);
+  char buf[4096];
+  for (int i = 0; i < 10'000 && Clock::now() < end; ++i) {
+    pollfd p{fd, POLLIN, 0};
+    if (poll(&p, 1, 100) <= 0) continue;
+    const ssize_t n = read(fd, buf, sizeof(buf));
+    if (n <= 0) break;
+    answer.append(buf, static_cast<std::size_t>(n));
   }
+  return answer;
+}
+
+// What the server at `port` answers to the raw bytes `request` (which should ask it to
+// close the connection), read until it closes, or "" when it does not within 20 s.
+std::string RawExchange(int port, const std::string& request) {
+  const int fd = ConnectLoopback(port);
+  if (fd < 0) return "";
+  std::string answer;
+  if (WriteAll(fd, request)) answer = ReadUntilClosed(fd);
   close(fd);
   return answer;
 }
@@ -452,6 +471,40 @@ TEST_F(HttpTest, AShutdownCancelsAnHttpPlanAfterItsGrace) {
   EXPECT_TRUE(Mentions(res->body, "\"code\": \"canceled\"")) << res->body;
   EXPECT_LT(seconds, 5.0);
   EXPECT_TRUE(Mentions(test_server_->log.str(), "method=Plan")) << test_server_->log.str();
+}
+
+// A client that sends its request a byte a second outlives the shutdown's wait for
+// connections (the keep-alive and I/O timeouts). The server and its service are
+// destroyed while it trickles; its request, once whole, is refused as the shutdown's,
+// where the handlers used to run on the freed listener and service.
+TEST_F(HttpTest, AConnectionThatOutlivesTheShutdownIsRefusedWithoutTheService) {
+  StartServer();
+  const int fd = ConnectLoopback(port_);
+  ASSERT_GE(fd, 0);
+  constexpr int kBodyBytes = 64;
+  ASSERT_TRUE(WriteAll(fd, "POST /snooker.v1.ShotPlanner/GetModel HTTP/1.1\r\nHost: 127.0.0.1\r\n"
+                           "Content-Type: application/json\r\nConnection: close\r\nContent-Length: " +
+                               std::to_string(kBodyBytes) + "\r\n\r\n{"));
+  std::atomic<bool> destroyed{false};
+  std::thread trickle([&] {
+    int sent = 1;
+    for (; sent < kBodyBytes - 1 && !destroyed.load(); ++sent) {
+      if (!WriteAll(fd, " ")) return;
+      std::this_thread::sleep_for(std::chrono::seconds(1));
+    }
+    WriteAll(fd, std::string(static_cast<std::size_t>(kBodyBytes - 1 - sent), ' ') + "}");
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // the request is being read
+  const auto start = Clock::now();
+  test_server_.reset();  // the shutdown gives up on the connection, the service goes
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  destroyed.store(true);
+  trickle.join();
+  const std::string answer = ReadUntilClosed(fd);
+  close(fd);
+  EXPECT_GT(seconds, limits::kHttpKeepAliveSeconds + limits::kHttpIoTimeoutSeconds - 1.0);  // it waited first
+  EXPECT_EQ(answer.rfind("HTTP/1.1 503 ", 0), 0u) << answer;
+  EXPECT_TRUE(Mentions(answer, "the server is shutting down")) << answer;
 }
 
 TEST_F(HttpTest, PlanStreamSendsProgressThenPlansAnswerThenTheEnd) {
