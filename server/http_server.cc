@@ -289,7 +289,7 @@ struct HttpServer::Impl {
   std::ostream* log = nullptr;
   bool tls = false;
   std::optional<std::int64_t> certificate_expiry;  // the start's certificate's
-  std::unique_ptr<TlsReloader> tls_reloader;       // before http, which calls it
+  std::shared_ptr<TlsReloader> tls_reloader;       // before http, which calls it
   std::unique_ptr<httplib::Server> http;
   std::thread listener;
   std::future<void> listener_done;
@@ -691,7 +691,9 @@ std::unique_ptr<HttpServer> HttpServer::Start(ShotPlannerService* service, const
     std::string why;
     impl->certificate_expiry = CertificateExpiry(options.tls->cert_chain_pem);
     if (options.tls->reload_interval.count() > 0) {
-      impl->tls_reloader = std::make_unique<TlsReloader>(*options.tls, "tls", options.log, &service->log_mutex());
+      impl->tls_reloader = options.tls_reloader != nullptr
+                               ? options.tls_reloader
+                               : std::make_shared<TlsReloader>(*options.tls, "tls", options.log, &service->log_mutex());
     }
     TlsReloader* reloader = impl->tls_reloader.get();
     impl->http = std::make_unique<httplib::SSLServer>([&](SSL_CTX& ctx) {

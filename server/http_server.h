@@ -34,6 +34,7 @@
 namespace snooker::server {
 
 struct TlsOptions;
+class TlsReloader;  // tls_context.h
 
 struct HttpOptions {
   /// "host:port" or "[v6]:port"; port 0 picks a free port.
@@ -42,6 +43,9 @@ struct HttpOptions {
   /// certificates required); null: plaintext, which only a loopback address gets
   /// unless allow_insecure. Read in Start only.
   const TlsOptions* tls = nullptr;
+  /// With `tls`'s reload interval, what reads its files again (the server's, shared
+  /// with gRPC); null: one of the listener's own.
+  std::shared_ptr<TlsReloader> tls_reloader;
   bool allow_insecure = false;
   /// A browser page of this origin ("https://host[:port]") may call the service:
   /// every answer says Access-Control-Allow-Origin: ORIGIN and preflight requests

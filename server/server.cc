@@ -120,8 +120,10 @@ std::unique_ptr<Server> Server::Start(const ServerOptions& options, std::string*
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   std::unique_ptr<Server> s(new Server(options));
   if (options.tls && options.tls->reload_interval.count() > 0) {
+    // One reader of the files for both listeners: each set is read and said once.
+    http.tls_reloader = std::make_shared<TlsReloader>(*options.tls, "tls", options.log, &s->service_.log_mutex());
     std::string why;
-    s->tls_files_ = GrpcTlsFiles::Start(*options.tls, options.log, &s->service_.log_mutex(), &why);
+    s->tls_files_ = GrpcTlsFiles::Start(*options.tls, http.tls_reloader, &why);
     if (s->tls_files_ == nullptr) return fail("cannot listen on " + options.address + " with TLS: " + why);
   }
   grpc::ServerBuilder builder;

@@ -216,8 +216,7 @@ std::shared_ptr<const TlsMaterial> TlsReloader::Current(bool now) {
   if (m == nullptr) {
     // The stamps stay as they were, so that a set written in several steps is taken
     // once it is whole.
-    if (why != refused_) Say("snooker: " + label_ + " kept the certificate in use; its files changed but " + why + "\n");
-    refused_ = why;
+    SayKeptLocked("its files changed but " + why);
     return material_;
   }
   for (int i = 0; i < 3; ++i) stamps_[i] = stamps[i];
@@ -225,6 +224,17 @@ std::shared_ptr<const TlsMaterial> TlsReloader::Current(bool now) {
   refused_.clear();
   Say("snooker: " + label_ + " serves the certificate read again from " + files_[0] + "\n");
   return material_;
+}
+
+void TlsReloader::SayKept(const std::string& why) {
+  std::lock_guard<std::mutex> lock(mu_);
+  SayKeptLocked(why);
+}
+
+void TlsReloader::SayKeptLocked(const std::string& why) {
+  if (why == refused_) return;
+  refused_ = why;
+  Say("snooker: " + label_ + " kept the certificate in use; " + why + "\n");
 }
 
 void TlsReloader::Say(const std::string& line) {
@@ -245,12 +255,11 @@ std::string SystemError(const char* what) { return std::string(what) + ": " + st
 
 }  // namespace
 
-GrpcTlsFiles::GrpcTlsFiles(const TlsOptions& tls, std::ostream* log, std::mutex* log_mu)
-    : reloader_(tls, "tls for gRPC", log, log_mu), interval_(tls.reload_interval), log_(log), log_mu_(log_mu) {}
+GrpcTlsFiles::GrpcTlsFiles(std::shared_ptr<TlsReloader> reloader) : reloader_(std::move(reloader)) {}
 
-std::unique_ptr<GrpcTlsFiles> GrpcTlsFiles::Start(const TlsOptions& tls, std::ostream* log, std::mutex* log_mu,
+std::unique_ptr<GrpcTlsFiles> GrpcTlsFiles::Start(const TlsOptions& tls, std::shared_ptr<TlsReloader> reloader,
                                                   std::string* why) {
-  std::unique_ptr<GrpcTlsFiles> f(new GrpcTlsFiles(tls, log, log_mu));
+  std::unique_ptr<GrpcTlsFiles> f(new GrpcTlsFiles(std::move(reloader)));
   if (!Replace(IdentityText(tls.cert_chain_pem, tls.private_key_pem), &f->identity_fd_, why)) return nullptr;
   f->identity_path_ = "/proc/self/fd/" + std::to_string(f->identity_fd_);
   if (!tls.client_ca_pem.empty()) {
@@ -304,7 +313,7 @@ bool GrpcTlsFiles::Replace(const std::string& text, int* fd, std::string* why) {
     *fd = fresh;
     return true;
   }
-  // dup2 replaces the file behind *fd in one step: a reader opens the old or the new.
+  // dup3 replaces the file behind *fd in one step: a reader opens the old or the new.
   const bool ok = dup3(fresh, *fd, O_CLOEXEC) >= 0;
   if (!ok) *why = SystemError("cannot put an in-memory certificate file in place");
   close(fresh);
@@ -313,9 +322,9 @@ bool GrpcTlsFiles::Replace(const std::string& text, int* fd, std::string* why) {
 
 void GrpcTlsFiles::Watch() {
   std::unique_lock<std::mutex> lock(mu_);
-  while (!wake_.wait_for(lock, interval_, [&] { return stop_; })) {
+  while (!wake_.wait_for(lock, reloader_->interval(), [&] { return stop_; })) {
     lock.unlock();
-    const auto m = reloader_.Current(/*now=*/true);
+    const auto m = reloader_->Current(/*now=*/true);
     if (m != nullptr && m != written_) {
       std::string why;
       // gRPC takes the client CA and the certificate each as it reads them, as it
@@ -324,11 +333,8 @@ void GrpcTlsFiles::Watch() {
                       Replace(IdentityText(m->cert_pem, m->key_pem), &identity_fd_, &why);
       if (ok) {
         written_ = m;
-      } else if (log_ != nullptr && log_mu_ != nullptr) {
-        // written_ stays: the next interval tries again.
-        WriteLogLine(*log_, *log_mu_, [&](std::ostream& out) {
-          out << "snooker: tls for gRPC kept the certificate in use; " << why << "\n";
-        });
+      } else {
+        reloader_->SayKept("for gRPC, " + why);  // written_ stays: the next interval tries again
       }
     }
     lock.lock();

@@ -1,18 +1,18 @@
 // The server's certificates in OpenSSL: HTTPS's context (the certificate, key and
 // client CA from TlsOptions' PEM text) and, when the options name their files and a
 // reload interval, the same read again from the files as they change, so that a
-// rotated certificate is served without a restart: by HTTPS at its handshakes
-// (TlsReloader), by gRPC through in-memory files that hold only whole sets
-// (GrpcTlsFiles).
+// rotated certificate is served without a restart: one reader of the files
+// (TlsReloader), which HTTPS asks at its handshakes and gRPC through in-memory files
+// that hold only whole sets (GrpcTlsFiles).
 #pragma once
 
 #include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <ostream>
-#include <condition_variable>
 #include <string>
 #include <thread>
 
@@ -40,7 +40,9 @@ std::optional<std::int64_t> CertificateExpiry(const std::string& cert_chain_pem)
 /// changed has all three read again (as the command line reads them: ReadInputFile),
 /// and a set that loads (PEM, the key matching the certificate) is what later
 /// handshakes present and verify clients by. A set that
-/// does not load leaves the last good one in use and is said once in the log.
+/// does not load leaves the last good one in use and is said once in the log. A
+/// server has one, shared by its listeners, so that the files are read and each set
+/// is said once.
 class TlsReloader {
  public:
   /// `log` (may be null) gets a line for each set taken or refused, under `log_mu`,
@@ -62,6 +64,13 @@ class TlsReloader {
   /// `now`); null while it is the start's (TlsOptions' text).
   std::shared_ptr<const TlsMaterial> Current(bool now = false);
 
+  /// Says in the log that the set in use is kept because of `why` (what failed after
+  /// the files were read), once while `why` stays the same.
+  void SayKept(const std::string& why);
+
+  /// How often the files are read again at most.
+  std::chrono::steady_clock::duration interval() const { return interval_; }
+
  private:
   struct Stamp {
     long long mtime_ns = -1;
@@ -71,6 +80,7 @@ class TlsReloader {
   static Stamp StampOf(const std::string& path);
   static int OnCertificate(SSL* ssl, void* self);
   void Say(const std::string& line);
+  void SayKeptLocked(const std::string& why);  // under mu_
 
   std::string files_[3];  // the certificate, its key, the client CA (empty: none)
   std::string label_;
@@ -89,17 +99,17 @@ class TlsReloader {
 /// a key written before its certificate, or one that is not the certificate's, is then
 /// served and no handshake succeeds; a FIFO in place of a file is opened and waited on,
 /// and the server's shutdown waits with it. So gRPC does not read the operator's files.
-/// A TlsReloader reads them, every reload interval on a thread of this, and each set it
-/// takes is written to in-memory files (memfd_create) that gRPC reads as
-/// /proc/self/fd/N: the certificate chain and its key in one file, replaced whole
-/// (dup2) so that gRPC never reads half a set, and the client CA in another. A set
-/// that does not load leaves the files, and gRPC's handshakes, as they were.
+/// The server's TlsReloader reads them, asked every reload interval on a thread of
+/// this, and each set it takes is written to in-memory files (memfd_create) that gRPC
+/// reads as /proc/self/fd/N: the certificate chain and its key in one file, replaced
+/// whole (dup3) so that gRPC never reads half a set, and the client CA in another. A
+/// set that does not load leaves the files, and gRPC's handshakes, as they were.
 class GrpcTlsFiles {
  public:
   /// The files, holding `tls`'s text (the start's set, which must load), and the
-  /// thread that watches the operator's files; null with *why if the system gives
-  /// no such files (no memfd, no /proc).
-  static std::unique_ptr<GrpcTlsFiles> Start(const TlsOptions& tls, std::ostream* log, std::mutex* log_mu,
+  /// thread that asks `reloader` (of `tls`'s files) every interval; null with *why if
+  /// the system gives no such files (no memfd, no /proc).
+  static std::unique_ptr<GrpcTlsFiles> Start(const TlsOptions& tls, std::shared_ptr<TlsReloader> reloader,
                                              std::string* why);
   ~GrpcTlsFiles();  // stops the thread and closes the files: destroy after gRPC's server
   GrpcTlsFiles(const GrpcTlsFiles&) = delete;
@@ -111,16 +121,13 @@ class GrpcTlsFiles {
   const std::string& ca_file() const { return ca_path_; }
 
  private:
-  GrpcTlsFiles(const TlsOptions& tls, std::ostream* log, std::mutex* log_mu);
+  explicit GrpcTlsFiles(std::shared_ptr<TlsReloader> reloader);
   void Watch();
   /// Writes `text` to a new in-memory file and puts it in place of `*fd` (the first
   /// time, makes `*fd` that file); false with *why.
   static bool Replace(const std::string& text, int* fd, std::string* why);
 
-  TlsReloader reloader_;
-  std::chrono::seconds interval_;
-  std::ostream* log_;
-  std::mutex* log_mu_;
+  std::shared_ptr<TlsReloader> reloader_;
   int identity_fd_ = -1, ca_fd_ = -1;
   std::string identity_path_, ca_path_;
   std::shared_ptr<const TlsMaterial> written_;  // the set in the files (null: the start's)

@@ -811,6 +811,9 @@ TEST_F(HttpTlsTest, ARotatedCertificateIsServedWithoutARestartAndABrokenSetIsNot
   EXPECT_TRUE(Mentions(log, "tls serves the certificate read again from " + certs.File("cert.pem"))) << log;
   EXPECT_EQ(Occurrences(log, "tls kept the certificate in use; its files changed but the key does not match the certificate"), 1)
       << log;
+  // HTTPS and gRPC share one reader of the files: each set is read and said once.
+  EXPECT_EQ(Occurrences(log, "the certificate read again from"), 1) << log;
+  EXPECT_EQ(Occurrences(log, "kept the certificate in use"), 1) << log;
 }
 
 // A key file replaced by a FIFO that nobody writes is refused, not waited on: the

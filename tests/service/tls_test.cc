@@ -252,11 +252,11 @@ TEST_F(TlsTest, ARotatedCertificateAndClientCaAreServedWithoutARestart) {
     return Call(s->port(), Tls("ca.pem", "client")).ok();
   }));
   s->Shutdown(std::chrono::milliseconds(0));
-  EXPECT_EQ(Occurrences(log.str(), "snooker: tls for gRPC kept the certificate in use; its files changed but the "
+  EXPECT_EQ(Occurrences(log.str(), "snooker: tls kept the certificate in use; its files changed but the "
                                    "key does not match the certificate"),
             1)
       << log.str();
-  EXPECT_EQ(Occurrences(log.str(), "snooker: tls for gRPC serves the certificate read again from " +
+  EXPECT_EQ(Occurrences(log.str(), "snooker: tls serves the certificate read again from " +
                                        certs.File("cert.pem")),
             2)
       << log.str();
@@ -296,7 +296,7 @@ TEST_F(TlsTest, AFifoInPlaceOfAKeyIsRefusedNotWaitedOn) {
     if (fd >= 0) close(fd);
   }
   stopped.wait();
-  EXPECT_TRUE(Mentions(log.str(), "tls for gRPC kept the certificate in use; its files changed but cannot read '" +
+  EXPECT_TRUE(Mentions(log.str(), "tls kept the certificate in use; its files changed but cannot read '" +
                                       key + "': is a FIFO (named pipe), not a regular file"))
       << log.str();
 }
