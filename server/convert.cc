@@ -404,6 +404,9 @@ std::vector<FieldError> ValidateShotAndOptions(const v1::SimulateRequest& r) {
   std::vector<FieldError> errors;
   if (r.has_cue() && r.has_shot()) {
     errors.push_back({"cue", "set", "give either shot or cue, not both"});
+  } else if (!r.has_cue() && !r.has_shot()) {
+    // The table's balls are at rest: without a stroke nothing would move.
+    errors.push_back({"shot", "unset", "give the stroke: shot, or cue in the robot's terms"});
   }
   const v1::Shot& shot = r.shot();
   CheckRange(&errors, shot.speed(), "shot.speed", plim::kShotSpeed, "m/s");

@@ -187,6 +187,17 @@ TEST(CueStrikeApiTest, AMiscueOrAHopIsRefusedNamingIt) {
   st = Simulate(r, &resp);
   EXPECT_FALSE(st.ok());
   EXPECT_NE(st.message.find("not both"), std::string::npos) << st.message;
+  // Neither: the balls are at rest and nothing would move. A shot of speed 0 is still
+  // a stroke, and answers the table as it is.
+  r.clear_cue();
+  r.clear_shot();
+  st = Simulate(r, &resp);
+  EXPECT_EQ(st.code, ApiStatus::Code::kInvalidArgument);
+  EXPECT_NE(st.message.find("shot = unset (give the stroke: shot, or cue in the robot's terms)"), std::string::npos) << st.message;
+  r.mutable_shot()->set_speed(0);
+  st = Simulate(r, &resp);
+  ASSERT_TRUE(st.ok()) << st.message;
+  EXPECT_EQ(resp.final_balls_size(), r.table().balls_size());
 }
 
 }  // namespace

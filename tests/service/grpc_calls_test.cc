@@ -149,6 +149,7 @@ TEST_F(CallsTest, TenThousandBallsAreRefusedWithAShortMessage) {
   for (int i = 0; i < 10'000; ++i) {
     req::AddBall(&r, i == 0 ? "cue" : "red-" + std::to_string(i), i == 0 ? v1::CUE : v1::RED, 0.9, 1.0);
   }
+  r.mutable_shot()->set_speed(1);
   v1::SimulateResponse resp;
   grpc::ClientContext ctx;
   const grpc::Status st = stub_->Simulate(&ctx, r, &resp);
