@@ -78,7 +78,7 @@ std::string Help() {
        "                     [--shutdown-grace-ms MS] [--workers N] [--max-queued N]\n"
        "                     [--max-plans N] [--default-budget-ms MS] [--max-budget-ms MS]\n"
        "                     [--vision-tolerance-mm MM] [--model FILE]\n"
-       "                     [--http HOST:PORT [--cors-origin ORIGIN]]\n\n"
+       "                     [--http HOST:PORT [--cors-origin ORIGIN]] [--metrics HOST:PORT]\n\n"
        "Serves snooker.v1.ShotPlanner (proto/snooker/v1/service.proto) with the gRPC\n"
        "health service and reflection until SIGINT or SIGTERM; with --http also over\n"
        "HTTP in the same process, on the same workers and limits. One line per call on\n"
@@ -95,6 +95,10 @@ std::string Help() {
        "                           loopback only with --insecure\n"
        "  --cors-origin ORIGIN     let pages of this one origin (https://host[:port]) call\n"
        "                           the HTTP service from a browser (default: no CORS)\n"
+       "  --metrics HOST:PORT      also serve GET /metrics (Prometheus) and /healthz here,\n"
+       "                           and nothing else: for a scraper without the HTTP API.\n"
+       "                           HTTPS with the TLS flags; plaintext off loopback only\n"
+       "                           with --insecure\n"
        "  --tls-cert CERT.pem      serve TLS with this certificate (chain), PEM\n"
        "  --tls-key KEY.pem        and its private key, PEM\n"
        "  --tls-client-ca CA.pem   require client certificates signed by this CA (mutual TLS)\n"
@@ -181,22 +185,25 @@ bool ReadTls(const std::string& cert, const std::string& key, const std::string&
 
 // --http and --cors-origin as the server will take them (whether TLS is given, not
 // its files, which are read later); false with the reason on `err`.
-bool HttpFlagsOk(const std::string& http, const std::string& cors_origin, bool tls, bool insecure,
-                 std::ostream& err) {
+bool HttpFlagsOk(const std::string& http, const std::string& cors_origin, const std::string& metrics, bool tls,
+                 bool insecure, std::ostream& err) {
   if (!cors_origin.empty() && http.empty()) {
     err << "snooker serve: --cors-origin needs --http\n";
     return false;
   }
-  if (http.empty()) return true;
-  server::HttpOptions check;
-  check.address = http;
-  check.allow_insecure = insecure;
-  check.cors_origin = cors_origin;
   const server::TlsOptions some_tls;
-  check.tls = tls ? &some_tls : nullptr;
-  if (const std::string bad = server::CheckHttpOptions(check); !bad.empty()) {
-    err << "snooker serve: " << bad << "\n";
-    return false;
+  for (const bool metrics_only : {false, true}) {
+    server::HttpOptions check;
+    check.address = metrics_only ? metrics : http;
+    if (check.address.empty()) continue;
+    check.allow_insecure = insecure;
+    check.cors_origin = metrics_only ? "" : cors_origin;
+    check.metrics_only = metrics_only;
+    check.tls = tls ? &some_tls : nullptr;
+    if (const std::string bad = server::CheckHttpOptions(check); !bad.empty()) {
+      err << "snooker serve: " << bad << "\n";
+      return false;
+    }
   }
   return true;
 }
@@ -208,6 +215,11 @@ void PrintListening(const server::Server& server, const server::ServerOptions& o
     const std::string& http = options.http_address;
     out << "snooker: serving HTTP (Connect protocol, web page, /healthz, /metrics) at " << server.http_scheme() << "://"
         << http.substr(0, http.rfind(':')) << ":" << server.http_port() << "/" << std::endl;
+  }
+  if (server.metrics_port() != 0) {
+    const std::string& metrics = options.metrics_address;
+    out << "snooker: serving metrics (/metrics, /healthz) at " << server.metrics_scheme() << "://"
+        << metrics.substr(0, metrics.rfind(':')) << ":" << server.metrics_port() << "/metrics" << std::endl;
   }
   out << "snooker: serving snooker.v1.ShotPlanner on port " << server.port() << " (" << options.address << ", "
       << (!options.tls ? "plaintext"
@@ -222,7 +234,7 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   Args args(argv,
             {"address", "max-call-ms", "shutdown-grace-ms", "workers", "max-queued", "tls-cert",
              "tls-key", "tls-client-ca", "tls-reload-s", "max-plans", "default-budget-ms", "max-budget-ms",
-             "vision-tolerance-mm", "model", "http", "cors-origin"},
+             "vision-tolerance-mm", "model", "http", "cors-origin", "metrics"},
             {"help", "insecure"});
   if (args.error().empty() && args.Switch("help")) {
     out << Help();
@@ -245,6 +257,7 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   const auto reload = args.Integer("tls-reload-s", 0, 0, lim::kMaxTlsReloadSeconds);
   const auto http = args.Text("http", "");
   const auto cors_origin = args.Text("cors-origin", "");
+  const auto metrics = args.Text("metrics", "");
   if (args.error().empty()) {
     if (cert->empty() != key->empty()) {
       err << "snooker serve: --tls-cert and --tls-key go together\n";
@@ -262,7 +275,9 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
       err << "snooker serve: --insecure and TLS (--tls-cert) exclude each other\n";
       return kExitUsage;
     }
-    if (!HttpFlagsOk(*http, *cors_origin, !cert->empty(), args.Switch("insecure"), err)) return kExitUsage;
+    if (!HttpFlagsOk(*http, *cors_origin, *metrics, !cert->empty(), args.Switch("insecure"), err)) {
+      return kExitUsage;
+    }
   }
   if (!args.error().empty()) {
     err << "snooker serve: " << args.error() << "\n(see snooker serve --help)\n";
@@ -283,6 +298,7 @@ int RunServe(const std::vector<std::string>& argv, std::ostream& out, std::ostre
   options.allow_insecure = args.Switch("insecure");
   options.http_address = *http;
   options.cors_origin = *cors_origin;
+  options.metrics_address = *metrics;
   options.log = &err;
   if (const std::string bad = server::ValidateServiceOptions(options); !bad.empty()) {
     err << "snooker serve: " << bad << "\n(see snooker serve --help)\n";

@@ -267,15 +267,16 @@ std::string CheckCorsOrigin(std::string_view origin) {
 }
 
 std::string CheckHttpOptions(const HttpOptions& options) {
+  const std::string what = options.metrics_only ? "metrics" : "HTTP";
   std::string host;
   int port = 0;
   if (!SplitHostPort(options.address, &host, &port)) {
     const std::string why = CheckListenAddress(options.address);
-    return "HTTP address '" + options.address + "': " +
-           (why.empty() ? "HTTP listens on HOST:PORT (not a Unix socket)" : why);
+    return what + " address '" + options.address + "': " +
+           (why.empty() ? what + " listens on HOST:PORT (not a Unix socket)" : why);
   }
   if (std::string refusal = PlaintextRefusal(options.address, options.tls != nullptr, options.allow_insecure,
-                                             "serve HTTP");
+                                             "serve " + what);
       !refusal.empty()) {
     return refusal;
   }
@@ -286,6 +287,7 @@ std::string CheckHttpOptions(const HttpOptions& options) {
 struct HttpServer::Impl {
   ShotPlannerService* service = nullptr;
   std::string cors_origin;
+  bool metrics_only = false;
   std::ostream* log = nullptr;
   bool tls = false;
   std::optional<std::int64_t> certificate_expiry;  // the start's certificate's
@@ -315,6 +317,7 @@ struct HttpServer::Impl {
   }
 
   void Configure();
+  void ConfigureMetricsOnly();
   void OnGet(const httplib::Request& req, httplib::Response& res);
   void OnBody(const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader);
   void OnOptions(const httplib::Request& req, httplib::Response& res);
@@ -377,6 +380,7 @@ void HttpServer::Impl::Configure() {
     headers.emplace("Access-Control-Expose-Headers", std::string(kRequestIdHeader));
   }
   s.set_default_headers(headers);
+  s.set_logger([this](const httplib::Request& req, const httplib::Response& res) { Log(req, res); });
   s.set_pre_routing_handler([](const httplib::Request& req, httplib::Response& res) {
     t_arrival = Clock::now();
     t_logged = false;
@@ -405,6 +409,7 @@ void HttpServer::Impl::Configure() {
     }
     return httplib::Server::HandlerResponse::Handled;
   }));
+  if (metrics_only) return ConfigureMetricsOnly();
   s.Get(".*", [this](const httplib::Request& req, httplib::Response& res) { OnGet(req, res); });
   s.Options(".*", [this](const httplib::Request& req, httplib::Response& res) { OnOptions(req, res); });
   auto body = [this](const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader) {
@@ -414,7 +419,25 @@ void HttpServer::Impl::Configure() {
   s.Put(".*", body);
   s.Patch(".*", body);
   s.Delete(".*", body);
-  s.set_logger([this](const httplib::Request& req, const httplib::Response& res) { Log(req, res); });
+}
+
+void HttpServer::Impl::ConfigureMetricsOnly() {
+  httplib::Server& s = *http;
+  auto served = [](const httplib::Request& req) { return req.path == "/metrics" || req.path == "/healthz"; };
+  const std::string not_here = "not found: this listener serves GET /metrics and /healthz only";
+  s.Get(".*", [this, served, not_here](const httplib::Request& req, httplib::Response& res) {
+    if (!served(req)) return ReplyText(res, 404, not_here);
+    OnGet(req, res);
+  });
+  auto other = [served, not_here](const httplib::Request& req, httplib::Response& res) {
+    if (!served(req)) return ReplyText(res, 404, not_here);
+    ReplyNotAllowed(res, "GET, HEAD", false);
+  };
+  s.Post(".*", other);
+  s.Put(".*", other);
+  s.Patch(".*", other);
+  s.Delete(".*", other);
+  s.Options(".*", other);
 }
 
 void HttpServer::Impl::OnGet(const httplib::Request& req, httplib::Response& res) {
@@ -685,6 +708,7 @@ std::unique_ptr<HttpServer> HttpServer::Start(ShotPlannerService* service, const
   auto impl = std::make_unique<Impl>();
   impl->service = service;
   impl->cors_origin = options.cors_origin;
+  impl->metrics_only = options.metrics_only;
   impl->log = options.log;
   impl->tls = options.tls != nullptr;
   if (options.tls != nullptr) {
@@ -707,7 +731,10 @@ std::unique_ptr<HttpServer> HttpServer::Start(ShotPlannerService* service, const
   }
   impl->Configure();
   impl->port = port == 0 ? impl->http->bind_to_any_port(host) : (impl->http->bind_to_port(host, port) ? port : -1);
-  if (impl->port <= 0) return fail("cannot listen on " + options.address + " for HTTP (is the port in use?)");
+  if (impl->port <= 0) {
+    return fail("cannot listen on " + options.address + (options.metrics_only ? " for metrics" : " for HTTP") +
+                " (is the port in use?)");
+  }
   std::promise<void> done;
   impl->listener_done = done.get_future();
   httplib::Server* http = impl->http.get();

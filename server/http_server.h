@@ -53,6 +53,9 @@ struct HttpOptions {
   std::string cors_origin;
   /// One line per request; nullptr: nowhere.
   std::ostream* log = nullptr;
+  /// Serve only GET /metrics and /healthz (a scraper's listener beside gRPC, with
+  /// no API and no page): any other request is 404, another method on them 405.
+  bool metrics_only = false;
 };
 
 /// Empty when `origin` is one origin ("http://" or "https://", then a host and an
@@ -60,7 +63,8 @@ struct HttpOptions {
 std::string CheckCorsOrigin(std::string_view origin);
 
 /// Empty when Start would accept the options' address, plaintext rule and origin;
-/// otherwise why not (the message names the address or the origin).
+/// otherwise why not (the message names the address or the origin, and says
+/// "metrics" for a metrics_only listener, "HTTP" otherwise).
 std::string CheckHttpOptions(const HttpOptions& options);
 
 class HttpServer {

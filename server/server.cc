@@ -113,6 +113,13 @@ std::unique_ptr<Server> Server::Start(const ServerOptions& options, std::string*
   } else if (!options.cors_origin.empty()) {
     return fail("a CORS origin needs an HTTP address (--http)");
   }
+  HttpOptions metrics = http;
+  metrics.address = options.metrics_address;
+  metrics.cors_origin.clear();
+  metrics.metrics_only = true;
+  if (!options.metrics_address.empty()) {
+    if (const std::string bad = CheckHttpOptions(metrics); !bad.empty()) return fail(bad);
+  }
   // The planner's tables are built before the port opens: the first plan after
   // SERVING is as fast as any other.
   WarmUpPlanner();
@@ -122,6 +129,7 @@ std::unique_ptr<Server> Server::Start(const ServerOptions& options, std::string*
   if (options.tls && options.tls->reload_interval.count() > 0) {
     // One reader of the files for both listeners: each set is read and said once.
     http.tls_reloader = std::make_shared<TlsReloader>(*options.tls, "tls", options.log, &s->service_.log_mutex());
+    metrics.tls_reloader = http.tls_reloader;
     std::string why;
     s->tls_files_ = GrpcTlsFiles::Start(*options.tls, http.tls_reloader, &why);
     if (s->tls_files_ == nullptr) return fail("cannot listen on " + options.address + " with TLS: " + why);
@@ -150,10 +158,11 @@ std::unique_ptr<Server> Server::Start(const ServerOptions& options, std::string*
                                "not match)"
                              : ""));
   }
-  if (!options.http_address.empty()) {
+  for (auto [listener, listener_options] : {std::pair{&s->http_, &http}, std::pair{&s->metrics_, &metrics}}) {
+    if (listener_options->address.empty()) continue;
     std::string why;
-    s->http_ = HttpServer::Start(&s->service_, http, &why);
-    if (s->http_ == nullptr) {
+    *listener = HttpServer::Start(&s->service_, *listener_options, &why);
+    if (*listener == nullptr) {
       s->server_->Shutdown(std::chrono::system_clock::now());
       s->server_.reset();
       return fail(why);
@@ -169,6 +178,7 @@ void Server::Shutdown(std::chrono::milliseconds grace) {
   std::call_once(shutdown_once_, [&] {
     const auto deadline = std::chrono::steady_clock::now() + grace;
     if (http_) http_->BeginShutdown();
+    if (metrics_) metrics_->BeginShutdown();
     if (server_) {
       server_->GetHealthCheckService()->SetServingStatus(kServiceName, false);
       // Waits for calls in flight until the deadline, then cancels them and waits
@@ -177,6 +187,7 @@ void Server::Shutdown(std::chrono::milliseconds grace) {
     }
     // The HTTP calls get what is left of the same grace.
     if (http_) http_->Finish(deadline);
+    if (metrics_) metrics_->Finish(deadline);
     service_.StopWorkers();
   });
 }

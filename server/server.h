@@ -70,6 +70,10 @@ struct ServerOptions : ServiceOptions {
   /// The one browser origin whose pages may call the HTTP service (CORS,
   /// `--cors-origin`); empty: none.
   std::string cors_origin;
+  /// Also serve GET /metrics and /healthz, and nothing else, over HTTP on this
+  /// "host:port" (`--metrics`), for a scraper where the service's own HTTP is not
+  /// wanted; empty: none. The same TLS and plaintext rule as `address`.
+  std::string metrics_address;
 };
 
 class Server {
@@ -88,6 +92,9 @@ class Server {
   /// The HTTP port bound (0: no HTTP), and "http" or "https".
   int http_port() const { return http_ ? http_->port() : 0; }
   const char* http_scheme() const { return http_ ? http_->scheme() : ""; }
+  /// The metrics listener's port (0: none), and "http" or "https".
+  int metrics_port() const { return metrics_ ? metrics_->port() : 0; }
+  const char* metrics_scheme() const { return metrics_ ? metrics_->scheme() : ""; }
   /// Blocks until Shutdown() is called from another thread.
   void Wait() { server_->Wait(); }
   /// Stops accepting calls (gRPC's and HTTP's), lets the calls in flight (running
@@ -105,7 +112,8 @@ class Server {
   ShotPlannerService service_;
   std::unique_ptr<GrpcTlsFiles> tls_files_;  // before server_, whose certificate watcher reads them
   std::unique_ptr<grpc::Server> server_;
-  std::unique_ptr<HttpServer> http_;  // after service_: its calls run there
+  std::unique_ptr<HttpServer> http_;     // after service_: its calls run there
+  std::unique_ptr<HttpServer> metrics_;  // after service_: it reads its counts
   std::chrono::milliseconds shutdown_grace_;
   std::once_flag shutdown_once_;
   int port_ = 0;

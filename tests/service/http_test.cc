@@ -651,6 +651,45 @@ TEST_F(HttpTest, CorsNamesTheOneOriginGiven) {
   }
 }
 
+// A scraper's listener beside gRPC, without the HTTP API: /metrics counts the gRPC
+// calls, /healthz answers, and nothing else is served there.
+TEST(MetricsListenerTest, ServesMetricsAndHealthAndNothingElse) {
+  ServerOptions options;
+  options.metrics_address = "127.0.0.1:0";
+  server_support::TestServer t(options);
+  ASSERT_NE(t.server, nullptr);
+  EXPECT_EQ(t.server->http_port(), 0);
+  ASSERT_GT(t.server->metrics_port(), 0);
+  EXPECT_STREQ(t.server->metrics_scheme(), "http");
+  grpc::ClientContext ctx;
+  v1::GetModelResponse model;
+  ASSERT_TRUE(t.stub->GetModel(&ctx, v1::GetModelRequest(), &model).ok());
+  server_support::WaitUntilAnswered(*t.server, 0, std::chrono::seconds(20));
+  httplib::Client c("127.0.0.1", t.server->metrics_port());
+  const auto metrics = c.Get("/metrics");
+  ASSERT_TRUE(metrics);
+  EXPECT_EQ(metrics->status, 200);
+  EXPECT_TRUE(Mentions(metrics->body, "\nsnooker_calls_total{method=\"GetModel\",code=\"OK\"} 1\n")) << metrics->body;
+  const auto health = c.Get("/healthz");
+  ASSERT_TRUE(health);
+  EXPECT_EQ(health->status, 200);
+  EXPECT_EQ(health->body, "SERVING\n");
+  for (const char* path : {"/", "/index.html", "/snooker.v1.ShotPlanner/GetModel"}) {
+    const auto res = c.Get(path);
+    ASSERT_TRUE(res) << path;
+    EXPECT_EQ(res->status, 404) << path;
+    EXPECT_TRUE(Mentions(res->body, "serves GET /metrics and /healthz only")) << path << ": " << res->body;
+  }
+  const auto call = c.Post("/snooker.v1.ShotPlanner/GetModel", "{}", "application/json");
+  ASSERT_TRUE(call);
+  EXPECT_EQ(call->status, 404);
+  const auto post = c.Post("/metrics", "", "text/plain");
+  ASSERT_TRUE(post);
+  EXPECT_EQ(post->status, 405);
+  EXPECT_EQ(post->get_header_value("Allow"), "GET, HEAD");
+  EXPECT_TRUE(Mentions(t.log.str(), "snooker: http method=GET path=/metrics")) << t.log.str();
+}
+
 TEST(HttpCommandTest, PlainHttpOffLoopbackIsRefused) {
   const cli_support::RunResult r = cli_support::RunCli("serve --http 0.0.0.0:0");
   EXPECT_EQ(r.exit_code, 2);
@@ -659,9 +698,13 @@ TEST(HttpCommandTest, PlainHttpOffLoopbackIsRefused) {
   const cli_support::RunResult cors = cli_support::RunCli("serve --cors-origin https://a.example");
   EXPECT_EQ(cors.exit_code, 2);
   EXPECT_TRUE(Mentions(cors.err, "--cors-origin needs --http")) << cors.err;
+  const cli_support::RunResult metrics = cli_support::RunCli("serve --metrics 0.0.0.0:0");
+  EXPECT_EQ(metrics.exit_code, 2);
+  EXPECT_TRUE(Mentions(metrics.err, "refusing to serve metrics on 0.0.0.0:0 in plaintext")) << metrics.err;
   const cli_support::RunResult help = cli_support::RunCli("serve --help");
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_TRUE(Mentions(help.out, "--http HOST:PORT")) << help.out;
+  EXPECT_TRUE(Mentions(help.out, "--metrics HOST:PORT")) << help.out;
   EXPECT_TRUE(Mentions(help.out, "--cors-origin ORIGIN")) << help.out;
 }
 
