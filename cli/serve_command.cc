@@ -183,7 +183,7 @@ bool ReadTls(const std::string& cert, const std::string& key, const std::string&
   return true;
 }
 
-// --http and --cors-origin as the server will take them (whether TLS is given, not
+// --http, --cors-origin and --metrics as the server will take them (whether TLS is given, not
 // its files, which are read later); false with the reason on `err`.
 bool HttpFlagsOk(const std::string& http, const std::string& cors_origin, const std::string& metrics, bool tls,
                  bool insecure, std::ostream& err) {

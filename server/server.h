@@ -79,7 +79,7 @@ struct ServerOptions : ServiceOptions {
 class Server {
  public:
   /// Starts serving. Returns nullptr and sets `error` when the options are invalid,
-  /// plaintext is asked for on an address (gRPC's or HTTP's) that is not loopback
+  /// plaintext is asked for on an address (gRPC's, HTTP's or metrics') that is not loopback
   /// without allow_insecure, or an address cannot be bound.
   static std::unique_ptr<Server> Start(const ServerOptions& options, std::string* error);
   /// The same with default options on `address`.
