@@ -687,6 +687,9 @@ TEST(MetricsListenerTest, ServesMetricsAndHealthAndNothingElse) {
   ASSERT_TRUE(post);
   EXPECT_EQ(post->status, 405);
   EXPECT_EQ(post->get_header_value("Allow"), "GET, HEAD");
+  // A request's line is written after its answer: read the log once the listener has
+  // stopped.
+  t.server->Shutdown(std::chrono::milliseconds(0));
   EXPECT_TRUE(Mentions(t.log.str(), "snooker: http method=GET path=/metrics")) << t.log.str();
 }
 
