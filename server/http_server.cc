@@ -304,14 +304,27 @@ struct HttpServer::Impl {
   // and the log may be gone before that connection's handlers run to their end, so
   // they no longer touch them, and this object outlives them (HttpServer's destructor).
   bool orphaned = false;
+  int service_users = 0;  // handlers in WithService's `use` now
   std::set<std::shared_ptr<ShotPlannerService::TransportCall>> in_flight;
   std::once_flag finished;
 
   // Runs `use` (brief: it touches the service or the log) unless orphaned; false then.
+  // Not under `mu`, so that a log write that stalls holds up no other handler; the
+  // stop waits for the uses under way before it orphans.
   template <typename Use>
   bool WithService(Use&& use) {
-    std::lock_guard<std::mutex> lock(mu);
-    if (orphaned) return false;
+    {
+      std::lock_guard<std::mutex> lock(mu);
+      if (orphaned) return false;
+      ++service_users;
+    }
+    struct Leave {
+      Impl* impl;
+      ~Leave() {
+        std::lock_guard<std::mutex> lock(impl->mu);
+        if (--impl->service_users == 0) impl->idle.notify_all();
+      }
+    } leave{this};
     use();
     return true;
   }
@@ -660,8 +673,9 @@ void HttpServer::Impl::Stop(Clock::time_point deadline) {
   if (listener_done.wait_for(wait) == std::future_status::ready) {
     listener.join();
   } else {
-    std::lock_guard<std::mutex> lock(mu);
+    std::unique_lock<std::mutex> lock(mu);
     orphaned = true;
+    idle.wait(lock, [this] { return service_users == 0; });
   }
 }
 
