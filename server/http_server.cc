@@ -731,7 +731,7 @@ std::unique_ptr<HttpServer> HttpServer::Start(ShotPlannerService* service, const
     if (options.tls->reload_interval.count() > 0) {
       impl->tls_reloader = options.tls_reloader != nullptr
                                ? options.tls_reloader
-                               : std::make_shared<TlsReloader>(*options.tls, "tls", options.log, &service->log_mutex());
+                               : std::make_shared<TlsReloader>(*options.tls, options.log, &service->log_mutex());
     }
     TlsReloader* reloader = impl->tls_reloader.get();
     impl->http = std::make_unique<httplib::SSLServer>([&](SSL_CTX& ctx) {

@@ -128,7 +128,7 @@ std::unique_ptr<Server> Server::Start(const ServerOptions& options, std::string*
   std::unique_ptr<Server> s(new Server(options));
   if (options.tls && options.tls->reload_interval.count() > 0) {
     // One reader of the files for both listeners: each set is read and said once.
-    http.tls_reloader = std::make_shared<TlsReloader>(*options.tls, "tls", options.log, &s->service_.log_mutex());
+    http.tls_reloader = std::make_shared<TlsReloader>(*options.tls, options.log, &s->service_.log_mutex());
     metrics.tls_reloader = http.tls_reloader;
     std::string why;
     s->tls_files_ = GrpcTlsFiles::Start(*options.tls, http.tls_reloader, &why);

@@ -154,9 +154,8 @@ std::optional<std::int64_t> CertificateExpiry(const std::string& cert_chain_pem)
   return expiry;
 }
 
-TlsReloader::TlsReloader(const TlsOptions& tls, std::string label, std::ostream* log, std::mutex* log_mu)
+TlsReloader::TlsReloader(const TlsOptions& tls, std::ostream* log, std::mutex* log_mu)
     : files_{tls.cert_chain_file, tls.private_key_file, tls.client_ca_file},
-      label_(std::move(label)),
       interval_(tls.reload_interval),
       log_(log),
       log_mu_(log_mu) {
@@ -222,7 +221,7 @@ std::shared_ptr<const TlsMaterial> TlsReloader::Current(bool now) {
   for (int i = 0; i < 3; ++i) stamps_[i] = stamps[i];
   material_ = std::move(m);
   refused_.clear();
-  Say("snooker: " + label_ + " serves the certificate read again from " + files_[0] + "\n");
+  Say("snooker: tls serves the certificate read again from " + files_[0] + "\n");
   return material_;
 }
 
@@ -234,7 +233,7 @@ void TlsReloader::SayKept(const std::string& why) {
 void TlsReloader::SayKeptLocked(const std::string& why) {
   if (why == refused_) return;
   refused_ = why;
-  Say("snooker: " + label_ + " kept the certificate in use; " + why + "\n");
+  Say("snooker: tls kept the certificate in use; " + why + "\n");
 }
 
 void TlsReloader::Say(const std::string& line) {

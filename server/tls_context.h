@@ -45,9 +45,8 @@ std::optional<std::int64_t> CertificateExpiry(const std::string& cert_chain_pem)
 /// is said once.
 class TlsReloader {
  public:
-  /// `log` (may be null) gets a line for each set taken or refused, under `log_mu`,
-  /// that begins "snooker: LABEL " (LABEL says whose set it is).
-  TlsReloader(const TlsOptions& tls, std::string label, std::ostream* log, std::mutex* log_mu);
+  /// `log` (may be null) gets a line for each set taken or refused, under `log_mu`.
+  TlsReloader(const TlsOptions& tls, std::ostream* log, std::mutex* log_mu);
   ~TlsReloader();
   TlsReloader(const TlsReloader&) = delete;
   TlsReloader& operator=(const TlsReloader&) = delete;
@@ -83,7 +82,6 @@ class TlsReloader {
   void SayKeptLocked(const std::string& why);  // under mu_
 
   std::string files_[3];  // the certificate, its key, the client CA (empty: none)
-  std::string label_;
   std::chrono::steady_clock::duration interval_;
   std::ostream* log_;
   std::mutex* log_mu_;
