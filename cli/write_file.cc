@@ -6,6 +6,8 @@
 #include <cerrno>
 #include <cstring>
 
+#include "server/read_file.h"
+
 namespace snooker::cli {
 namespace {
 
@@ -16,20 +18,9 @@ bool WriteThrough(const std::string& path, const std::string& text, std::string*
     *why = std::strerror(errno);
     return false;
   }
-  std::size_t done = 0;
-  int interrupted = 0;
-  // Each turn writes at least one byte, is one of at most 100 interruptions in a row,
-  // or ends the loop.
-  while (done < text.size()) {
-    const ssize_t n = write(fd, text.data() + done, text.size() - done);
-    if (n < 0 && errno == EINTR && ++interrupted < 100) continue;
-    interrupted = 0;
-    if (n <= 0) {
-      *why = n < 0 ? std::strerror(errno) : "the device took no more bytes";
-      close(fd);
-      return false;
-    }
-    done += static_cast<std::size_t>(n);
+  if (!server::WriteAll(fd, text, why)) {
+    close(fd);
+    return false;
   }
   if (close(fd) != 0) {  // a file system that reports a failed write only here (NFS)
     *why = std::strerror(errno);

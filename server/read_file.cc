@@ -84,4 +84,22 @@ bool ReadInputFile(const std::string& path, std::string* text, std::string* why)
   return true;
 }
 
+bool WriteAll(int fd, std::string_view text, std::string* why) {
+  std::size_t done = 0;
+  int interrupted = 0;
+  // Each turn writes at least one byte, is one of at most 100 interruptions in a row,
+  // or ends the loop.
+  while (done < text.size()) {
+    const ssize_t n = write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR && ++interrupted < 100) continue;
+    interrupted = 0;
+    if (n <= 0) {
+      *why = n < 0 ? std::strerror(errno) : "the device took no more bytes";
+      return false;
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
 }  // namespace snooker::server

@@ -297,16 +297,10 @@ bool GrpcTlsFiles::Replace(const std::string& text, int* fd, std::string* why) {
     *why = SystemError("cannot make an in-memory certificate file");
     return false;
   }
-  std::size_t done = 0;
-  while (done < text.size()) {
-    const ssize_t n = write(fresh, text.data() + done, text.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      *why = SystemError("cannot write an in-memory certificate file");
-      close(fresh);
-      return false;
-    }
-    done += static_cast<std::size_t>(n);
+  if (std::string reason; !WriteAll(fresh, text, &reason)) {
+    *why = "cannot write an in-memory certificate file: " + reason;
+    close(fresh);
+    return false;
   }
   if (*fd < 0) {
     *fd = fresh;
